@@ -1,0 +1,46 @@
+// validate(model): every structural invariant of the cycle structure and the
+// Euler-Poincare relations. Returns the violations found, each naming the check
+// and the ids involved; an empty list means the model is valid.
+//
+// Checks (one per file in src/topo/validate_*.cpp):
+//   records     every reference names a live entity of the right kind
+//   vertex      each vertex cycle closes and lists exactly the edge ends at it
+//   radial      each radial cycle closes, lists exactly the uses of its edge, and
+//               is in angular order about the edge (exact predicates)
+//   loop        each loop closes, consecutive uses join head to tail, every use
+//               names the loop's face, and each face's loop list ends at it
+//   orientation a manifold edge's two uses run in opposite directions when their
+//               faces bound a common volume
+//   volume      the face sides of each volume form closed shells
+//   euler       per closed manifold shell v - e + f = 2(1 - h) + r with integer
+//               h >= 0 (seed 003); over the model seed 001's extended formula
+//               v - e + (f - r) - (V - Vh + Vc) = C - Ch + Cc
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "cellforge/topo/model.h"
+
+namespace cellforge {
+
+struct Violation {
+  std::string check;    // "vertex", "radial", "loop", ...
+  std::string message;  // names the entities (v3, e7, ...)
+};
+
+std::vector<Violation> validate(const Model& m);
+std::string to_string(const std::vector<Violation>& violations);
+
+// The Euler-Poincare figures of a model, as validate computes them.
+struct EulerFigures {
+  long v = 0, e = 0, f = 0, r = 0;      // vertices, edges, faces, inner loops
+  long volumes = 0, volume_holes = 0, volume_cavities = 0;  // V, Vh, Vc
+  long components = 0, holes = 0, cavities = 0;             // C, Ch, Cc
+  long shells = 0;                                          // face-connected shells
+  long lhs() const { return v - e + (f - r) - (volumes - volume_holes + volume_cavities); }
+  long rhs() const { return components - holes + cavities; }
+};
+EulerFigures euler_figures(const Model& m);
+
+}  // namespace cellforge
