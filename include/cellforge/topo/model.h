@@ -146,6 +146,12 @@ class Model {
   GroupId group_of(VertexId v) const { return GroupId(vertices_[v.value].group); }
   // First end of v's edge cycle; invalid edge for an isolated vertex.
   EdgeEnd first_end(VertexId v) const { return decode_end(vertices_[v.value].first_end); }
+  // The point loop at v (a loop that is the single vertex v), if any. A vertex with
+  // a point loop has no edges; its record then names the loop instead of an edge.
+  LoopId point_loop(VertexId v) const {
+    const std::uint32_t c = vertices_[v.value].first_end;
+    return (c != kInvalidIndex && (c & kTagBit)) ? LoopId(c & ~kTagBit) : LoopId();
+  }
   // The next edge end around the same vertex (the vertex cycle).
   EdgeEnd next_end_around(EdgeEnd end) const {
     return decode_end(edges_[end.edge.value].next_end[end.end]);
@@ -232,6 +238,9 @@ class Model {
   std::size_t topology_bytes() const;
   std::size_t geometry_bytes() const { return positions_.size() * sizeof(Vec3); }
 
+  // Edge ids stay below 2^30 so that an encoded edge end never sets the tag bit.
+  static constexpr std::uint32_t kMaxEdges = 1u << 30;
+
   // ---- raw record sizes, for the storage comparison
   static constexpr std::size_t kVertexRecordBytes = 8;
   static constexpr std::size_t kEdgeRecordBytes = 20;
@@ -253,7 +262,7 @@ class Model {
   static constexpr std::uint32_t kTagBit = 0x80000000u;
 
   static EdgeEnd decode_end(std::uint32_t code) {
-    if (code == kInvalidIndex) return {};
+    if (code & kTagBit) return {};  // invalid, or a vertex's point-loop tag
     return {EdgeId(code >> 1), static_cast<int>(code & 1u)};
   }
   static std::uint32_t encode_end(EdgeEnd end) {
@@ -262,7 +271,7 @@ class Model {
   }
 
   struct VertexRec {
-    std::uint32_t first_end;
+    std::uint32_t first_end;  // encoded edge end, kTagBit|loop for a point loop, or invalid
     std::uint32_t group;  // kDead when the slot is free; first_end then links the free list
   };
   struct EdgeRec {

@@ -1,0 +1,184 @@
+// Model: read access to the cycle structure, iteration, sizes, attributes.
+#include "cellforge/topo/model.h"
+
+namespace cellforge {
+
+namespace {
+
+template <class IdT>
+LiveIds<IdT> live_range(const Model& m, std::uint32_t slots) {
+  return LiveIds<IdT>(&m, slots, [](const void* p, std::uint32_t i) {
+    return static_cast<const Model*>(p)->is_live(IdT(i));
+  });
+}
+
+}  // namespace
+
+bool Model::empty() const {
+  for (std::size_t n : live_) {
+    if (n != 0) return false;
+  }
+  return true;
+}
+
+LiveIds<VertexId> Model::vertices() const { return live_range<VertexId>(*this, vertex_slots()); }
+LiveIds<EdgeId> Model::edges() const { return live_range<EdgeId>(*this, edge_slots()); }
+LiveIds<EdgeUseId> Model::edge_uses() const { return live_range<EdgeUseId>(*this, use_slots()); }
+LiveIds<LoopId> Model::loops() const { return live_range<LoopId>(*this, loop_slots()); }
+LiveIds<FaceId> Model::faces() const { return live_range<FaceId>(*this, face_slots()); }
+LiveIds<VolumeId> Model::volumes() const {
+  return live_range<VolumeId>(*this, static_cast<std::uint32_t>(volumes_.size()));
+}
+LiveIds<GroupId> Model::groups() const {
+  return live_range<GroupId>(*this, static_cast<std::uint32_t>(groups_.size()));
+}
+
+std::size_t Model::degree(VertexId v) const {
+  const EdgeEnd first = first_end(v);
+  if (!first.edge.is_valid()) return 0;
+  std::size_t n = 0;
+  EdgeEnd end = first;
+  do {
+    ++n;
+    end = next_end_around(end);
+  } while (end != first);
+  return n;
+}
+
+std::size_t Model::use_count(EdgeId e) const {
+  const EdgeUseId first = first_use(e);
+  if (!first.is_valid()) return 0;
+  std::size_t n = 0;
+  EdgeUseId u = first;
+  do {
+    ++n;
+    u = radial_next(u);
+  } while (u != first);
+  return n;
+}
+
+EdgeUseId Model::loop_prev(EdgeUseId u) const {
+  EdgeUseId p = u;
+  while (loop_next(p) != u) p = loop_next(p);
+  return p;
+}
+
+LoopId Model::loop_of(EdgeUseId u) const {
+  const FaceId f = face_of(u);
+  for (LoopId l = outer_loop(f); l.is_valid(); l = next_loop(l)) {
+    const EdgeUseId first = loop_first(l);
+    if (!first.is_valid()) continue;
+    EdgeUseId w = first;
+    do {
+      if (w == u) return l;
+      w = loop_next(w);
+    } while (w != first);
+  }
+  return LoopId();
+}
+
+FaceId Model::face_of(LoopId l) const {
+  std::uint32_t n = loops_[l.value].next;
+  while (!(n & kTagBit)) n = loops_[n].next;
+  return FaceId(n & ~kTagBit);
+}
+
+std::size_t Model::loop_length(LoopId l) const {
+  const EdgeUseId first = loop_first(l);
+  if (!first.is_valid()) return 0;
+  std::size_t n = 0;
+  EdgeUseId u = first;
+  do {
+    ++n;
+    u = loop_next(u);
+  } while (u != first);
+  return n;
+}
+
+std::size_t Model::inner_loop_count(FaceId f) const {
+  std::size_t n = 0;
+  for (LoopId l = next_loop(outer_loop(f)); l.is_valid(); l = next_loop(l)) ++n;
+  return n;
+}
+
+std::vector<VertexId> Model::loop_vertices(LoopId l) const {
+  std::vector<VertexId> out;
+  const EdgeUseId first = loop_first(l);
+  if (!first.is_valid()) {
+    out.push_back(point_loop_vertex(l));
+    return out;
+  }
+  EdgeUseId u = first;
+  do {
+    out.push_back(use_start(u));
+    u = loop_next(u);
+  } while (u != first);
+  return out;
+}
+
+std::vector<Vec3> Model::loop_points(LoopId l) const {
+  std::vector<Vec3> out;
+  for (VertexId v : loop_vertices(l)) out.push_back(position(v));
+  return out;
+}
+
+Vec3 Model::face_normal(FaceId f) const {
+  Vec3 n;
+  const std::vector<Vec3> pts = loop_points(outer_loop(f));
+  for (std::size_t i = 0; i < pts.size(); ++i) n = n + cross(pts[i], pts[(i + 1) % pts.size()]);
+  return n;
+}
+
+std::size_t Model::topology_bytes() const {
+  static_assert(sizeof(VertexRec) == kVertexRecordBytes);
+  static_assert(sizeof(EdgeRec) == kEdgeRecordBytes);
+  static_assert(sizeof(UseRec) == kUseRecordBytes);
+  static_assert(sizeof(LoopRec) == kLoopRecordBytes);
+  static_assert(sizeof(FaceRec) == kFaceRecordBytes);
+  return vertices_.size() * sizeof(VertexRec) + edges_.size() * sizeof(EdgeRec) +
+         uses_.size() * sizeof(UseRec) + loops_.size() * sizeof(LoopRec) +
+         faces_.size() * sizeof(FaceRec) + sides_.size() * sizeof(SidesRec) +
+         volumes_.size() * sizeof(VolumeRec) + groups_.size() * sizeof(std::uint32_t);
+}
+
+void Model::set_attribute(GroupId g, std::string key, std::string value) {
+  for (Attribute& a : groups_[g.value].attributes) {
+    if (a.key == key) {
+      a.value = std::move(value);
+      return;
+    }
+  }
+  groups_[g.value].attributes.push_back({std::move(key), std::move(value)});
+}
+
+std::string Model::attribute(GroupId g, const std::string& key) const {
+  for (const Attribute& a : groups_[g.value].attributes) {
+    if (a.key == key) return a.value;
+  }
+  return {};
+}
+
+std::uint32_t Model::add_surface(Surface s) {
+  surfaces_.push_back(std::move(s));
+  return static_cast<std::uint32_t>(surfaces_.size() - 1);
+}
+
+void Model::set_surface(FaceId f, std::uint32_t surface) {
+  if (face_surface_.size() <= f.value) face_surface_.resize(faces_.size(), kInvalidIndex);
+  face_surface_[f.value] = surface;
+}
+
+bool Model::is_smooth(EdgeId e) const {
+  const EdgeUseId first = first_use(e);
+  if (!first.is_valid() || radial_next(first) == first) return false;
+  const std::uint32_t s = surface_of(face_of(first));
+  if (s == kInvalidIndex) return false;
+  EdgeUseId u = radial_next(first);
+  do {
+    if (surface_of(face_of(u)) != s) return false;
+    u = radial_next(u);
+  } while (u != first);
+  return true;
+}
+
+}  // namespace cellforge

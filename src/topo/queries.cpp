@@ -1,0 +1,157 @@
+// The 9 adjacency queries: local walks of the vertex cycle, the radial cycle and
+// the loops (orders documented in queries.h).
+#include "cellforge/topo/queries.h"
+
+#include <algorithm>
+
+#include "topo/model_editor.h"
+
+namespace cellforge {
+
+template <class T>
+void dedupe_stable(std::vector<T>& v) {
+  if (v.size() <= 32) {  // small answers: quadratic scan, no allocation
+    std::size_t n = 0;
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      if (std::find(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(n), v[i]) ==
+          v.begin() + static_cast<std::ptrdiff_t>(n)) {
+        v[n++] = v[i];
+      }
+    }
+    v.resize(n);
+    return;
+  }
+  std::vector<std::pair<T, std::size_t>> keyed;
+  keyed.reserve(v.size());
+  for (std::size_t i = 0; i < v.size(); ++i) keyed.emplace_back(v[i], i);
+  std::sort(keyed.begin(), keyed.end());
+  std::vector<char> keep(v.size(), 0);
+  for (std::size_t i = 0; i < keyed.size(); ++i) {
+    if (i == 0 || keyed[i].first != keyed[i - 1].first) keep[keyed[i].second] = 1;
+  }
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    if (keep[i]) v[n++] = v[i];
+  }
+  v.resize(n);
+}
+
+template void dedupe_stable(std::vector<VertexId>&);
+template void dedupe_stable(std::vector<EdgeId>&);
+template void dedupe_stable(std::vector<FaceId>&);
+
+namespace {
+
+template <class Fn>
+void for_each_end(const Model& m, VertexId v, Fn fn) {
+  const EdgeEnd first = m.first_end(v);
+  if (!first.edge.is_valid()) return;
+  EdgeEnd end = first;
+  do {
+    fn(end);
+    end = m.next_end_around(end);
+  } while (end != first);
+}
+
+template <class Fn>
+void for_each_radial(const Model& m, EdgeId e, Fn fn) {
+  const EdgeUseId first = m.first_use(e);
+  if (!first.is_valid()) return;
+  EdgeUseId u = first;
+  do {
+    fn(u);
+    u = m.radial_next(u);
+  } while (u != first);
+}
+
+// Visits every loop of f; for each, its uses (or, for a point loop, calls
+// on_point with the vertex).
+template <class UseFn, class PointFn>
+void for_each_loop_use(const Model& m, FaceId f, UseFn on_use, PointFn on_point) {
+  for (LoopId l = m.outer_loop(f); l.is_valid(); l = m.next_loop(l)) {
+    const EdgeUseId first = m.loop_first(l);
+    if (!first.is_valid()) {
+      on_point(m.point_loop_vertex(l));
+      continue;
+    }
+    EdgeUseId u = first;
+    do {
+      on_use(u);
+      u = m.loop_next(u);
+    } while (u != first);
+  }
+}
+
+}  // namespace
+
+void edges_of(const Model& m, VertexId v, std::vector<EdgeId>& out) {
+  out.clear();
+  for_each_end(m, v, [&](EdgeEnd end) { out.push_back(end.edge); });
+}
+
+void vertices_of(const Model& m, VertexId v, std::vector<VertexId>& out) {
+  out.clear();
+  for_each_end(m, v, [&](EdgeEnd end) { out.push_back(m.vertex_of(end.edge, 1 - end.end)); });
+  dedupe_stable(out);
+}
+
+void faces_of(const Model& m, VertexId v, std::vector<FaceId>& out) {
+  out.clear();
+  for_each_end(m, v, [&](EdgeEnd end) {
+    for_each_radial(m, end.edge, [&](EdgeUseId u) { out.push_back(m.face_of(u)); });
+  });
+  if (const LoopId l = m.point_loop(v); l.is_valid()) out.push_back(m.face_of(l));
+  dedupe_stable(out);
+}
+
+void vertices_of(const Model& m, EdgeId e, std::vector<VertexId>& out) {
+  out.clear();
+  out.push_back(m.start_of(e));
+  out.push_back(m.end_of(e));
+}
+
+void edges_of(const Model& m, EdgeId e, std::vector<EdgeId>& out) {
+  out.clear();
+  for (int end = 0; end < 2; ++end) {
+    for_each_end(m, m.vertex_of(e, end), [&](EdgeEnd x) {
+      if (x.edge != e) out.push_back(x.edge);
+    });
+  }
+  dedupe_stable(out);
+}
+
+void faces_of(const Model& m, EdgeId e, std::vector<FaceId>& out) {
+  out.clear();
+  for_each_radial(m, e, [&](EdgeUseId u) { out.push_back(m.face_of(u)); });
+  dedupe_stable(out);
+}
+
+void vertices_of(const Model& m, FaceId f, std::vector<VertexId>& out) {
+  out.clear();
+  for_each_loop_use(
+      m, f, [&](EdgeUseId u) { out.push_back(m.use_start(u)); },
+      [&](VertexId v) { out.push_back(v); });
+  dedupe_stable(out);
+}
+
+void edges_of(const Model& m, FaceId f, std::vector<EdgeId>& out) {
+  out.clear();
+  for_each_loop_use(
+      m, f, [&](EdgeUseId u) { out.push_back(m.edge_of(u)); }, [](VertexId) {});
+  dedupe_stable(out);
+}
+
+void faces_of(const Model& m, FaceId f, std::vector<FaceId>& out) {
+  out.clear();
+  for_each_loop_use(
+      m, f,
+      [&](EdgeUseId u) {
+        for (EdgeUseId w = m.radial_next(u); w != u; w = m.radial_next(w)) {
+          if (m.face_of(w) != f) out.push_back(m.face_of(w));
+        }
+      },
+      [](VertexId) {});
+  dedupe_stable(out);
+}
+
+}  // namespace cellforge

@@ -1,0 +1,27 @@
+// The validator's checks, one per file. Each appends violations naming ids.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "cellforge/topo/validate.h"
+
+namespace cellforge::checks {
+
+using Violations = std::vector<Violation>;
+
+// validate_records.cpp: every reference names a live entity (run first; the other
+// checks assume it passed).
+void records(const Model& m, Violations& out);
+// validate_cycles.cpp: vertex cycles, radial cycles (with angular order), loops.
+void vertex_cycles(const Model& m, Violations& out);
+void radial_cycles(const Model& m, Violations& out);
+void loops(const Model& m, Violations& out);
+// validate_wedges.cpp: around each edge, the two face sides facing each wedge
+// between radially consecutive faces name the same volume (this is also what makes
+// the faces of a solid consistently oriented).
+void wedges(const Model& m, Violations& out);
+// validate_euler.cpp: the Euler-Poincare relations.
+void euler(const Model& m, Violations& out);
+
+}  // namespace cellforge::checks

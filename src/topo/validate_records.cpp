@@ -1,0 +1,65 @@
+// Check "records": every stored reference names a live entity of the right kind
+// and the back-references that a record implies agree.
+#include "topo/validate_checks.h"
+
+namespace cellforge::checks {
+
+void records(const Model& m, Violations& out) {
+  auto fail = [&](std::string msg) { out.push_back({"records", std::move(msg)}); };
+  for (VertexId v : m.vertices()) {
+    if (!m.is_live(m.group_of(v))) fail(v.str() + " names dead group " + m.group_of(v).str());
+    const EdgeEnd end = m.first_end(v);
+    if (end.edge.is_valid() && (!m.is_live(end.edge) || m.vertex_of(end.edge, end.end) != v)) {
+      fail(v.str() + " starts its edge cycle at " + end.edge.str() + " which does not end at it");
+    }
+    const LoopId pl = m.point_loop(v);
+    if (pl.is_valid() && (!m.is_live(pl) || !m.is_point_loop(pl) || m.point_loop_vertex(pl) != v)) {
+      fail(v.str() + " names " + pl.str() + " as its point loop, which is not");
+    }
+  }
+  for (EdgeId e : m.edges()) {
+    for (int end = 0; end < 2; ++end) {
+      if (!m.is_live(m.vertex_of(e, end))) fail(e.str() + " ends at a dead vertex");
+    }
+    if (m.start_of(e) == m.end_of(e)) fail(e.str() + " starts and ends at " + m.start_of(e).str());
+    for (int end = 0; end < 2; ++end) {
+      const EdgeEnd n = m.next_end_around({e, end});
+      if (!m.is_live(n.edge)) fail(e.str() + " links its vertex cycle to a dead edge");
+    }
+    const EdgeUseId u = m.first_use(e);
+    if (u.is_valid() && (!m.is_live(u) || m.edge_of(u) != e)) {
+      fail(e.str() + " starts its radial cycle at " + u.str() + ", not one of its uses");
+    }
+  }
+  for (EdgeUseId u : m.edge_uses()) {
+    if (!m.is_live(m.edge_of(u))) fail(u.str() + " uses dead edge " + m.edge_of(u).str());
+    if (!m.is_live(m.face_of(u))) fail(u.str() + " names dead face " + m.face_of(u).str());
+    if (!m.is_live(m.loop_next(u))) fail(u.str() + " links its loop to a dead use");
+    if (!m.is_live(m.radial_next(u))) fail(u.str() + " links its radial cycle to a dead use");
+  }
+  for (LoopId l : m.loops()) {
+    if (m.is_point_loop(l)) {
+      const VertexId v = m.point_loop_vertex(l);
+      if (!m.is_live(v) || m.point_loop(v) != l) {
+        fail(l.str() + " is a point loop at " + v.str() + ", which does not name it back");
+      }
+    } else if (!m.is_live(m.loop_first(l))) {
+      fail(l.str() + " starts at a dead use");
+    }
+  }
+  for (FaceId f : m.faces()) {
+    if (!m.is_live(m.outer_loop(f))) fail(f.str() + " has no live outer loop");
+    if (!m.is_live(m.group_of(f))) fail(f.str() + " names a dead group");
+    for (VolumeId c : {m.front_volume(f), m.back_volume(f)}) {
+      if (c.is_valid() && !m.is_live(c)) fail(f.str() + " names dead volume " + c.str());
+      if (c.is_valid() && m.is_live(c) && m.group_of(c) != m.group_of(f)) {
+        fail(f.str() + " in " + m.group_of(f).str() + " bounds " + c.str() + " of another group");
+      }
+    }
+  }
+  for (VolumeId c : m.volumes()) {
+    if (!m.is_live(m.group_of(c))) fail(c.str() + " names a dead group");
+  }
+}
+
+}  // namespace cellforge::checks
