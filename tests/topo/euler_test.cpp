@@ -3,6 +3,7 @@
 // the model it started from, and every precondition refused with its message.
 #include <gtest/gtest.h>
 
+#include "cellforge/topo/examples.h"
 #include "cellforge/topo/operators.h"
 #include "cellforge/topo/queries.h"
 #include "support/checks.h"
@@ -13,55 +14,12 @@ namespace {
 
 using namespace testing;
 
-// Builds the cube [0,1]^3 with Euler operators only: mvsf, 3 mev, mef (bottom),
-// 4 mev (verticals), 4 mef (sides and top).
+// The cube [0,1]^3 from Euler operators only (examples.cpp): mvsf, 3 mev, mef for
+// the bottom, 4 mev for the verticals, 4 mef for the sides and the top.
 struct EulerCube {
   Model m;
-  GroupId g;
-  VertexId v[8];
-  FaceId bottom, top;
-
-  EulerCube() {
-    g = make_group(m);
-    const std::vector<Vec3> c = box_corners({0, 0, 0}, {1, 1, 1});
-    auto step = [&] { EXPECT_VALID(m); };
-    auto vf = mvsf(m, g, c[0]);
-    v[0] = vf->vertex;
-    const LoopId l0 = m.outer_loop(vf->face);
-    step();
-    const int ring[4] = {0, 1, 3, 2};  // bottom corners counterclockwise from above
-    for (int i = 1; i < 4; ++i) {
-      auto ev = mev(m, l0, v[ring[i - 1]], c[ring[i]]);
-      v[ring[i]] = ev->vertex;
-      step();
-    }
-    // The new face runs v2 -> v3 -> v1 -> v0 (normal -z): the bottom. The first
-    // face keeps v0 -> v1 -> v3 -> v2 (normal +z) and is lifted to become the top.
-    auto ef = mef(m, l0, v[2], v[0]);
-    step();
-    bottom = ef->face;
-    top = vf->face;
-    LoopId lt = l0;
-    for (int i = 0; i < 4; ++i) {
-      auto ev = mev(m, lt, v[ring[i]], c[ring[i] + 4]);
-      v[ring[i] + 4] = ev->vertex;
-      step();
-    }
-    for (int i = 0; i < 4; ++i) {
-      const VertexId a = v[ring[i] + 4], b = v[ring[(i + 1) % 4] + 4];
-      auto r = mef(m, lt, a, b);
-      EXPECT_TRUE(r.ok()) << r.error().message;
-      // Keep walking the loop that still holds the remaining struts.
-      if (!ops_on(lt, b)) lt = m.outer_loop(r->face);
-      step();
-    }
-  }
-  bool ops_on(LoopId l, VertexId x) const {
-    for (VertexId y : m.loop_vertices(l)) {
-      if (y == x) return true;
-    }
-    return false;
-  }
+  GroupId g = make_group(m);
+  EulerCube() { EXPECT_TRUE(euler_box_into(m, g, {0, 0, 0}, {1, 1, 1}, false).ok()); }
 };
 
 TEST(Euler, CubeFromOperators) {
@@ -187,6 +145,28 @@ TEST(Euler, InversesRestoreTheModel) {
     ASSERT_OK(kvsf(m, r->vertex, r->face));
     same("mvsf/kvsf");
   }
+}
+
+TEST(Euler, CubeWithThroughHoleMatchesTheBulkBuilder) {
+  Model m;
+  auto g = euler_box_with_hole(m, {0, 0, 0}, {3, 3, 3}, 1, 2);
+  ASSERT_OK(g);
+  EXPECT_VALID(m);
+  EXPECT_EQ(m.num_vertices(), 16u);
+  EXPECT_EQ(m.num_edges(), 24u);
+  EXPECT_EQ(m.num_faces(), 10u);
+  EXPECT_EQ(canonical_dump(m), canonical_dump(build(cube_with_through_hole())));
+}
+
+TEST(Euler, NonManifoldExampleMatchesTheBulkBuilder) {
+  Model m;
+  ASSERT_OK(euler_nonmanifold_example(m));
+  EXPECT_VALID(m);
+  MeshInput in = two_cubes_sharing_edge();
+  in.wires.push_back({add_point(in, {1, 1, 1}), add_point(in, {2, 2, 2})});
+  add_point(in, {3, 0, 0});
+  EXPECT_EQ(canonical_dump(m), canonical_dump(build(in)));
+  EXPECT_EQ(m.use_count(edge_at(m, {1, 1, 0}, {1, 1, 1})), 4u);
 }
 
 TEST(Euler, KfmrhAndMfkrhAreInverse) {
