@@ -16,6 +16,7 @@ struct Expect {
   MeshInput (*make)();
   std::size_t v, e, f, volumes;
   long components, holes, cavities;
+  friend void PrintTo(const Expect& x, std::ostream* os) { *os << x.name; }
 };
 
 class FixtureTest : public ::testing::TestWithParam<Expect> {};
