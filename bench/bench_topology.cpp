@@ -62,9 +62,12 @@ void query_bench(benchmark::State& state) {
   std::size_t elements = 0, k = 0;
   for (auto _ : state) {
     const In x = sample[k++ & 4095];
-    if constexpr (std::is_same_v<Out, VertexId>) vertices_of(m, x, out);
-    else if constexpr (std::is_same_v<Out, EdgeId>) edges_of(m, x, out);
-    else faces_of(m, x, out);
+    if constexpr (std::is_same_v<Out, VertexId>)
+      vertices_of(m, x, out);
+    else if constexpr (std::is_same_v<Out, EdgeId>)
+      edges_of(m, x, out);
+    else
+      faces_of(m, x, out);
     elements += out.size();
     benchmark::DoNotOptimize(out.data());
   }
@@ -98,7 +101,11 @@ void bytes_per_face(benchmark::State& state) {
   state.counters["build_faces_per_s"] = benchmark::Counter(
       static_cast<double>(m.num_faces()) * state.iterations(), benchmark::Counter::kIsRate);
 }
-BENCHMARK(bytes_per_face)->Arg(1)->Arg(0)->ArgName("triangles")->Unit(benchmark::kMillisecond)
+BENCHMARK(bytes_per_face)
+    ->Arg(1)
+    ->Arg(0)
+    ->ArgName("triangles")
+    ->Unit(benchmark::kMillisecond)
     ->Iterations(1);
 
 }  // namespace

@@ -32,9 +32,9 @@ void report(std::ostream& os, const std::string& title, const Model& m, VertexId
   os << "  valid: " << (violations.empty() ? "yes" : "NO") << '\n';
   for (const Violation& x : violations) os << "    [" << x.check << "] " << x.message << '\n';
   const EulerFigures fig = euler_figures(m);
-  os << "  Euler-Poincare (seed 001): v - e + (f - r) - (V - Vh + Vc) = " << fig.v << " - "
-     << fig.e << " + (" << fig.f << " - " << fig.r << ") - (" << fig.volumes << " - "
-     << fig.volume_holes << " + " << fig.volume_cavities << ") = " << fig.lhs() << '\n'
+  os << "  Euler-Poincare (seed 001): v - e + (f - r) - (V - Vh + Vc) = " << fig.v << " - " << fig.e
+     << " + (" << fig.f << " - " << fig.r << ") - (" << fig.volumes << " - " << fig.volume_holes
+     << " + " << fig.volume_cavities << ") = " << fig.lhs() << '\n'
      << "                              C - Ch + Cc = " << fig.components << " - " << fig.holes
      << " + " << fig.cavities << " = " << fig.rhs()
      << (fig.unchecked ? "  (right side not checked on non-manifold components)" : "") << '\n';

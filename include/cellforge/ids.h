@@ -28,13 +28,27 @@ struct Id {
   friend std::ostream& operator<<(std::ostream& os, Id id) { return os << id.str(); }
 };
 
-struct VertexTag { static constexpr const char* kPrefix = "v"; };
-struct EdgeTag { static constexpr const char* kPrefix = "e"; };
-struct EdgeUseTag { static constexpr const char* kPrefix = "u"; };
-struct LoopTag { static constexpr const char* kPrefix = "l"; };
-struct FaceTag { static constexpr const char* kPrefix = "f"; };
-struct VolumeTag { static constexpr const char* kPrefix = "c"; };
-struct GroupTag { static constexpr const char* kPrefix = "g"; };
+struct VertexTag {
+  static constexpr const char* kPrefix = "v";
+};
+struct EdgeTag {
+  static constexpr const char* kPrefix = "e";
+};
+struct EdgeUseTag {
+  static constexpr const char* kPrefix = "u";
+};
+struct LoopTag {
+  static constexpr const char* kPrefix = "l";
+};
+struct FaceTag {
+  static constexpr const char* kPrefix = "f";
+};
+struct VolumeTag {
+  static constexpr const char* kPrefix = "c";
+};
+struct GroupTag {
+  static constexpr const char* kPrefix = "g";
+};
 
 using VertexId = Id<VertexTag>;
 using EdgeId = Id<EdgeTag>;

@@ -12,13 +12,13 @@
 namespace cellforge {
 
 enum class ErrorCode {
-  kInvalidId,        // a handle that names no live entity
-  kPrecondition,     // an operator's precondition does not hold
-  kInvalidInput,     // malformed input data (indices, counts, coordinates)
-  kParse,            // a file or script could not be read
-  kIo,               // the operating system refused a read or write
-  kUnsupported,      // valid request the component cannot represent
-  kDatabase,         // the model database reported an error
+  kInvalidId,     // a handle that names no live entity
+  kPrecondition,  // an operator's precondition does not hold
+  kInvalidInput,  // malformed input data (indices, counts, coordinates)
+  kParse,         // a file or script could not be read
+  kIo,            // the operating system refused a read or write
+  kUnsupported,   // valid request the component cannot represent
+  kDatabase,      // the model database reported an error
 };
 
 struct Error {
@@ -29,19 +29,31 @@ struct Error {
 template <class T>
 class [[nodiscard]] Result {
  public:
-  Result(T value) : data_(std::move(value)) {}  // NOLINT: implicit by design
+  Result(T value) : data_(std::move(value)) {}      // NOLINT: implicit by design
   Result(Error error) : data_(std::move(error)) {}  // NOLINT
 
   bool ok() const { return data_.index() == 0; }
   explicit operator bool() const { return ok(); }
-  T& value() & { assert(ok()); return std::get<0>(data_); }
-  const T& value() const& { assert(ok()); return std::get<0>(data_); }
-  T&& value() && { assert(ok()); return std::get<0>(std::move(data_)); }
+  T& value() & {
+    assert(ok());
+    return std::get<0>(data_);
+  }
+  const T& value() const& {
+    assert(ok());
+    return std::get<0>(data_);
+  }
+  T&& value() && {
+    assert(ok());
+    return std::get<0>(std::move(data_));
+  }
   T& operator*() & { return value(); }
   const T& operator*() const& { return value(); }
   T* operator->() { return &value(); }
   const T* operator->() const { return &value(); }
-  const Error& error() const { assert(!ok()); return std::get<1>(data_); }
+  const Error& error() const {
+    assert(!ok());
+    return std::get<1>(data_);
+  }
 
  private:
   std::variant<T, Error> data_;
@@ -55,7 +67,10 @@ class [[nodiscard]] Status {
 
   bool ok() const { return !error_.has_value(); }
   explicit operator bool() const { return ok(); }
-  const Error& error() const { assert(!ok()); return *error_; }
+  const Error& error() const {
+    assert(!ok());
+    return *error_;
+  }
 
  private:
   std::optional<Error> error_;

@@ -42,8 +42,7 @@ Status check_input(const MeshInput& in) {
     for (int side : {f.front, f.back}) {
       if (side < -1 || side >= in.volumes) {
         return Error{ErrorCode::kInvalidInput, where + " names volume " + std::to_string(side) +
-                                                   " but there are " +
-                                                   std::to_string(in.volumes)};
+                                                   " but there are " + std::to_string(in.volumes)};
       }
     }
     for (std::size_t li = 0; li < f.loops.size(); ++li) {
@@ -160,8 +159,10 @@ Result<BuildResult> build_mesh(Model& m, const MeshInput& in) {
         const bool reversed = out.vertices[loop[k]] != m.start_of(e);
         const EdgeUseId u = ed.new_use(e, reversed, face);
         use_of_slot[slot] = u;
-        if (prev.is_valid()) ed.set_next(prev, u);
-        else first = u;
+        if (prev.is_valid())
+          ed.set_next(prev, u);
+        else
+          first = u;
         prev = u;
       }
       ed.set_next(prev, first);
@@ -177,8 +178,10 @@ Result<BuildResult> build_mesh(Model& m, const MeshInput& in) {
     for (std::size_t i = groups[g].first; i < groups[g].second; ++i) {
       if (sides[i].slot == kInvalidIndex) continue;
       const EdgeUseId u = use_of_slot[sides[i].slot];
-      if (prev.is_valid()) ed.rec(prev).radial_next = u.value;
-      else first = u;
+      if (prev.is_valid())
+        ed.rec(prev).radial_next = u.value;
+      else
+        first = u;
       prev = u;
       ++count;
     }

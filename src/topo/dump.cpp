@@ -61,8 +61,8 @@ std::string canonical_dump(const Model& m) {
       (l == m.outer_loop(f) ? outer : inner.emplace_back()) = "[" + join(cycle, " ") + "]";
     }
     std::sort(inner.begin(), inner.end());
-    face_geo[f] = "outer=" + outer + " inner={" + join(inner, ",") + "} group=" +
-                  m.name(m.group_of(f));
+    face_geo[f] =
+        "outer=" + outer + " inner={" + join(inner, ",") + "} group=" + m.name(m.group_of(f));
   }
   std::map<VolumeId, std::string> volume_key;
   for (FaceId f : m.faces()) {
@@ -77,8 +77,8 @@ std::string canonical_dump(const Model& m) {
   auto volname = [&](VolumeId c) { return c.is_valid() ? "<" + volume_key[c] + ">" : "-"; };
   std::map<FaceId, std::string> face_key;
   for (FaceId f : m.faces()) {
-    std::string k = face_geo[f] + " front=" + volname(m.front_volume(f)) +
-                    " back=" + volname(m.back_volume(f));
+    std::string k =
+        face_geo[f] + " front=" + volname(m.front_volume(f)) + " back=" + volname(m.back_volume(f));
     const std::uint32_t s = m.surface_of(f);
     if (s != kInvalidIndex) {
       const Surface& sf = m.surface(s);

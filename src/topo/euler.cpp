@@ -29,8 +29,7 @@ Status can_kvsf(const Model& m, VertexId v, FaceId f) {
   CF_CHECK(require_live(m, f, "kvsf: face"));
   const LoopId l = m.outer_loop(f);
   if (m.next_loop(l).is_valid() || !m.is_point_loop(l) || m.point_loop_vertex(l) != v) {
-    return precondition("kvsf: face " + f.str() + " must have a single point loop at " +
-                        v.str());
+    return precondition("kvsf: face " + f.str() + " must have a single point loop at " + v.str());
   }
   if (m.front_volume(f).is_valid() || m.back_volume(f).is_valid()) {
     return precondition("kvsf: face " + f.str() + " bounds a volume");
@@ -115,7 +114,7 @@ Status kev(Model& m, EdgeId e, VertexId v) {
   LoopId to_point;
   if (!uses.empty()) {
     const EdgeUseId in = m.use_end(uses[0]) == v ? uses[0] : uses[1];  // w -> v
-    const EdgeUseId out = m.loop_next(in);                              // v -> w
+    const EdgeUseId out = m.loop_next(in);                             // v -> w
     const LoopId l = m.loop_of(in);
     if (m.loop_length(l) == 2) {
       to_point = l;
@@ -340,8 +339,10 @@ Result<EdgeId> mekr(Model& m, LoopId l1, VertexId v1, LoopId l2, VertexId v2) {
     ed.set_next(pb, n2);
   }
   ed.set_next(n2, after);
-  if (point1) ed.set_loop_first(l1, n1);
-  else ed.set_next(a, n1);
+  if (point1)
+    ed.set_loop_first(l1, n1);
+  else
+    ed.set_next(a, n1);
   ed.radial_insert(n1);
   ed.radial_insert(n2);
   return e;
@@ -422,8 +423,10 @@ Result<EdgeVertex> semv(Model& m, EdgeId e, Vec3 position) {
       ed.set_next(m.loop_prev(u), u2);
       ed.set_next(u2, u);
     }
-    if (prev.is_valid()) ed.rec(prev).radial_next = u2.value;
-    else first = u2;
+    if (prev.is_valid())
+      ed.rec(prev).radial_next = u2.value;
+    else
+      first = u2;
     prev = u2;
   }
   if (first.is_valid()) {

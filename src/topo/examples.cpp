@@ -147,7 +147,8 @@ Result<GroupId> euler_nonmanifold_example(Model& m, std::string name) {
   }
   EdgeId first, second;
   for (EdgeEnd end = m.first_end(keep[0]), start = end;;) {
-    if (m.vertex_of(end.edge, 1 - end.end) == keep[1]) (first.is_valid() ? second : first) = end.edge;
+    if (m.vertex_of(end.edge, 1 - end.end) == keep[1])
+      (first.is_valid() ? second : first) = end.edge;
     end = m.next_end_around(end);
     if (end == start) break;
   }

@@ -7,8 +7,7 @@
 namespace cellforge {
 
 template <class Rec>
-std::uint32_t ModelEditor::take_slot(std::vector<Rec>& recs, int kind,
-                                     std::uint32_t Rec::*link) {
+std::uint32_t ModelEditor::take_slot(std::vector<Rec>& recs, int kind, std::uint32_t Rec::*link) {
   ++m_.live_[kind];
   std::uint32_t& head = m_.free_[kind];
   if (head != kInvalidIndex) {
@@ -90,8 +89,7 @@ FaceId ModelEditor::new_face(std::uint32_t sides) {
 }
 
 VolumeId ModelEditor::new_volume(GroupId g) {
-  const std::uint32_t i =
-      take_slot(m_.volumes_, Model::kVolume, &Model::VolumeRec::next_free);
+  const std::uint32_t i = take_slot(m_.volumes_, Model::kVolume, &Model::VolumeRec::next_free);
   m_.volumes_[i] = {g.value, kInvalidIndex};
   return VolumeId(i);
 }

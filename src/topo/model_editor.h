@@ -28,7 +28,7 @@ class ModelEditor {
   // ---- creation (records come back initialised, not yet linked)
   GroupId new_group(std::string name);
   VertexId new_vertex(GroupId g, Vec3 p);
-  EdgeId new_edge(VertexId a, VertexId b);  // links both ends into the vertex cycles
+  EdgeId new_edge(VertexId a, VertexId b);               // links both ends into the vertex cycles
   EdgeUseId new_use(EdgeId e, bool reversed, FaceId f);  // not yet in loop or radial cycle
   LoopId new_point_loop(VertexId v);
   LoopId new_loop(EdgeUseId first);

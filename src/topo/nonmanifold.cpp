@@ -20,13 +20,16 @@ GroupId make_group(Model& m, std::string name) { return ModelEditor(m).new_group
 Status can_kill_group(const Model& m, GroupId g) {
   CF_CHECK(require_live(m, g, "kill_group: group"));
   for (VertexId v : m.vertices()) {
-    if (m.group_of(v) == g) return precondition("kill_group: group " + g.str() + " holds " + v.str());
+    if (m.group_of(v) == g)
+      return precondition("kill_group: group " + g.str() + " holds " + v.str());
   }
   for (FaceId f : m.faces()) {
-    if (m.group_of(f) == g) return precondition("kill_group: group " + g.str() + " holds " + f.str());
+    if (m.group_of(f) == g)
+      return precondition("kill_group: group " + g.str() + " holds " + f.str());
   }
   for (VolumeId c : m.volumes()) {
-    if (m.group_of(c) == g) return precondition("kill_group: group " + g.str() + " holds " + c.str());
+    if (m.group_of(c) == g)
+      return precondition("kill_group: group " + g.str() + " holds " + c.str());
   }
   return Status::Ok();
 }
@@ -67,8 +70,8 @@ Status can_make_volume(const Model& m, GroupId g, const std::vector<FaceSide>& s
   }
   for (const auto& [e, b] : balance) {
     if (b != 0) {
-      return precondition("make_volume: the sides do not close at edge " + e.str() +
-                          " (run " + std::to_string(b) + " more times one way than the other)");
+      return precondition("make_volume: the sides do not close at edge " + e.str() + " (run " +
+                          std::to_string(b) + " more times one way than the other)");
     }
   }
   return Status::Ok();
@@ -79,8 +82,10 @@ Result<VolumeId> make_volume(Model& m, GroupId g, const std::vector<FaceSide>& s
   ModelEditor ed(m);
   const VolumeId c = ed.new_volume(g);
   for (const FaceSide& s : sides) {
-    if (s.front) ed.set_sides(s.face, c, m.back_volume(s.face));
-    else ed.set_sides(s.face, m.front_volume(s.face), c);
+    if (s.front)
+      ed.set_sides(s.face, c, m.back_volume(s.face));
+    else
+      ed.set_sides(s.face, m.front_volume(s.face), c);
   }
   return c;
 }
@@ -94,14 +99,18 @@ std::vector<FaceSide> sides_of(const Model& m, VolumeId c) {
   return out;
 }
 
-Status can_kill_volume(const Model& m, VolumeId c) { return require_live(m, c, "kill_volume: volume"); }
+Status can_kill_volume(const Model& m, VolumeId c) {
+  return require_live(m, c, "kill_volume: volume");
+}
 
 Status kill_volume(Model& m, VolumeId c) {
   CF_CHECK(can_kill_volume(m, c));
   ModelEditor ed(m);
   for (const FaceSide& s : sides_of(m, c)) {
-    if (s.front) ed.set_sides(s.face, VolumeId(), m.back_volume(s.face));
-    else ed.set_sides(s.face, m.front_volume(s.face), VolumeId());
+    if (s.front)
+      ed.set_sides(s.face, VolumeId(), m.back_volume(s.face));
+    else
+      ed.set_sides(s.face, m.front_volume(s.face), VolumeId());
   }
   ed.free_volume(c);
   return Status::Ok();
@@ -109,7 +118,9 @@ Status kill_volume(Model& m, VolumeId c) {
 
 // ---------------------------------------------------------------- vertices and wires
 
-Status can_make_vertex(const Model& m, GroupId g) { return require_live(m, g, "make_vertex: group"); }
+Status can_make_vertex(const Model& m, GroupId g) {
+  return require_live(m, g, "make_vertex: group");
+}
 
 Result<VertexId> make_vertex(Model& m, GroupId g, Vec3 position) {
   CF_CHECK(can_make_vertex(m, g));
@@ -217,8 +228,10 @@ Result<FaceId> make_face(Model& m, const FaceSpec& spec) {
       if (!e.is_valid()) e = ed.new_edge(a, b);
       const EdgeUseId u = ed.new_use(e, m.start_of(e) != a, f);
       made.push_back(u);
-      if (prev.is_valid()) ed.set_next(prev, u);
-      else first = u;
+      if (prev.is_valid())
+        ed.set_next(prev, u);
+      else
+        first = u;
       prev = u;
     }
     ed.set_next(prev, first);
@@ -278,10 +291,12 @@ Status can_glue_faces(const Model& m, FaceId a, FaceId b) {
       return precondition("glue_faces: face " + f.str() +
                           " must have a volume on its back and none in front");
     }
-    if (m.inner_loop_count(f) != 0) return precondition("glue_faces: face " + f.str() + " has inner loops");
+    if (m.inner_loop_count(f) != 0)
+      return precondition("glue_faces: face " + f.str() + " has inner loops");
   }
   if (m.group_of(a) != m.group_of(b)) {
-    return precondition("glue_faces: faces " + a.str() + " and " + b.str() + " are in different groups");
+    return precondition("glue_faces: faces " + a.str() + " and " + b.str() +
+                        " are in different groups");
   }
   // b must run over a's edges, each once and the other way.
   const std::vector<EdgeUseId> ua = ops::loop_uses(m, m.outer_loop(a));
@@ -352,7 +367,8 @@ Status can_split_edge(const Model& m, EdgeId e, const std::vector<EdgeUseId>& mo
   std::set<EdgeUseId> seen;
   for (EdgeUseId u : moving) {
     CF_CHECK(require_live(m, u, "split_edge: use"));
-    if (m.edge_of(u) != e) return precondition("split_edge: use " + u.str() + " is not a use of " + e.str());
+    if (m.edge_of(u) != e)
+      return precondition("split_edge: use " + u.str() + " is not a use of " + e.str());
     if (!seen.insert(u).second) return precondition("split_edge: use " + u.str() + " given twice");
   }
   if (seen.size() == m.use_count(e)) {
@@ -456,7 +472,8 @@ Status can_split_vertex(const Model& m, VertexId v, const std::vector<EdgeEnd>& 
       return precondition("split_vertex: edge end " + end.edge.str() + " given twice");
     }
   }
-  if (move.size() == m.degree(v)) return precondition("split_vertex: all edges of " + v.str() + " would move");
+  if (move.size() == m.degree(v))
+    return precondition("split_vertex: all edges of " + v.str() + " would move");
   // No loop may pass through v from a moving edge to a staying one.
   for (EdgeEnd end : ops::ends_at(m, v)) {
     for (EdgeUseId u : ops::radial_uses(m, end.edge)) {

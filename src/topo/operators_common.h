@@ -9,11 +9,11 @@
 #include "cellforge/topo/model.h"
 
 // Returns the error of a failed check from the enclosing function.
-#define CF_CHECK(expr)               \
-  do {                               \
-    if (Status s_ = (expr); !s_) {   \
-      return s_.error();             \
-    }                                \
+#define CF_CHECK(expr)             \
+  do {                             \
+    if (Status s_ = (expr); !s_) { \
+      return s_.error();           \
+    }                              \
   } while (0)
 
 namespace cellforge::ops {

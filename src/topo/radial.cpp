@@ -21,9 +21,7 @@ ExactVec3 interior_direction(const Model& m, EdgeUseId u) {
   return exact_cross(n, t);
 }
 
-bool is_zero(const ExactVec3& d) {
-  return d.x.sign() == 0 && d.y.sign() == 0 && d.z.sign() == 0;
-}
+bool is_zero(const ExactVec3& d) { return d.x.sign() == 0 && d.y.sign() == 0 && d.z.sign() == 0; }
 
 struct Entry {
   EdgeUseId use;

@@ -84,7 +84,8 @@ void loops(const Model& m, Violations& out) {
       EdgeUseId u = first;
       std::size_t k = 0;
       do {
-        if (m.face_of(u) != f) fail(u.str() + " in " + l.str() + " names face " + m.face_of(u).str());
+        if (m.face_of(u) != f)
+          fail(u.str() + " in " + l.str() + " names face " + m.face_of(u).str());
         const EdgeUseId next = m.loop_next(u);
         if (m.use_end(u) != m.use_start(next)) {
           fail(l.str() + ": " + u.str() + " ends at " + m.use_end(u).str() + " but " + next.str() +

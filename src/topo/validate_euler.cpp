@@ -115,8 +115,8 @@ Analysis analyse(const Model& m) {
   }
   for (EdgeId e : m.edges()) {
     const std::size_t n = m.use_count(e);
-    const std::uint32_t p =
-        n == 0 ? wire_piece[wires.find(m.start_of(e).value)] : shell_piece[m.face_of(m.first_use(e)).value];
+    const std::uint32_t p = n == 0 ? wire_piece[wires.find(m.start_of(e).value)]
+                                   : shell_piece[m.face_of(m.first_use(e)).value];
     ++piece[p].e;
     if (n > 2) piece[p].manifold = false;
     if (n != 2 && n != 0) piece[p].closed = false;
@@ -148,7 +148,8 @@ Analysis analyse(const Model& m) {
   std::vector<std::vector<std::uint32_t>> vol_shells(vols.size());
   {
     std::vector<std::uint32_t> index(vols.empty() ? 0 : vols.back().value + 1, kInvalidIndex);
-    for (std::size_t i = 0; i < vols.size(); ++i) index[vols[i].value] = static_cast<std::uint32_t>(i);
+    for (std::size_t i = 0; i < vols.size(); ++i)
+      index[vols[i].value] = static_cast<std::uint32_t>(i);
     for (FaceId f : m.faces()) {
       for (VolumeId c : {m.front_volume(f), m.back_volume(f)}) {
         if (!c.is_valid()) continue;
@@ -260,13 +261,13 @@ Analysis analyse(const Model& m) {
     const long lhs = t.v - t.e + (t.f - t.r) - (t.V - t.Vh + t.Vc);
     const long rhs = 1 - t.Ch + cavities;
     if (lhs != rhs) {
-      a.problems.push_back("extended Euler formula fails on a component: v - e + (f - r) - (V - Vh + Vc) = " +
-                           std::to_string(lhs) + " but C - Ch + Cc = " + std::to_string(rhs) +
-                           " (v=" + std::to_string(t.v) + " e=" + std::to_string(t.e) +
-                           " f=" + std::to_string(t.f) + " r=" + std::to_string(t.r) +
-                           " V=" + std::to_string(t.V) + " Vh=" + std::to_string(t.Vh) +
-                           " Vc=" + std::to_string(t.Vc) + " Ch=" + std::to_string(t.Ch) +
-                           " Cc=" + std::to_string(cavities) + ")");
+      a.problems.push_back(
+          "extended Euler formula fails on a component: v - e + (f - r) - (V - Vh + Vc) = " +
+          std::to_string(lhs) + " but C - Ch + Cc = " + std::to_string(rhs) +
+          " (v=" + std::to_string(t.v) + " e=" + std::to_string(t.e) + " f=" + std::to_string(t.f) +
+          " r=" + std::to_string(t.r) + " V=" + std::to_string(t.V) +
+          " Vh=" + std::to_string(t.Vh) + " Vc=" + std::to_string(t.Vc) +
+          " Ch=" + std::to_string(t.Ch) + " Cc=" + std::to_string(cavities) + ")");
     }
   }
   return a;

@@ -20,8 +20,9 @@ void wedges(const Model& m, Violations& out) {
       if (side_after(m, a) != side_before(m, b)) {
         out.push_back({"wedge", "around " + e.str() + ", the wedge between faces " +
                                     m.face_of(a).str() + " and " + m.face_of(b).str() +
-                                    " is bounded by " + side_after(m, a).str() + " on one side and " +
-                                    side_before(m, b).str() + " on the other"});
+                                    " is bounded by " + side_after(m, a).str() +
+                                    " on one side and " + side_before(m, b).str() +
+                                    " on the other"});
       }
     }
   }

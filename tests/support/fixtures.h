@@ -26,10 +26,10 @@ std::uint32_t add_point(MeshInput& in, Vec3 p);
 
 // The fixtures of the foundation issue.
 MeshInput unit_cube();
-MeshInput cube_with_through_hole();  // [0,3]^3 with a square hole [1,2]^2 along z
-MeshInput two_cubes_sharing_edge();  // [0,1]^3 and [1,2]x[1,2]x[0,1]
+MeshInput cube_with_through_hole();    // [0,3]^3 with a square hole [1,2]^2 along z
+MeshInput two_cubes_sharing_edge();    // [0,1]^3 and [1,2]x[1,2]x[0,1]
 MeshInput two_cubes_sharing_vertex();  // [0,1]^3 and [1,2]^3
-MeshInput cube_with_dangling_face();  // unit cube, a square fin on edge y=0,z=1
+MeshInput cube_with_dangling_face();   // unit cube, a square fin on edge y=0,z=1
 MeshInput cube_with_wire_and_point();  // unit cube, wire (1,1,1)-(2,2,2), point (5,5,5)
 MeshInput book();                      // three square pages on edge (0,0,0)-(0,0,1)
 MeshInput two_cubes_sharing_face();    // [0,1]^3 (cell 0) under [0,1]^2x[1,2] (cell 1)

@@ -1,8 +1,9 @@
 // The bulk builder: counts, validity and the Euler figures of every fixture, and
 // errors that name the offending face.
+#include "cellforge/topo/builder.h"
+
 #include <gtest/gtest.h>
 
-#include "cellforge/topo/builder.h"
 #include "cellforge/topo/validate.h"
 #include "support/fixtures.h"
 

@@ -207,44 +207,77 @@ TEST(Euler, PreconditionsAreRefused) {
   const LoopId lt = m.outer_loop(top);
   const VertexId a = vertex_at(m, {0, 0, 1}), far = vertex_at(m, {1, 1, 0});
   const EdgeId e = edge_at(m, {0, 0, 1}, {1, 0, 1});
-  expect_refused(m, [&] { return mvsf(m, GroupId(7), {}); }, "mvsf: group g7 is not a live");
-  expect_refused(m, [&] { return kvsf(m, a, top); }, "kvsf: face");
-  expect_refused(m, [&] { return mev(m, lt, far, {}); }, "mev: vertex");
-  expect_refused(m, [&] { return mev(m, LoopId(999), a, {}); }, "mev: loop l999 is not a live");
-  expect_refused(m, [&] { return kev(m, e, a); }, "kev: vertex");
-  expect_refused(m, [&] { return kev(m, e, far); }, "is not an end of edge");
-  expect_refused(m, [&] { return mef(m, lt, a, a); }, "mef: the two vertices are both");
-  expect_refused(m, [&] { return mef(m, lt, a, far); }, "is not on loop");
-  expect_refused(m, [&] { return kef(m, e, face_at(m, {0.5, 1, 0.5})); }, "is not a face of edge");
-  expect_refused(m, [&] { return kemr(m, m.first_use(e)); }, "are in different loops");
-  expect_refused(m, [&] { return kemr(m, EdgeUseId(12345)); }, "kemr: edge use u12345");
-  expect_refused(m, [&] { return mekr(m, lt, a, lt, far); }, "mekr: both loops are");
-  expect_refused(m, [&] { return mekr(m, lt, a, m.outer_loop(side), far); },
-                 "belong to different faces");
-  expect_refused(m, [&] { return kfmrh(m, top, top); }, "kfmrh: both faces are");
-  expect_refused(m, [&] { return mfkrh(m, lt); }, "is the outer loop of face");
-  expect_refused(m, [&] { return semv(m, EdgeId(555), {}); }, "semv: edge e555");
-  expect_refused(m, [&] { return jekv(m, e, a); }, "has 3 edges (must have 2)");
-  expect_refused(m, [&] { return jekv(m, e, far); }, "is not an end of edge");
+  expect_refused(
+      m, [&] { return mvsf(m, GroupId(7), {}); }, "mvsf: group g7 is not a live");
+  expect_refused(
+      m, [&] { return kvsf(m, a, top); }, "kvsf: face");
+  expect_refused(
+      m, [&] { return mev(m, lt, far, {}); }, "mev: vertex");
+  expect_refused(
+      m, [&] { return mev(m, LoopId(999), a, {}); }, "mev: loop l999 is not a live");
+  expect_refused(
+      m, [&] { return kev(m, e, a); }, "kev: vertex");
+  expect_refused(
+      m, [&] { return kev(m, e, far); }, "is not an end of edge");
+  expect_refused(
+      m, [&] { return mef(m, lt, a, a); }, "mef: the two vertices are both");
+  expect_refused(
+      m, [&] { return mef(m, lt, a, far); }, "is not on loop");
+  expect_refused(
+      m,
+      [&] {
+        return kef(m, e, face_at(m, {0.5, 1, 0.5}));
+      },
+      "is not a face of edge");
+  expect_refused(
+      m, [&] { return kemr(m, m.first_use(e)); }, "are in different loops");
+  expect_refused(
+      m, [&] { return kemr(m, EdgeUseId(12345)); }, "kemr: edge use u12345");
+  expect_refused(
+      m, [&] { return mekr(m, lt, a, lt, far); }, "mekr: both loops are");
+  expect_refused(
+      m, [&] { return mekr(m, lt, a, m.outer_loop(side), far); }, "belong to different faces");
+  expect_refused(
+      m, [&] { return kfmrh(m, top, top); }, "kfmrh: both faces are");
+  expect_refused(
+      m, [&] { return mfkrh(m, lt); }, "is the outer loop of face");
+  expect_refused(
+      m, [&] { return semv(m, EdgeId(555), {}); }, "semv: edge e555");
+  expect_refused(
+      m, [&] { return jekv(m, e, a); }, "has 3 edges (must have 2)");
+  expect_refused(
+      m, [&] { return jekv(m, e, far); }, "is not an end of edge");
   {  // kef on faces bounding different volumes
     Model two = build(two_cubes_sharing_face());
     const EdgeId shared_edge = edge_at(two, {0, 0, 1}, {1, 0, 1});
-    expect_refused(two, [&] { return kef(two, shared_edge, face_at(two, {0.5, 0.5, 1})); },
-                   "has 3 uses (must have 2)");
+    expect_refused(
+        two,
+        [&] {
+          return kef(two, shared_edge, face_at(two, {0.5, 0.5, 1}));
+        },
+        "has 3 uses (must have 2)");
   }
   {  // kef across faces of different volumes, or run the same way
     MeshInput in = unit_cube();
     in.faces[0].back = -1;
     Model open = build(in);
     const EdgeId rim = edge_at(open, {0, 0, 0}, {1, 0, 0});
-    expect_refused(open, [&] { return kef(open, rim, face_at(open, {0.5, 0.5, 0})); },
-                   "bound different volumes");
+    expect_refused(
+        open,
+        [&] {
+          return kef(open, rim, face_at(open, {0.5, 0.5, 0}));
+        },
+        "bound different volumes");
     in = unit_cube();
     std::reverse(in.faces[0].loops[0].begin(), in.faces[0].loops[0].end());
     Model flipped = build(in);
     const EdgeId rim2 = edge_at(flipped, {0, 0, 0}, {1, 0, 0});
-    expect_refused(flipped, [&] { return kef(flipped, rim2, face_at(flipped, {0.5, 0.5, 0})); },
-                   "in the same direction");
+    expect_refused(
+        flipped,
+        [&] {
+          return kef(flipped, rim2, face_at(flipped, {0.5, 0.5, 0}));
+        },
+        "in the same direction");
   }
   {  // jekv with mismatched uses; kev on a non-strut; mekr onto an outer loop
     Model w;
@@ -256,10 +289,12 @@ TEST(Euler, PreconditionsAreRefused) {
     auto e2 = make_wire_edge(w, *q, *r);
     ASSERT_OK(e1);
     ASSERT_OK(e2);
-    expect_refused(w, [&] { return make_wire_edge(w, *p, *p); }, "both ends are");
+    expect_refused(
+        w, [&] { return make_wire_edge(w, *p, *p); }, "both ends are");
     EXPECT_TRUE(jekv(w, *e2, *q).ok());  // wires join
     EXPECT_VALID(w);
-    expect_refused(w, [&] { return jekv(w, *e1, *p); }, "has 1 edges (must have 2)");
+    expect_refused(
+        w, [&] { return jekv(w, *e1, *p); }, "has 1 edges (must have 2)");
   }
   {  // kev that would leave a point loop at a vertex with other edges
     Model s;
@@ -270,11 +305,12 @@ TEST(Euler, PreconditionsAreRefused) {
     ASSERT_OK(e1);
     auto wire_end = make_vertex(s, g, {0, 5, 0});
     ASSERT_OK(make_wire_edge(s, vf->vertex, *wire_end));
-    expect_refused(s, [&] { return kev(s, e1->edge, e1->vertex); }, "would become a point loop");
+    expect_refused(
+        s, [&] { return kev(s, e1->edge, e1->vertex); }, "would become a point loop");
     // a vertex that carries a point loop takes no wire edge
     auto other = mvsf(s, g, {9, 9, 9});
-    expect_refused(s, [&] { return make_wire_edge(s, other->vertex, *wire_end); },
-                   "carries point loop");
+    expect_refused(
+        s, [&] { return make_wire_edge(s, other->vertex, *wire_end); }, "carries point loop");
   }
 }
 

@@ -9,8 +9,8 @@
 #include <functional>
 #include <map>
 #include <memory>
-#include <set>
 #include <random>
+#include <set>
 
 #include "cellforge/topo/operators.h"
 #include "cellforge/topo/validate.h"
@@ -67,16 +67,28 @@ class RandomEdits {
   // Tries one random operator; returns its name, or "" when the pick did not apply.
   std::string step() {
     switch (std::uniform_int_distribution<int>(0, 11)(rng_)) {
-      case 0: return do_mvsf();
-      case 1: case 2: return do_mev();
-      case 3: case 4: return do_mef();
-      case 5: return do_kemr();
-      case 6: return do_mekr();
-      case 7: return do_kfmrh_or_mfkrh();
-      case 8: return do_semv();
-      case 9: return do_wire_or_face();
-      case 10: return do_split();
-      default: return do_volume();
+      case 0:
+        return do_mvsf();
+      case 1:
+      case 2:
+        return do_mev();
+      case 3:
+      case 4:
+        return do_mef();
+      case 5:
+        return do_kemr();
+      case 6:
+        return do_mekr();
+      case 7:
+        return do_kfmrh_or_mfkrh();
+      case 8:
+        return do_semv();
+      case 9:
+        return do_wire_or_face();
+      case 10:
+        return do_split();
+      default:
+        return do_volume();
     }
   }
 
@@ -298,7 +310,8 @@ TEST(Property, RandomOperatorSequencesStayValidAndUndoToEmpty) {
     for (std::size_t i = undo.size(); i-- > 0;) {
       const Status s = undo[i].second();
       ASSERT_TRUE(s.ok()) << "seed " << seed << " undo " << undo[i].first << ": "
-                          << s.error().message << "\n" << raw_dump(run.model());
+                          << s.error().message << "\n"
+                          << raw_dump(run.model());
       ++applied;
       const auto v = validate(run.model());
       ASSERT_TRUE(v.empty()) << "seed " << seed << " after undo " << undo[i].first << ":\n"

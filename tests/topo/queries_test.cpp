@@ -1,11 +1,12 @@
 // The 9 adjacency queries against hand-computed answers on the non-manifold
 // fixtures. Answers are compared as sets of positions / centroids; each query
 // must list every element once.
+#include "cellforge/topo/queries.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
 
-#include "cellforge/topo/queries.h"
 #include "support/fixtures.h"
 
 namespace cellforge {
@@ -51,9 +52,12 @@ TEST(Queries, TwoCubesSharingAnEdge) {
   EXPECT_EQ(positions(m, q<VertexId>(m, v)),
             (std::set<P>{{0, 1, 0}, {1, 0, 0}, {1, 1, 1}, {2, 1, 0}, {1, 2, 0}}));
   EXPECT_EQ(q<EdgeId>(m, v).size(), 5u);
-  EXPECT_EQ(face_keys(m, q<FaceId>(m, v)),
-            (std::set<P>{{0.5, 0.5, 0}, {0.5, 1, 0.5}, {1, 0.5, 0.5}, {1.5, 1.5, 0},
-                         {1.5, 1, 0.5}, {1, 1.5, 0.5}}));
+  EXPECT_EQ(face_keys(m, q<FaceId>(m, v)), (std::set<P>{{0.5, 0.5, 0},
+                                                        {0.5, 1, 0.5},
+                                                        {1, 0.5, 0.5},
+                                                        {1.5, 1.5, 0},
+                                                        {1.5, 1, 0.5},
+                                                        {1, 1.5, 0.5}}));
   const EdgeId e = edge_at(m, {1, 1, 0}, {1, 1, 1});
   EXPECT_EQ(q<VertexId>(m, e).size(), 2u);
   EXPECT_EQ(q<EdgeId>(m, e).size(), 8u);
@@ -63,9 +67,12 @@ TEST(Queries, TwoCubesSharingAnEdge) {
   EXPECT_EQ(positions(m, q<VertexId>(m, f)),
             (std::set<P>{{1, 0, 0}, {1, 1, 0}, {1, 1, 1}, {1, 0, 1}}));
   EXPECT_EQ(q<EdgeId>(m, f).size(), 4u);
-  EXPECT_EQ(face_keys(m, q<FaceId>(m, f)),
-            (std::set<P>{{0.5, 0.5, 0}, {0.5, 0.5, 1}, {0.5, 0, 0.5}, {0.5, 1, 0.5},
-                         {1.5, 1, 0.5}, {1, 1.5, 0.5}}));
+  EXPECT_EQ(face_keys(m, q<FaceId>(m, f)), (std::set<P>{{0.5, 0.5, 0},
+                                                        {0.5, 0.5, 1},
+                                                        {0.5, 0, 0.5},
+                                                        {0.5, 1, 0.5},
+                                                        {1.5, 1, 0.5},
+                                                        {1, 1.5, 0.5}}));
 }
 
 TEST(Queries, TwoCubesSharingAVertex) {

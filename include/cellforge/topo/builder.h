@@ -49,7 +49,6 @@ struct BuildResult {
 Result<BuildResult> build_mesh(Model& m, const MeshInput& input);
 
 // A closed solid from a triangle/polygon soup: every face gets back volume 0.
-MeshInput solid_input(std::vector<Vec3> positions,
-                      std::vector<std::vector<std::uint32_t>> faces);
+MeshInput solid_input(std::vector<Vec3> positions, std::vector<std::vector<std::uint32_t>> faces);
 
 }  // namespace cellforge

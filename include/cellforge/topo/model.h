@@ -124,12 +124,20 @@ class Model {
   bool empty() const;
 
   // ---- liveness of a handle (false for invalid or deleted ids)
-  bool is_live(VertexId v) const { return v.value < vertices_.size() && vertices_[v.value].group != kDead; }
-  bool is_live(EdgeId e) const { return e.value < edges_.size() && edges_[e.value].vertex[0] != kDead; }
-  bool is_live(EdgeUseId u) const { return u.value < uses_.size() && uses_[u.value].edge_dir != kDead; }
+  bool is_live(VertexId v) const {
+    return v.value < vertices_.size() && vertices_[v.value].group != kDead;
+  }
+  bool is_live(EdgeId e) const {
+    return e.value < edges_.size() && edges_[e.value].vertex[0] != kDead;
+  }
+  bool is_live(EdgeUseId u) const {
+    return u.value < uses_.size() && uses_[u.value].edge_dir != kDead;
+  }
   bool is_live(LoopId l) const { return l.value < loops_.size() && loops_[l.value].first != kDead; }
   bool is_live(FaceId f) const { return f.value < faces_.size() && faces_[f.value].sides != kDead; }
-  bool is_live(VolumeId c) const { return c.value < volumes_.size() && volumes_[c.value].group != kDead; }
+  bool is_live(VolumeId c) const {
+    return c.value < volumes_.size() && volumes_[c.value].group != kDead;
+  }
   bool is_live(GroupId g) const { return g.value < groups_.size() && groups_[g.value].live; }
 
   // ---- iteration over live entities, in increasing id order
@@ -187,15 +195,13 @@ class Model {
     return (f & kTagBit) ? EdgeUseId() : EdgeUseId(f);
   }
   bool is_point_loop(LoopId l) const { return (loops_[l.value].first & kTagBit) != 0; }
-  VertexId point_loop_vertex(LoopId l) const {
-    return VertexId(loops_[l.value].first & ~kTagBit);
-  }
+  VertexId point_loop_vertex(LoopId l) const { return VertexId(loops_[l.value].first & ~kTagBit); }
   // Next loop of the same face; invalid after the last one.
   LoopId next_loop(LoopId l) const {
     const std::uint32_t n = loops_[l.value].next;
     return (n & kTagBit) ? LoopId() : LoopId(n);
   }
-  FaceId face_of(LoopId l) const;  // walks the face's loop list: O(loops of the face)
+  FaceId face_of(LoopId l) const;           // walks the face's loop list: O(loops of the face)
   std::size_t loop_length(LoopId l) const;  // number of uses (0 for a point loop)
 
   // ---- faces
@@ -272,7 +278,7 @@ class Model {
 
   struct VertexRec {
     std::uint32_t first_end;  // encoded edge end, kTagBit|loop for a point loop, or invalid
-    std::uint32_t group;  // kDead when the slot is free; first_end then links the free list
+    std::uint32_t group;      // kDead when the slot is free; first_end then links the free list
   };
   struct EdgeRec {
     std::uint32_t vertex[2];  // vertex[0] == kDead when free; first_use links the free list

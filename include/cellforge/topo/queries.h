@@ -35,9 +35,12 @@ void faces_of(const Model& m, FaceId f, std::vector<FaceId>& out);
 template <class Out, class In>
 std::vector<Out> query(const Model& m, In x) {
   std::vector<Out> out;
-  if constexpr (std::is_same_v<Out, VertexId>) vertices_of(m, x, out);
-  else if constexpr (std::is_same_v<Out, EdgeId>) edges_of(m, x, out);
-  else faces_of(m, x, out);
+  if constexpr (std::is_same_v<Out, VertexId>)
+    vertices_of(m, x, out);
+  else if constexpr (std::is_same_v<Out, EdgeId>)
+    edges_of(m, x, out);
+  else
+    faces_of(m, x, out);
   return out;
 }
 

@@ -34,10 +34,10 @@ std::string to_string(const std::vector<Violation>& violations);
 
 // The Euler-Poincare figures of a model, as validate computes them.
 struct EulerFigures {
-  long v = 0, e = 0, f = 0, r = 0;      // vertices, edges, faces, inner loops
+  long v = 0, e = 0, f = 0, r = 0;                          // vertices, edges, faces, inner loops
   long volumes = 0, volume_holes = 0, volume_cavities = 0;  // V, Vh, Vc
   long components = 0, holes = 0, cavities = 0;             // C, Ch, Cc
-  long shells = 0;     // face-connected shells
+  long shells = 0;                                          // face-connected shells
   long unchecked = 0;  // components whose right side was not compared (see validate_euler.cpp)
   long lhs() const { return v - e + (f - r) - (volumes - volume_holes + volume_cavities); }
   long rhs() const { return components - holes + cavities; }
