@@ -29,9 +29,11 @@
 // are planar polygons whose plane follows from their vertices.
 //
 // Deleted slots go on per-kind free lists threaded through the dead records, so
-// ids stay stable across edits and are reused by later creations.
+// ids stay stable across edits and are reused by later creations. Accessors check
+// in debug builds (assert) that the handle names a live entity.
 #pragma once
 
+#include <cassert>
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -150,7 +152,10 @@ class Model {
   LiveIds<GroupId> groups() const;
 
   // ---- vertices
-  Vec3 position(VertexId v) const { return positions_[v.value]; }
+  Vec3 position(VertexId v) const {
+    assert(is_live(v));
+    return positions_[v.value];
+  }
   GroupId group_of(VertexId v) const { return GroupId(vertices_[v.value].group); }
   // First end of v's edge cycle; invalid edge for an isolated vertex.
   EdgeEnd first_end(VertexId v) const { return decode_end(vertices_[v.value].first_end); }
@@ -167,25 +172,43 @@ class Model {
   std::size_t degree(VertexId v) const;  // number of edge ends at v
 
   // ---- edges
-  VertexId vertex_of(EdgeId e, int end) const { return VertexId(edges_[e.value].vertex[end]); }
+  VertexId vertex_of(EdgeId e, int end) const {
+    assert(is_live(e));
+    return VertexId(edges_[e.value].vertex[end]);
+  }
   VertexId start_of(EdgeId e) const { return vertex_of(e, 0); }
   VertexId end_of(EdgeId e) const { return vertex_of(e, 1); }
   // First use of e's radial cycle; invalid for a wire edge.
-  EdgeUseId first_use(EdgeId e) const { return EdgeUseId(edges_[e.value].first_use); }
+  EdgeUseId first_use(EdgeId e) const {
+    assert(is_live(e));
+    return EdgeUseId(edges_[e.value].first_use);
+  }
   GroupId group_of(EdgeId e) const { return group_of(start_of(e)); }
   bool is_wire(EdgeId e) const { return !first_use(e).is_valid(); }
   std::size_t use_count(EdgeId e) const;  // number of uses in its radial cycle
 
   // ---- edge uses
-  EdgeId edge_of(EdgeUseId u) const { return EdgeId(uses_[u.value].edge_dir >> 1); }
+  EdgeId edge_of(EdgeUseId u) const {
+    assert(is_live(u));
+    return EdgeId(uses_[u.value].edge_dir >> 1);
+  }
   // True when u runs from the edge's end vertex to its start vertex.
   bool is_reversed(EdgeUseId u) const { return (uses_[u.value].edge_dir & 1u) != 0; }
   VertexId use_start(EdgeUseId u) const { return vertex_of(edge_of(u), is_reversed(u) ? 1 : 0); }
   VertexId use_end(EdgeUseId u) const { return vertex_of(edge_of(u), is_reversed(u) ? 0 : 1); }
-  FaceId face_of(EdgeUseId u) const { return FaceId(uses_[u.value].face); }
-  EdgeUseId loop_next(EdgeUseId u) const { return EdgeUseId(uses_[u.value].next); }
+  FaceId face_of(EdgeUseId u) const {
+    assert(is_live(u));
+    return FaceId(uses_[u.value].face);
+  }
+  EdgeUseId loop_next(EdgeUseId u) const {
+    assert(is_live(u));
+    return EdgeUseId(uses_[u.value].next);
+  }
   EdgeUseId loop_prev(EdgeUseId u) const;  // walks the loop: O(loop length)
-  EdgeUseId radial_next(EdgeUseId u) const { return EdgeUseId(uses_[u.value].radial_next); }
+  EdgeUseId radial_next(EdgeUseId u) const {
+    assert(is_live(u));
+    return EdgeUseId(uses_[u.value].radial_next);
+  }
   LoopId loop_of(EdgeUseId u) const;  // walks the face's loops: O(face size)
 
   // ---- loops
@@ -205,7 +228,10 @@ class Model {
   std::size_t loop_length(LoopId l) const;  // number of uses (0 for a point loop)
 
   // ---- faces
-  LoopId outer_loop(FaceId f) const { return LoopId(faces_[f.value].first_loop); }
+  LoopId outer_loop(FaceId f) const {
+    assert(is_live(f));
+    return LoopId(faces_[f.value].first_loop);
+  }
   std::size_t inner_loop_count(FaceId f) const;
   VolumeId front_volume(FaceId f) const { return VolumeId(sides_[faces_[f.value].sides].front); }
   VolumeId back_volume(FaceId f) const { return VolumeId(sides_[faces_[f.value].sides].back); }
