@@ -9,6 +9,7 @@
 
 #include "cellforge/topo/builder.h"
 #include "cellforge/topo/queries.h"
+#include "cellforge/topo/validate.h"
 
 namespace cellforge {
 namespace {
@@ -107,6 +108,16 @@ BENCHMARK(bytes_per_face)
     ->ArgName("triangles")
     ->Unit(benchmark::kMillisecond)
     ->Iterations(1);
+
+void validate_big_mesh(benchmark::State& state) {
+  const Model& m = big_mesh();
+  std::size_t violations = 0;
+  for (auto _ : state) violations += validate(m).size();
+  if (violations != 0) state.SkipWithError("the mesh is not valid");
+  state.counters["faces_per_s"] = benchmark::Counter(
+      static_cast<double>(m.num_faces()) * state.iterations(), benchmark::Counter::kIsRate);
+}
+BENCHMARK(validate_big_mesh)->Unit(benchmark::kMillisecond)->Iterations(2);
 
 }  // namespace
 }  // namespace cellforge
