@@ -1,0 +1,10 @@
+# store/: SQLite (the default database) and libpq (PostgreSQL).
+find_package(SQLite3 REQUIRED)
+find_package(PostgreSQL QUIET)
+if(PostgreSQL_FOUND)
+  target_link_libraries(cellforge PUBLIC SQLite::SQLite3 PostgreSQL::PostgreSQL)
+else()
+  find_package(PkgConfig REQUIRED)
+  pkg_check_modules(LIBPQ REQUIRED IMPORTED_TARGET libpq)
+  target_link_libraries(cellforge PUBLIC SQLite::SQLite3 PkgConfig::LIBPQ)
+endif()

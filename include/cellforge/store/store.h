@@ -1,0 +1,120 @@
+// The model database (seed 004, widened for loops, non-manifold topology and
+// versions): one interface, `Store`, over SQLite (a file, the default) and
+// PostgreSQL (a `postgresql://` connection string). Both backends hold the same
+// schema (docs/database.md) and behave the same.
+//
+// A stored *volume* is one named Model (every group in it) at one version: the
+// seed's Volume record. The Model's 3-cells (VolumeId) are rows of the `cells`
+// table inside that record. Saving a name again adds a version; loading takes
+// the latest version unless one is asked for.
+//
+// Guarantees: a save is one transaction (a process killed mid-save leaves the
+// previous versions intact); names and values are bound parameters, never SQL
+// text; put/get is lossless (same topology including loop order, edge direction
+// and radial order, bit-identical coordinates). A loaded model is validated.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "cellforge/geom/vec.h"
+#include "cellforge/result.h"
+#include "cellforge/topo/model.h"
+
+namespace cellforge {
+
+struct PutOptions {
+  std::string source;  // the CSG script the model came from, if any
+  std::string object;  // when not empty, the volume is also listed in this object (scene)
+  // Called now and then during a save with the number of rows written so far.
+  std::function<void(std::uint64_t rows)> progress;
+};
+
+// One stored version of a named model: the row of table `volumes`.
+struct VolumeInfo {
+  std::int64_t id = 0;
+  std::string name;
+  int version = 0;
+  std::string type;  // "solid", "sheet", "wire", "mixed" or "empty"
+  Vec3 centroid;
+  double volume = 0;  // enclosed by the faces that bound 3-cells
+  double area = 0;    // of every face
+  Vec3 bbox_min, bbox_max;
+  std::string source;
+  std::string created;  // UTC, ISO 8601
+  std::int64_t vertices = 0, edges = 0, faces = 0, loops = 0, cells = 0, groups = 0;
+  std::vector<Attribute> parameters;  // of every group, in group then attribute order
+};
+
+// Seed 004's Getpoints / Getedges / Getfaces: one kind of element alone, keyed by
+// its number inside the stored volume (0, 1, ... in the saved model's id order).
+struct StoredPoint {
+  std::uint32_t key = 0;
+  Vec3 position;
+};
+struct StoredEdge {
+  std::uint32_t key = 0;
+  std::uint32_t start = 0, end = 0;  // point keys
+  std::uint32_t uses = 0;            // faces around it: 0 wire, 2 manifold, 3+ non-manifold
+};
+struct StoredFace {
+  std::uint32_t key = 0;
+  // loops[0] the outer loop, then the inner loops; each a cycle of point keys in
+  // loop order (one point for a point loop).
+  std::vector<std::vector<std::uint32_t>> loops;
+  std::optional<std::uint32_t> front_cell, back_cell;
+  Vec3 normal;  // unit normal of its plane n.x + d = 0
+  double d = 0;
+};
+
+// The answer of a read-only SQL query, values as text (nullopt for NULL).
+struct QueryResult {
+  std::vector<std::string> columns;
+  std::vector<std::vector<std::optional<std::string>>> rows;
+};
+
+class Store {
+ public:
+  virtual ~Store() = default;
+
+  // "sqlite" or "postgresql".
+  virtual std::string backend() const = 0;
+
+  // Saves m under `name` as a new version (1 for a new name). Names must be 1 to
+  // 1024 bytes of valid UTF-8 without control characters; other names are refused
+  // with kInvalidInput and nothing is written.
+  virtual Result<VolumeInfo> put(const std::string& name, const Model& m,
+                                 const PutOptions& options = {}) = 0;
+  // Loads a version (0: the latest).
+  virtual Result<Model> get(const std::string& name, int version = 0) = 0;
+  virtual Result<std::vector<StoredPoint>> get_points(const std::string& name, int version = 0) = 0;
+  virtual Result<std::vector<StoredEdge>> get_edges(const std::string& name, int version = 0) = 0;
+  virtual Result<std::vector<StoredFace>> get_faces(const std::string& name, int version = 0) = 0;
+
+  virtual Result<VolumeInfo> info(const std::string& name, int version = 0) = 0;
+  // The latest version of every name, by name.
+  virtual Result<std::vector<VolumeInfo>> list() = 0;
+  // Every version of one name, oldest first.
+  virtual Result<std::vector<VolumeInfo>> versions(const std::string& name) = 0;
+  // Removes every version of `name`; returns how many there were (0: none).
+  virtual Result<int> remove(const std::string& name) = 0;
+  // The volume names listed in an object (scene), in the order they were added.
+  virtual Result<std::vector<std::string>> get_object(const std::string& name) = 0;
+
+  // Runs one SQL statement that must not write (refused otherwise).
+  virtual Result<QueryResult> query(const std::string& sql) = 0;
+};
+
+// Opens (creating the schema if needed) the database named by `db`: a
+// `postgresql://` or `postgres://` URL selects PostgreSQL, anything else is an
+// SQLite file path ("" means "cellforge.db").
+Result<std::unique_ptr<Store>> open_store(const std::string& db);
+
+// Checks a volume name as put() does; the error says what is wrong.
+Status check_volume_name(const std::string& name);
+
+}  // namespace cellforge

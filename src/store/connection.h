@@ -1,0 +1,82 @@
+// Connection: the little a database backend must provide for SqlStore
+// (sql_store.cpp), which holds all of the schema and the logic. SQL is written
+// once, in the PostgreSQL parameter style ($1, $2, ...); the SQLite connection
+// rewrites the markers to ?1, ?2, ... Every value travels as a bound parameter
+// (or, for PostgreSQL bulk loads, as COPY data), never as SQL text.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "cellforge/result.h"
+#include "cellforge/store/store.h"
+
+namespace cellforge::store {
+
+using Value = std::variant<std::monostate, std::int64_t, double, std::string>;
+
+// One result row; columns by position.
+class Row {
+ public:
+  virtual ~Row() = default;
+  virtual bool is_null(int col) const = 0;
+  virtual std::int64_t i(int col) const = 0;
+  virtual double d(int col) const = 0;
+  virtual std::string s(int col) const = 0;
+};
+using RowFn = std::function<void(const Row&)>;
+
+// Receives the values of one row of a bulk insert, in column order.
+class RowWriter {
+ public:
+  virtual ~RowWriter() = default;
+  virtual void null() = 0;
+  virtual void i(std::int64_t v) = 0;
+  virtual void d(double v) = 0;
+  virtual void s(const std::string& v) = 0;
+  void opt(std::int64_t v) { v < 0 ? null() : i(v); }
+};
+using FillFn = std::function<void(std::size_t row, RowWriter&)>;
+
+class Connection {
+ public:
+  virtual ~Connection() = default;
+  virtual std::string backend() const = 0;
+  // The column type of an auto-numbered primary key.
+  virtual std::string serial_primary_key() const = 0;
+
+  virtual Status exec(const std::string& sql, const std::vector<Value>& params = {}) = 0;
+  virtual Status select(const std::string& sql, const std::vector<Value>& params,
+                        const RowFn& fn) = 0;
+
+  // A write transaction holding the lock for `lock_name` (SQLite: the database
+  // write lock; PostgreSQL: a transaction advisory lock on the name's hash).
+  virtual Status begin_write(const std::string& lock_name) = 0;
+  // A read transaction: one snapshot for every select until commit().
+  virtual Status begin_read() = 0;
+  virtual Status commit() = 0;
+  virtual void rollback() = 0;
+
+  // Inserts `rows` rows of `columns` values into `table`, inside the current
+  // transaction; `progress` (may be empty) is told the rows written so far.
+  virtual Status bulk_insert(const std::string& table, int columns, std::size_t rows,
+                             const FillFn& fill,
+                             const std::function<void(std::uint64_t)>& progress) = 0;
+
+  // One statement, refused unless it is read-only, run so that it cannot write.
+  virtual Result<QueryResult> read_only_query(const std::string& sql) = 0;
+};
+
+Result<std::unique_ptr<Connection>> open_sqlite(const std::string& path);
+Result<std::unique_ptr<Connection>> open_postgresql(const std::string& url);
+
+// A store over any connection (sql_store.cpp).
+Result<std::unique_ptr<Store>> make_sql_store(std::unique_ptr<Connection> connection);
+
+inline Error db_error(const std::string& what) { return Error{ErrorCode::kDatabase, what}; }
+
+}  // namespace cellforge::store

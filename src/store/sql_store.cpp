@@ -1,0 +1,700 @@
+// SqlStore: the schema of docs/database.md and every Store operation, written
+// once over a Connection (sqlite_connection.cpp, pg_connection.cpp).
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <ctime>
+#include <map>
+
+#include "store/connection.h"
+#include "store/model_rows.h"
+
+namespace cellforge::store {
+
+namespace {
+
+constexpr int kSchemaVersion = 1;
+
+// {serial} becomes the backend's auto-numbered primary key type. Keep in step
+// with docs/database.md.
+constexpr const char* kSchema[] = {
+    R"(CREATE TABLE objects (
+  id {serial},
+  name TEXT NOT NULL UNIQUE))",
+    R"(CREATE TABLE volumes (
+  id {serial},
+  name TEXT NOT NULL,
+  version INTEGER NOT NULL,
+  type TEXT NOT NULL,
+  cx DOUBLE PRECISION NOT NULL, cy DOUBLE PRECISION NOT NULL, cz DOUBLE PRECISION NOT NULL,
+  volume DOUBLE PRECISION NOT NULL,
+  area DOUBLE PRECISION NOT NULL,
+  min_x DOUBLE PRECISION NOT NULL, min_y DOUBLE PRECISION NOT NULL, min_z DOUBLE PRECISION NOT NULL,
+  max_x DOUBLE PRECISION NOT NULL, max_y DOUBLE PRECISION NOT NULL, max_z DOUBLE PRECISION NOT NULL,
+  source TEXT NOT NULL,
+  created TEXT NOT NULL,
+  n_vertices BIGINT NOT NULL, n_edges BIGINT NOT NULL, n_faces BIGINT NOT NULL,
+  n_loops BIGINT NOT NULL, n_cells BIGINT NOT NULL, n_groups BIGINT NOT NULL,
+  UNIQUE (name, version)))",
+    R"(CREATE TABLE object_volumes (
+  object_id BIGINT NOT NULL,
+  ord INTEGER NOT NULL,
+  volume_name TEXT NOT NULL,
+  PRIMARY KEY (object_id, ord)))",
+    R"(CREATE INDEX object_volumes_by_name ON object_volumes (volume_name))",
+    R"(CREATE TABLE model_groups (
+  volume_id BIGINT NOT NULL,
+  group_key INTEGER NOT NULL,
+  name TEXT NOT NULL,
+  PRIMARY KEY (volume_id, group_key)))",
+    R"(CREATE TABLE parameters (
+  volume_id BIGINT NOT NULL,
+  group_key INTEGER NOT NULL,
+  ord INTEGER NOT NULL,
+  name TEXT NOT NULL,
+  value TEXT NOT NULL,
+  PRIMARY KEY (volume_id, group_key, ord)))",
+    R"(CREATE TABLE cells (
+  volume_id BIGINT NOT NULL,
+  cell_key INTEGER NOT NULL,
+  group_key INTEGER NOT NULL,
+  PRIMARY KEY (volume_id, cell_key)))",
+    R"(CREATE TABLE vertices (
+  volume_id BIGINT NOT NULL,
+  vertex_key INTEGER NOT NULL,
+  x DOUBLE PRECISION NOT NULL, y DOUBLE PRECISION NOT NULL, z DOUBLE PRECISION NOT NULL,
+  group_key INTEGER NOT NULL,
+  PRIMARY KEY (volume_id, vertex_key)))",
+    R"(CREATE TABLE edges (
+  volume_id BIGINT NOT NULL,
+  edge_key INTEGER NOT NULL,
+  start_vertex INTEGER NOT NULL,
+  end_vertex INTEGER NOT NULL,
+  edge_type INTEGER NOT NULL,
+  uses INTEGER NOT NULL,
+  PRIMARY KEY (volume_id, edge_key)))",
+    R"(CREATE TABLE surfaces (
+  volume_id BIGINT NOT NULL,
+  surface_key INTEGER NOT NULL,
+  kind TEXT NOT NULL,
+  cx DOUBLE PRECISION NOT NULL, cy DOUBLE PRECISION NOT NULL, cz DOUBLE PRECISION NOT NULL,
+  ax DOUBLE PRECISION NOT NULL, ay DOUBLE PRECISION NOT NULL, az DOUBLE PRECISION NOT NULL,
+  radius DOUBLE PRECISION NOT NULL, radius2 DOUBLE PRECISION NOT NULL,
+  height DOUBLE PRECISION NOT NULL, segments INTEGER NOT NULL,
+  PRIMARY KEY (volume_id, surface_key)))",
+    R"(CREATE TABLE faces (
+  volume_id BIGINT NOT NULL,
+  face_key INTEGER NOT NULL,
+  group_key INTEGER NOT NULL,
+  front_cell INTEGER,
+  back_cell INTEGER,
+  surface_key INTEGER,
+  nx DOUBLE PRECISION NOT NULL, ny DOUBLE PRECISION NOT NULL, nz DOUBLE PRECISION NOT NULL,
+  d DOUBLE PRECISION NOT NULL,
+  PRIMARY KEY (volume_id, face_key)))",
+    R"(CREATE TABLE loops (
+  volume_id BIGINT NOT NULL,
+  loop_key INTEGER NOT NULL,
+  face_key INTEGER NOT NULL,
+  ord INTEGER NOT NULL,
+  kind TEXT NOT NULL,
+  point_vertex INTEGER,
+  PRIMARY KEY (volume_id, loop_key)))",
+    R"(CREATE TABLE loop_edges (
+  volume_id BIGINT NOT NULL,
+  loop_key INTEGER NOT NULL,
+  ord INTEGER NOT NULL,
+  edge_key INTEGER NOT NULL,
+  reversed INTEGER NOT NULL,
+  radial_ord INTEGER NOT NULL,
+  PRIMARY KEY (volume_id, loop_key, ord)))",
+    R"(CREATE INDEX loop_edges_by_edge ON loop_edges (volume_id, edge_key))",
+    R"(CREATE VIEW latest_volumes AS
+SELECT * FROM volumes v
+WHERE v.version = (SELECT MAX(w.version) FROM volumes w WHERE w.name = v.name))",
+    R"(CREATE VIEW volume_faces AS SELECT volume_id, face_key FROM faces)",
+    R"(CREATE VIEW face_loops AS SELECT volume_id, face_key, loop_key, ord, kind FROM loops)",
+    R"(CREATE VIEW edge_vertices AS
+SELECT volume_id, edge_key, 0 AS end_index, start_vertex AS vertex_key FROM edges
+UNION ALL
+SELECT volume_id, edge_key, 1 AS end_index, end_vertex AS vertex_key FROM edges)",
+    R"(CREATE VIEW face_edge_points AS
+SELECT v.name AS volume, v.version AS version, l.face_key AS face, u.edge_key AS edge,
+       u.reversed AS direction, e.edge_type AS edge_type, p.vertex_key AS point,
+       p.x AS x, p.y AS y, p.z AS z, s.end_index AS start_end,
+       u.loop_key AS loop, u.ord AS use_ord
+FROM volumes v
+JOIN loop_edges u ON u.volume_id = v.id
+JOIN loops l ON l.volume_id = u.volume_id AND l.loop_key = u.loop_key
+JOIN edges e ON e.volume_id = u.volume_id AND e.edge_key = u.edge_key
+CROSS JOIN (SELECT 0 AS end_index UNION ALL SELECT 1 AS end_index) s
+JOIN vertices p ON p.volume_id = u.volume_id
+  AND p.vertex_key = CASE s.end_index WHEN 0 THEN e.start_vertex ELSE e.end_vertex END)",
+};
+
+// Child tables of a stored volume, for removal.
+constexpr const char* kVolumeTables[] = {"model_groups", "parameters", "cells",
+                                         "vertices",     "edges",      "surfaces",
+                                         "faces",        "loops",      "loop_edges"};
+
+constexpr const char* kVolumeColumns =
+    "id, name, version, type, cx, cy, cz, volume, area, min_x, min_y, min_z, max_x, max_y, max_z, "
+    "source, created, n_vertices, n_edges, n_faces, n_loops, n_cells, n_groups";
+
+VolumeInfo read_volume(const Row& r) {
+  VolumeInfo v;
+  v.id = r.i(0);
+  v.name = r.s(1);
+  v.version = static_cast<int>(r.i(2));
+  v.type = r.s(3);
+  v.centroid = {r.d(4), r.d(5), r.d(6)};
+  v.volume = r.d(7);
+  v.area = r.d(8);
+  v.bbox_min = {r.d(9), r.d(10), r.d(11)};
+  v.bbox_max = {r.d(12), r.d(13), r.d(14)};
+  v.source = r.s(15);
+  v.created = r.s(16);
+  v.vertices = r.i(17);
+  v.edges = r.i(18);
+  v.faces = r.i(19);
+  v.loops = r.i(20);
+  v.cells = r.i(21);
+  v.groups = r.i(22);
+  return v;
+}
+
+std::string now_utc() {
+  const auto now = std::chrono::system_clock::now();
+  const std::time_t t = std::chrono::system_clock::to_time_t(now);
+  const auto ms =
+      std::chrono::duration_cast<std::chrono::milliseconds>(now.time_since_epoch()).count() % 1000;
+  std::tm tm{};
+  gmtime_r(&t, &tm);
+  char buf[96];
+  std::snprintf(buf, sizeof buf, "%04d-%02d-%02dT%02d:%02d:%02d.%03dZ", tm.tm_year + 1900,
+                tm.tm_mon + 1, tm.tm_mday, tm.tm_hour, tm.tm_min, tm.tm_sec, static_cast<int>(ms));
+  return buf;
+}
+
+Status check_text(const std::string& what, const std::string& s) {
+  if (is_utf8(s)) return Status::Ok();
+  return Error{ErrorCode::kInvalidInput, what + " is not valid UTF-8 (or holds a NUL byte)"};
+}
+
+// Every string a save writes must be valid UTF-8 (PostgreSQL text requires it,
+// and both backends must accept the same models).
+Status check_strings(const std::string& name, const ModelRows& rows, const PutOptions& o) {
+  if (Status s = check_volume_name(name); !s) return s;
+  if (Status s = check_text("the source script", o.source); !s) return s;
+  if (!o.object.empty()) {
+    if (Status s = check_volume_name(o.object); !s) {
+      return Error{ErrorCode::kInvalidInput, "object name: " + s.error().message};
+    }
+  }
+  for (const auto& g : rows.groups) {
+    if (Status s = check_text("group name", g.name); !s) return s;
+  }
+  for (const auto& p : rows.parameters) {
+    if (Status s = check_text("parameter '" + p.name + "'", p.name + p.value); !s) return s;
+  }
+  for (const auto& sf : rows.surfaces) {
+    if (Status s = check_text("surface kind", sf.kind); !s) return s;
+  }
+  return Status::Ok();
+}
+
+class SqlStore final : public Store {
+ public:
+  explicit SqlStore(std::unique_ptr<Connection> c) : db_(std::move(c)) {}
+
+  std::string backend() const override { return db_->backend(); }
+
+  Status create_schema() {
+    if (Status s = db_->begin_write("cellforge schema"); !s) return s;
+    Status s = create_schema_locked();
+    if (!s) {
+      db_->rollback();
+      return s;
+    }
+    return db_->commit();
+  }
+
+  Result<VolumeInfo> put(const std::string& name, const Model& m,
+                         const PutOptions& options) override {
+    const ModelRows rows = to_rows(m);
+    if (Status s = check_strings(name, rows, options); !s) return s.error();
+    VolumeInfo info = summarize(m);
+    info.name = name;
+    info.source = options.source;
+    info.created = now_utc();
+    if (Status s = db_->begin_write(name); !s) return s.error();
+    Status s = put_locked(info, rows, options);
+    if (!s) {
+      db_->rollback();
+      return s.error();
+    }
+    if (Status c = db_->commit(); !c) return c.error();
+    return info;
+  }
+
+  Result<Model> get(const std::string& name, int version) override {
+    ModelRows rows;
+    if (Status s = read(name, version, [&](std::int64_t id) { return read_rows(id, rows); }); !s) {
+      return s.error();
+    }
+    return to_model(rows);
+  }
+
+  Result<std::vector<StoredPoint>> get_points(const std::string& name, int version) override {
+    std::vector<StoredPoint> out;
+    Status s = read(name, version, [&](std::int64_t id) {
+      return db_->select(
+          "SELECT vertex_key, x, y, z FROM vertices WHERE volume_id = $1 ORDER BY vertex_key", {id},
+          [&](const Row& r) {
+            out.push_back({key(r, 0), {r.d(1), r.d(2), r.d(3)}});
+          });
+    });
+    if (!s) return s.error();
+    return out;
+  }
+
+  Result<std::vector<StoredEdge>> get_edges(const std::string& name, int version) override {
+    std::vector<StoredEdge> out;
+    Status s = read(name, version, [&](std::int64_t id) {
+      return db_->select(
+          "SELECT edge_key, start_vertex, end_vertex, uses FROM edges WHERE volume_id = $1 "
+          "ORDER BY edge_key",
+          {id}, [&](const Row& r) {
+            out.push_back({key(r, 0), key(r, 1), key(r, 2), key(r, 3)});
+          });
+    });
+    if (!s) return s.error();
+    return out;
+  }
+
+  Result<std::vector<StoredFace>> get_faces(const std::string& name, int version) override {
+    std::vector<StoredFace> out;
+    Status s = read(name, version, [&](std::int64_t id) -> Status {
+      auto cell = [](const Row& r, int c) {
+        return r.is_null(c) ? std::nullopt : std::optional<std::uint32_t>(key(r, c));
+      };
+      Status st = db_->select(
+          "SELECT face_key, front_cell, back_cell, nx, ny, nz, d FROM faces WHERE volume_id = $1 "
+          "ORDER BY face_key",
+          {id}, [&](const Row& r) {
+            out.push_back(
+                {key(r, 0), {}, cell(r, 1), cell(r, 2), {r.d(3), r.d(4), r.d(5)}, r.d(6)});
+          });
+      if (!st) return st;
+      std::vector<std::pair<std::uint32_t, std::uint32_t>> loop_at;  // (face, index in loops)
+      st = db_->select(
+          "SELECT face_key, point_vertex FROM loops WHERE volume_id = $1 ORDER BY loop_key", {id},
+          [&](const Row& r) {
+            auto& loops = out.at(key(r, 0)).loops;
+            loop_at.emplace_back(key(r, 0), static_cast<std::uint32_t>(loops.size()));
+            loops.emplace_back();
+            if (!r.is_null(1)) loops.back().push_back(key(r, 1));
+          });
+      if (!st) return st;
+      return db_->select(
+          "SELECT u.loop_key, CASE WHEN u.reversed = 0 THEN e.start_vertex ELSE e.end_vertex END "
+          "FROM loop_edges u JOIN edges e ON e.volume_id = u.volume_id AND e.edge_key = u.edge_key "
+          "WHERE u.volume_id = $1 ORDER BY u.loop_key, u.ord",
+          {id}, [&](const Row& r) {
+            const auto [face, index] = loop_at.at(key(r, 0));
+            out[face].loops[index].push_back(key(r, 1));
+          });
+    });
+    if (!s) return s.error();
+    return out;
+  }
+
+  Result<VolumeInfo> info(const std::string& name, int version) override {
+    VolumeInfo out;
+    Status s = read(name, version, [&](std::int64_t id) -> Status {
+      Status st =
+          db_->select(std::string("SELECT ") + kVolumeColumns + " FROM volumes WHERE id = $1", {id},
+                      [&](const Row& r) { out = read_volume(r); });
+      if (!st) return st;
+      return db_->select(
+          "SELECT name, value FROM parameters WHERE volume_id = $1 ORDER BY group_key, ord", {id},
+          [&](const Row& r) {
+            out.parameters.push_back({r.s(0), r.s(1)});
+          });
+    });
+    if (!s) return s.error();
+    return out;
+  }
+
+  Result<std::vector<VolumeInfo>> list() override {
+    return volumes(std::string("SELECT ") + kVolumeColumns + " FROM latest_volumes", {});
+  }
+
+  Result<std::vector<VolumeInfo>> versions(const std::string& name) override {
+    return volumes(std::string("SELECT ") + kVolumeColumns + " FROM volumes WHERE name = $1",
+                   {name});
+  }
+
+  Result<int> remove(const std::string& name) override {
+    if (Status s = db_->begin_write(name); !s) return s.error();
+    std::vector<std::int64_t> ids;
+    Status s = db_->select("SELECT id FROM volumes WHERE name = $1", {name},
+                           [&](const Row& r) { ids.push_back(r.i(0)); });
+    for (std::int64_t id : ids) {
+      for (const char* table : kVolumeTables) {
+        if (s) s = db_->exec(std::string("DELETE FROM ") + table + " WHERE volume_id = $1", {id});
+      }
+    }
+    if (s) s = db_->exec("DELETE FROM volumes WHERE name = $1", {name});
+    if (s) s = db_->exec("DELETE FROM object_volumes WHERE volume_name = $1", {name});
+    if (!s) {
+      db_->rollback();
+      return s.error();
+    }
+    if (Status c = db_->commit(); !c) return c.error();
+    return static_cast<int>(ids.size());
+  }
+
+  Result<std::vector<std::string>> get_object(const std::string& name) override {
+    std::vector<std::string> out;
+    bool found = false;
+    if (Status s = db_->begin_read(); !s) return s.error();
+    Status s = db_->select("SELECT id FROM objects WHERE name = $1", {name},
+                           [&](const Row&) { found = true; });
+    if (s && found) {
+      s = db_->select(
+          "SELECT ov.volume_name FROM object_volumes ov JOIN objects o ON o.id = ov.object_id "
+          "WHERE o.name = $1 ORDER BY ov.ord",
+          {name}, [&](const Row& r) { out.push_back(r.s(0)); });
+    }
+    if (!s) {
+      db_->rollback();
+      return s.error();
+    }
+    if (Status c = db_->commit(); !c) return c.error();
+    if (!found) return Error{ErrorCode::kInvalidInput, "no object named '" + name + "'"};
+    return out;
+  }
+
+  Result<QueryResult> query(const std::string& sql) override { return db_->read_only_query(sql); }
+
+ private:
+  static std::uint32_t key(const Row& r, int c) { return static_cast<std::uint32_t>(r.i(c)); }
+
+  Status create_schema_locked() {
+    if (Status s =
+            db_->exec("CREATE TABLE IF NOT EXISTS cellforge_schema (version INTEGER NOT NULL)");
+        !s) {
+      return s;
+    }
+    int version = 0;
+    if (Status s = db_->select("SELECT MAX(version) FROM cellforge_schema", {},
+                               [&](const Row& r) {
+                                 if (!r.is_null(0)) version = static_cast<int>(r.i(0));
+                               });
+        !s) {
+      return s;
+    }
+    if (version == kSchemaVersion) return Status::Ok();
+    if (version != 0) {
+      return db_error("the database has schema version " + std::to_string(version) +
+                      "; this cellforge knows version " + std::to_string(kSchemaVersion));
+    }
+    for (const char* ddl : kSchema) {
+      std::string sql = ddl;
+      if (const auto at = sql.find("{serial}"); at != std::string::npos) {
+        sql.replace(at, 8, db_->serial_primary_key());
+      }
+      if (Status s = db_->exec(sql); !s) return s;
+    }
+    return db_->exec("INSERT INTO cellforge_schema (version) VALUES ($1)",
+                     {std::int64_t{kSchemaVersion}});
+  }
+
+  Status put_locked(VolumeInfo& info, const ModelRows& rows, const PutOptions& o) {
+    Status s =
+        db_->select("SELECT COALESCE(MAX(version), 0) FROM volumes WHERE name = $1", {info.name},
+                    [&](const Row& r) { info.version = static_cast<int>(r.i(0)) + 1; });
+    if (!s) return s;
+    s = db_->select(
+        "INSERT INTO volumes (name, version, type, cx, cy, cz, volume, area, min_x, min_y, min_z, "
+        "max_x, max_y, max_z, source, created, n_vertices, n_edges, n_faces, n_loops, n_cells, "
+        "n_groups) VALUES ($1, $2, $3, $4, $5, $6, $7, $8, $9, $10, $11, $12, $13, $14, $15, $16, "
+        "$17, $18, $19, $20, $21, $22) RETURNING id",
+        {info.name,       std::int64_t{info.version},
+         info.type,       info.centroid.x,
+         info.centroid.y, info.centroid.z,
+         info.volume,     info.area,
+         info.bbox_min.x, info.bbox_min.y,
+         info.bbox_min.z, info.bbox_max.x,
+         info.bbox_max.y, info.bbox_max.z,
+         info.source,     info.created,
+         info.vertices,   info.edges,
+         info.faces,      info.loops,
+         info.cells,      info.groups},
+        [&](const Row& r) { info.id = r.i(0); });
+    if (!s) return s;
+    if (s = write_rows(info.id, rows, o.progress); !s) return s;
+    if (!o.object.empty()) s = add_to_object(o.object, info.name);
+    return s;
+  }
+
+  Status add_to_object(const std::string& object, const std::string& volume) {
+    Status s =
+        db_->exec("INSERT INTO objects (name) VALUES ($1) ON CONFLICT (name) DO NOTHING", {object});
+    std::int64_t id = 0, ord = 0;
+    if (s) {
+      s = db_->select("SELECT id FROM objects WHERE name = $1", {object},
+                      [&](const Row& r) { id = r.i(0); });
+    }
+    bool listed = false;
+    if (s) {
+      s = db_->select(
+          "SELECT COALESCE(MAX(ord) + 1, 0), COUNT(CASE WHEN volume_name = $2 THEN 1 END) "
+          "FROM object_volumes WHERE object_id = $1",
+          {id, volume}, [&](const Row& r) {
+            ord = r.i(0);
+            listed = r.i(1) > 0;
+          });
+    }
+    if (s && !listed) {
+      s = db_->exec("INSERT INTO object_volumes (object_id, ord, volume_name) VALUES ($1, $2, $3)",
+                    {id, ord, volume});
+    }
+    return s;
+  }
+
+  Status write_rows(std::int64_t id, const ModelRows& r,
+                    const std::function<void(std::uint64_t)>& progress) {
+    std::uint64_t done = 0;
+    auto insert = [&](const char* table, int columns, std::size_t n, const FillFn& fill) {
+      std::function<void(std::uint64_t)> report;
+      if (progress) report = [&, base = done](std::uint64_t k) { progress(base + k); };
+      Status s = db_->bulk_insert(table, columns, n, fill, report);
+      done += n;
+      return s;
+    };
+    Status s = insert("model_groups", 3, r.groups.size(), [&](std::size_t i, RowWriter& w) {
+      w.i(id), w.i(static_cast<std::int64_t>(i)), w.s(r.groups[i].name);
+    });
+    std::vector<std::int64_t> param_ord(r.parameters.size());
+    for (std::size_t i = 0; i < r.parameters.size(); ++i) {
+      param_ord[i] =
+          i > 0 && r.parameters[i - 1].group == r.parameters[i].group ? param_ord[i - 1] + 1 : 0;
+    }
+    if (s) {
+      s = insert("parameters", 5, r.parameters.size(), [&](std::size_t i, RowWriter& w) {
+        const auto& p = r.parameters[i];
+        w.i(id), w.i(p.group), w.i(param_ord[i]), w.s(p.name), w.s(p.value);
+      });
+    }
+    if (s) {
+      s = insert("cells", 3, r.cells.size(), [&](std::size_t i, RowWriter& w) {
+        w.i(id), w.i(static_cast<std::int64_t>(i)), w.i(r.cells[i]);
+      });
+    }
+    if (s) {
+      s = insert("vertices", 6, r.vertices.size(), [&](std::size_t i, RowWriter& w) {
+        const auto& v = r.vertices[i];
+        w.i(id), w.i(static_cast<std::int64_t>(i)), w.d(v.p.x), w.d(v.p.y), w.d(v.p.z),
+            w.i(v.group);
+      });
+    }
+    if (s) {
+      s = insert("edges", 6, r.edges.size(), [&](std::size_t i, RowWriter& w) {
+        const auto& e = r.edges[i];
+        w.i(id), w.i(static_cast<std::int64_t>(i)), w.i(e.start), w.i(e.end), w.i(1), w.i(e.uses);
+      });
+    }
+    if (s) {
+      s = insert("surfaces", 13, r.surfaces.size(), [&](std::size_t i, RowWriter& w) {
+        const Surface& f = r.surfaces[i];
+        w.i(id), w.i(static_cast<std::int64_t>(i)), w.s(f.kind), w.d(f.center.x), w.d(f.center.y),
+            w.d(f.center.z), w.d(f.axis.x), w.d(f.axis.y), w.d(f.axis.z), w.d(f.radius),
+            w.d(f.radius2), w.d(f.height), w.i(f.segments);
+      });
+    }
+    if (s) {
+      s = insert("faces", 10, r.faces.size(), [&](std::size_t i, RowWriter& w) {
+        const auto& f = r.faces[i];
+        w.i(id), w.i(static_cast<std::int64_t>(i)), w.i(f.group), w.opt(f.front), w.opt(f.back),
+            w.opt(f.surface), w.d(f.normal.x), w.d(f.normal.y), w.d(f.normal.z), w.d(f.d);
+      });
+    }
+    if (s) {
+      static const std::string kOuter = "outer", kInner = "inner";
+      s = insert("loops", 6, r.loops.size(), [&](std::size_t i, RowWriter& w) {
+        const auto& l = r.loops[i];
+        w.i(id), w.i(static_cast<std::int64_t>(i)), w.i(l.face), w.i(l.ord),
+            w.s(l.ord == 0 ? kOuter : kInner), w.opt(l.point_vertex);
+      });
+    }
+    if (s) {
+      s = insert("loop_edges", 6, r.uses.size(), [&](std::size_t i, RowWriter& w) {
+        const auto& u = r.uses[i];
+        w.i(id), w.i(u.loop), w.i(u.ord), w.i(u.edge), w.i(u.reversed ? 1 : 0), w.i(u.radial_ord);
+      });
+    }
+    return s;
+  }
+
+  // Runs `body` on the id of (name, version) inside one read transaction.
+  template <class Body>
+  Status read(const std::string& name, int version, Body body) {
+    if (Status s = db_->begin_read(); !s) return s;
+    std::int64_t id = -1;
+    Status s = version > 0
+                   ? db_->select("SELECT id FROM volumes WHERE name = $1 AND version = $2",
+                                 {name, std::int64_t{version}}, [&](const Row& r) { id = r.i(0); })
+                   : db_->select(
+                         "SELECT id FROM volumes WHERE name = $1 ORDER BY version DESC "
+                         "LIMIT 1",
+                         {name}, [&](const Row& r) { id = r.i(0); });
+    if (s && id < 0) {
+      s = Error{ErrorCode::kInvalidInput,
+                "no volume named '" + name + "'" +
+                    (version > 0 ? " with version " + std::to_string(version) : std::string())};
+    }
+    if (s) s = body(id);
+    if (!s) {
+      db_->rollback();
+      return s;
+    }
+    return db_->commit();
+  }
+
+  Status read_rows(std::int64_t id, ModelRows& r) {
+    const std::vector<Value> p{id};
+    auto opt = [](const Row& row, int c) { return row.is_null(c) ? kNone : row.i(c); };
+    Status s = db_->select("SELECT name FROM model_groups WHERE volume_id = $1 ORDER BY group_key",
+                           p, [&](const Row& row) { r.groups.push_back({row.s(0)}); });
+    if (s) {
+      s = db_->select(
+          "SELECT group_key, name, value FROM parameters WHERE volume_id = $1 "
+          "ORDER BY group_key, ord",
+          p, [&](const Row& row) {
+            r.parameters.push_back({key(row, 0), row.s(1), row.s(2)});
+          });
+    }
+    if (s) {
+      s = db_->select("SELECT group_key FROM cells WHERE volume_id = $1 ORDER BY cell_key", p,
+                      [&](const Row& row) { r.cells.push_back(key(row, 0)); });
+    }
+    if (s) {
+      s = db_->select(
+          "SELECT x, y, z, group_key FROM vertices WHERE volume_id = $1 ORDER BY vertex_key", p,
+          [&](const Row& row) {
+            r.vertices.push_back({{row.d(0), row.d(1), row.d(2)}, key(row, 3)});
+          });
+    }
+    if (s) {
+      s = db_->select(
+          "SELECT start_vertex, end_vertex, uses FROM edges WHERE volume_id = $1 ORDER BY edge_key",
+          p, [&](const Row& row) {
+            r.edges.push_back({key(row, 0), key(row, 1), key(row, 2)});
+          });
+    }
+    if (s) {
+      s = db_->select(
+          "SELECT kind, cx, cy, cz, ax, ay, az, radius, radius2, height, segments FROM surfaces "
+          "WHERE volume_id = $1 ORDER BY surface_key",
+          p, [&](const Row& row) {
+            r.surfaces.push_back({row.s(0),
+                                  {row.d(1), row.d(2), row.d(3)},
+                                  {row.d(4), row.d(5), row.d(6)},
+                                  row.d(7),
+                                  row.d(8),
+                                  row.d(9),
+                                  static_cast<int>(row.i(10))});
+          });
+    }
+    if (s) {
+      s = db_->select(
+          "SELECT group_key, front_cell, back_cell, surface_key, nx, ny, nz, d FROM faces "
+          "WHERE volume_id = $1 ORDER BY face_key",
+          p, [&](const Row& row) {
+            r.faces.push_back({key(row, 0),
+                               opt(row, 1),
+                               opt(row, 2),
+                               opt(row, 3),
+                               {row.d(4), row.d(5), row.d(6)},
+                               row.d(7)});
+          });
+    }
+    if (s) {
+      s = db_->select(
+          "SELECT face_key, ord, point_vertex FROM loops WHERE volume_id = $1 ORDER BY loop_key", p,
+          [&](const Row& row) {
+            r.loops.push_back({key(row, 0), key(row, 1), opt(row, 2)});
+          });
+    }
+    if (s) {
+      s = db_->select(
+          "SELECT loop_key, ord, edge_key, reversed, radial_ord FROM loop_edges "
+          "WHERE volume_id = $1 ORDER BY loop_key, ord",
+          p, [&](const Row& row) {
+            r.uses.push_back({key(row, 0), key(row, 1), key(row, 2), row.i(3) != 0, key(row, 4)});
+          });
+    }
+    return s;
+  }
+
+  Result<std::vector<VolumeInfo>> volumes(const std::string& sql, const std::vector<Value>& p) {
+    std::vector<VolumeInfo> out;
+    if (Status s = db_->begin_read(); !s) return s.error();
+    Status s = db_->select(sql, p, [&](const Row& r) { out.push_back(read_volume(r)); });
+    if (!s) {
+      db_->rollback();
+      return s.error();
+    }
+    if (Status c = db_->commit(); !c) return c.error();
+    // Byte order of names, the same on every backend whatever its collation.
+    std::sort(out.begin(), out.end(), [](const VolumeInfo& a, const VolumeInfo& b) {
+      return a.name != b.name ? a.name < b.name : a.version < b.version;
+    });
+    return out;
+  }
+
+  std::unique_ptr<Connection> db_;
+};
+
+}  // namespace
+
+Result<std::unique_ptr<Store>> make_sql_store(std::unique_ptr<Connection> connection) {
+  auto store = std::make_unique<SqlStore>(std::move(connection));
+  if (Status s = store->create_schema(); !s) return s.error();
+  return std::unique_ptr<Store>(std::move(store));
+}
+
+}  // namespace cellforge::store
+
+namespace cellforge {
+
+Status check_volume_name(const std::string& name) {
+  constexpr std::size_t kMaxName = 1024;
+  if (name.empty()) return Error{ErrorCode::kInvalidInput, "a volume name must not be empty"};
+  if (name.size() > kMaxName) {
+    return Error{ErrorCode::kInvalidInput, "a volume name is at most " + std::to_string(kMaxName) +
+                                               " bytes; this one has " +
+                                               std::to_string(name.size())};
+  }
+  if (!store::is_utf8(name)) {
+    return Error{ErrorCode::kInvalidInput, "a volume name must be valid UTF-8"};
+  }
+  for (unsigned char c : name) {
+    if (c < 0x20 || c == 0x7F) {
+      return Error{ErrorCode::kInvalidInput, "a volume name must not hold control characters"};
+    }
+  }
+  return Status::Ok();
+}
+
+Result<std::unique_ptr<Store>> open_store(const std::string& db) {
+  const bool pg = db.rfind("postgresql://", 0) == 0 || db.rfind("postgres://", 0) == 0;
+  auto connection =
+      pg ? store::open_postgresql(db) : store::open_sqlite(db.empty() ? "cellforge.db" : db);
+  if (!connection) return connection.error();
+  return store::make_sql_store(std::move(connection.value()));
+}
+
+}  // namespace cellforge

@@ -1,0 +1,214 @@
+// The SQLite backend: one read-write connection (WAL journal, so a process
+// killed mid-transaction leaves the last commit intact and readers never block
+// the writer) and, for user queries, a second connection opened read-only.
+#include <sqlite3.h>
+
+#include <cstring>
+
+#include "store/connection.h"
+
+namespace cellforge::store {
+
+namespace {
+
+// $N parameter markers to SQLite's ?N (our SQL has no '$' in string literals).
+std::string to_sqlite(std::string sql) {
+  for (std::size_t i = 0; i + 1 < sql.size(); ++i) {
+    if (sql[i] == '$' && sql[i + 1] >= '0' && sql[i + 1] <= '9') sql[i] = '?';
+  }
+  return sql;
+}
+
+class Statement {
+ public:
+  Statement() = default;
+  Statement(const Statement&) = delete;
+  Statement& operator=(const Statement&) = delete;
+  ~Statement() { sqlite3_finalize(stmt_); }
+  sqlite3_stmt*& get() { return stmt_; }
+  sqlite3_stmt* operator->() const { return stmt_; }
+  operator sqlite3_stmt*() const { return stmt_; }  // NOLINT: a handle wrapper
+
+ private:
+  sqlite3_stmt* stmt_ = nullptr;
+};
+
+class SqliteRow final : public Row {
+ public:
+  explicit SqliteRow(sqlite3_stmt* s) : s_(s) {}
+  bool is_null(int c) const override { return sqlite3_column_type(s_, c) == SQLITE_NULL; }
+  std::int64_t i(int c) const override { return sqlite3_column_int64(s_, c); }
+  double d(int c) const override { return sqlite3_column_double(s_, c); }
+  std::string s(int c) const override {
+    const auto* p = sqlite3_column_blob(s_, c);
+    const int n = sqlite3_column_bytes(s_, c);
+    return p ? std::string(static_cast<const char*>(p), static_cast<std::size_t>(n)) : "";
+  }
+
+ private:
+  sqlite3_stmt* s_;
+};
+
+class SqliteWriter final : public RowWriter {
+ public:
+  explicit SqliteWriter(sqlite3_stmt* s) : s_(s) {}
+  void reset() { col_ = 0; }
+  void null() override { sqlite3_bind_null(s_, ++col_); }
+  void i(std::int64_t v) override { sqlite3_bind_int64(s_, ++col_, v); }
+  void d(double v) override { sqlite3_bind_double(s_, ++col_, v); }
+  void s(const std::string& v) override {
+    sqlite3_bind_text(s_, ++col_, v.data(), static_cast<int>(v.size()), SQLITE_TRANSIENT);
+  }
+
+ private:
+  sqlite3_stmt* s_;
+  int col_ = 0;
+};
+
+class SqliteConnection final : public Connection {
+ public:
+  explicit SqliteConnection(std::string path) : path_(std::move(path)) {}
+  ~SqliteConnection() override {
+    sqlite3_close_v2(readonly_);
+    sqlite3_close_v2(db_);
+  }
+
+  Status open() {
+    if (sqlite3_open_v2(path_.c_str(), &db_, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE, nullptr) !=
+        SQLITE_OK) {
+      return fail(db_, "cannot open " + path_);
+    }
+    sqlite3_busy_timeout(db_, 60000);
+    for (const char* pragma : {"PRAGMA journal_mode = WAL", "PRAGMA synchronous = NORMAL",
+                               "PRAGMA cache_size = -65536"}) {
+      if (Status s = select(pragma, {}, [](const Row&) {}); !s) return s;
+    }
+    return Status::Ok();
+  }
+
+  std::string backend() const override { return "sqlite"; }
+  std::string serial_primary_key() const override { return "INTEGER PRIMARY KEY"; }
+
+  Status exec(const std::string& sql, const std::vector<Value>& params) override {
+    return select(sql, params, [](const Row&) {});
+  }
+
+  Status select(const std::string& sql, const std::vector<Value>& params,
+                const RowFn& fn) override {
+    Statement st;
+    if (sqlite3_prepare_v2(db_, to_sqlite(sql).c_str(), -1, &st.get(), nullptr) != SQLITE_OK) {
+      return fail(db_, "prepare");
+    }
+    for (std::size_t k = 0; k < params.size(); ++k) bind(st, static_cast<int>(k + 1), params[k]);
+    const SqliteRow row(st);
+    for (;;) {
+      const int rc = sqlite3_step(st);
+      if (rc == SQLITE_DONE) return Status::Ok();
+      if (rc != SQLITE_ROW) return fail(db_, "step");
+      fn(row);
+    }
+  }
+
+  Status begin_write(const std::string&) override { return exec("BEGIN IMMEDIATE", {}); }
+  Status begin_read() override {
+    // A deferred transaction takes its snapshot at the first read.
+    return exec("BEGIN", {});
+  }
+  Status commit() override { return exec("COMMIT", {}); }
+  void rollback() override {
+    if (!sqlite3_get_autocommit(db_)) sqlite3_exec(db_, "ROLLBACK", nullptr, nullptr, nullptr);
+  }
+
+  Status bulk_insert(const std::string& table, int columns, std::size_t rows, const FillFn& fill,
+                     const std::function<void(std::uint64_t)>& progress) override {
+    std::string sql = "INSERT INTO " + table + " VALUES (";
+    for (int c = 0; c < columns; ++c) sql += c ? ", ?" : "?";
+    sql += ")";
+    Statement st;
+    if (sqlite3_prepare_v2(db_, sql.c_str(), -1, &st.get(), nullptr) != SQLITE_OK) {
+      return fail(db_, "prepare " + table);
+    }
+    SqliteWriter w(st);
+    for (std::size_t r = 0; r < rows; ++r) {
+      w.reset();
+      fill(r, w);
+      if (sqlite3_step(st) != SQLITE_DONE) return fail(db_, "insert into " + table);
+      sqlite3_reset(st);
+      if (progress && (r + 1) % 65536 == 0) progress(r + 1);
+    }
+    if (progress) progress(rows);
+    return Status::Ok();
+  }
+
+  Result<QueryResult> read_only_query(const std::string& sql) override {
+    if (!readonly_ &&
+        sqlite3_open_v2(path_.c_str(), &readonly_, SQLITE_OPEN_READONLY, nullptr) != SQLITE_OK) {
+      return fail(readonly_, "cannot open " + path_ + " read-only").error();
+    }
+    sqlite3_busy_timeout(readonly_, 60000);
+    Statement st;
+    const char* tail = nullptr;
+    if (sqlite3_prepare_v2(readonly_, sql.c_str(), static_cast<int>(sql.size()), &st.get(),
+                           &tail) != SQLITE_OK) {
+      return fail(readonly_, "query").error();
+    }
+    if (!st.get()) return db_error("the query is empty");
+    if (tail && std::strspn(tail, " \t\r\n;") != std::strlen(tail)) {
+      return db_error("only one SQL statement may be run at a time");
+    }
+    if (!sqlite3_stmt_readonly(st)) return db_error("only read-only statements may be run");
+    QueryResult out;
+    const int n = sqlite3_column_count(st);
+    for (int c = 0; c < n; ++c) out.columns.emplace_back(sqlite3_column_name(st, c));
+    for (;;) {
+      const int rc = sqlite3_step(st);
+      if (rc == SQLITE_DONE) break;
+      if (rc != SQLITE_ROW) return fail(readonly_, "query").error();
+      auto& row = out.rows.emplace_back();
+      for (int c = 0; c < n; ++c) {
+        if (sqlite3_column_type(st, c) == SQLITE_NULL) {
+          row.emplace_back();
+        } else if (sqlite3_column_type(st, c) == SQLITE_FLOAT) {
+          char buf[32];
+          std::snprintf(buf, sizeof buf, "%.17g", sqlite3_column_double(st, c));
+          row.emplace_back(buf);
+        } else {
+          const auto* p = reinterpret_cast<const char*>(sqlite3_column_text(st, c));
+          row.emplace_back(std::string(p, static_cast<std::size_t>(sqlite3_column_bytes(st, c))));
+        }
+      }
+    }
+    return out;
+  }
+
+ private:
+  static void bind(sqlite3_stmt* st, int k, const Value& v) {
+    if (const auto* i = std::get_if<std::int64_t>(&v)) {
+      sqlite3_bind_int64(st, k, *i);
+    } else if (const auto* d = std::get_if<double>(&v)) {
+      sqlite3_bind_double(st, k, *d);
+    } else if (const auto* s = std::get_if<std::string>(&v)) {
+      sqlite3_bind_text(st, k, s->data(), static_cast<int>(s->size()), SQLITE_TRANSIENT);
+    } else {
+      sqlite3_bind_null(st, k);
+    }
+  }
+
+  static Status fail(sqlite3* db, const std::string& what) {
+    return db_error("sqlite: " + what + ": " + (db ? sqlite3_errmsg(db) : "out of memory"));
+  }
+
+  std::string path_;
+  sqlite3* db_ = nullptr;
+  sqlite3* readonly_ = nullptr;
+};
+
+}  // namespace
+
+Result<std::unique_ptr<Connection>> open_sqlite(const std::string& path) {
+  auto c = std::make_unique<SqliteConnection>(path);
+  if (Status s = c->open(); !s) return s.error();
+  return std::unique_ptr<Connection>(std::move(c));
+}
+
+}  // namespace cellforge::store
