@@ -221,7 +221,7 @@ int run(const std::vector<std::string>& argv) {
   Store& store = *opened.value();
 
   if (cmd == "save") {
-    if (option("--name").empty()) return usage_error("save needs --name N");
+    if (!a.options.count("--name")) return usage_error("save needs --name N");
     auto m = read_input(arg(1));
     if (!m) return fail(m.error().message);
     PutOptions o;
