@@ -1,11 +1,17 @@
 #!/usr/bin/env bash
 # Builds and runs every test: the normal build in build/, then the same tests once
 # more under AddressSanitizer + UndefinedBehaviorSanitizer in build-asan/.
-# Exits non-zero on any failure.
+# The store tests run against a real PostgreSQL server started here (and stopped at
+# exit); if it cannot start, this script fails. Exits non-zero on any failure.
 set -euo pipefail
 cd "$(dirname "$0")"
 
 scripts/setup.sh build -DCMAKE_BUILD_TYPE=RelWithDebInfo
+
+eval "$(scripts/pg_test_server.sh start)"  # exports CELLFORGE_PG_URL, CELLFORGE_PG_DIR
+trap 'scripts/pg_test_server.sh stop' EXIT
+export CI="${CI:-1}"  # without the server URL the PostgreSQL tests fail, never skip
+
 (cd build && ctest --output-on-failure -j2)
 
 scripts/setup.sh build-asan -DCMAKE_BUILD_TYPE=Debug -DCELLFORGE_SANITIZE=ON -DCELLFORGE_BENCH=OFF
