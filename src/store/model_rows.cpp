@@ -1,6 +1,5 @@
-// Model <-> rows. to_rows numbers each kind densely in id order; to_model checks
-// every key before touching the editor, rebuilds the records in key order and
-// runs the validator, so a hand-edited database cannot produce a broken model.
+// Model <-> rows: the snapshot (topo/snapshot.h) and the derived columns; the
+// volume summary (type, mass properties, bounding box) of a model.
 #include "store/model_rows.h"
 
 #include <algorithm>
@@ -9,28 +8,10 @@
 #include <numeric>
 
 #include "cellforge/topo/validate.h"
-#include "topo/model_editor.h"
 
 namespace cellforge::store {
 
 namespace {
-
-// Dense keys for the live ids of one kind, indexed by id.
-template <class IdT, class Range>
-std::vector<std::uint32_t> dense_keys(std::uint32_t slots, const Range& live) {
-  std::vector<std::uint32_t> key(slots, kInvalidIndex);
-  std::uint32_t next = 0;
-  for (IdT id : live) key[id.value] = next++;
-  return key;
-}
-
-std::int64_t opt_key(const std::vector<std::uint32_t>& keys, std::uint32_t id) {
-  return id == kInvalidIndex ? kNone : static_cast<std::int64_t>(keys[id]);
-}
-
-Error inconsistent(const std::string& what) {
-  return Error{ErrorCode::kDatabase, "stored volume is inconsistent: " + what};
-}
 
 // Newell vector of a loop: twice its vector area.
 Vec3 newell(const std::vector<Vec3>& pts) {
@@ -46,222 +27,24 @@ Vec3 newell(const std::vector<Vec3>& pts) {
 
 ModelRows to_rows(const Model& m) {
   ModelRows r;
-  std::uint32_t group_slots = 0, volume_slots = 0;
-  for (GroupId g : m.groups()) group_slots = g.value + 1;
-  for (VolumeId c : m.volumes()) volume_slots = c.value + 1;
-  const auto gkey = dense_keys<GroupId>(group_slots, m.groups());
-  const auto ckey = dense_keys<VolumeId>(volume_slots, m.volumes());
-  const auto vkey = dense_keys<VertexId>(m.vertex_slots(), m.vertices());
-  const auto ekey = dense_keys<EdgeId>(m.edge_slots(), m.edges());
-  const auto fkey = dense_keys<FaceId>(m.face_slots(), m.faces());
-
-  for (GroupId g : m.groups()) {
-    r.groups.push_back({m.name(g)});
-    for (const Attribute& a : m.attributes(g))
-      r.parameters.push_back({gkey[g.value], a.key, a.value});
-  }
-  for (VolumeId c : m.volumes()) r.cells.push_back(gkey[m.group_of(c).value]);
-  r.vertices.reserve(m.num_vertices());
-  for (VertexId v : m.vertices()) r.vertices.push_back({m.position(v), gkey[m.group_of(v).value]});
-
-  // Radial positions of every use, walking each edge's cycle from its first use.
-  std::vector<std::uint32_t> radial_ord(m.use_slots(), 0);
-  r.edges.reserve(m.num_edges());
-  for (EdgeId e : m.edges()) {
-    std::uint32_t n = 0;
-    if (const EdgeUseId first = m.first_use(e); first.is_valid()) {
-      EdgeUseId u = first;
-      do {
-        radial_ord[u.value] = n++;
-        u = m.radial_next(u);
-      } while (u != first);
-    }
-    r.edges.push_back({vkey[m.start_of(e).value], vkey[m.end_of(e).value], n});
-  }
-  for (std::uint32_t s = 0; s < m.num_surfaces(); ++s) r.surfaces.push_back(m.surface(s));
-
-  r.faces.reserve(m.num_faces());
-  r.loops.reserve(m.num_loops());
-  r.uses.reserve(m.num_edge_uses());
+  static_cast<Snapshot&>(r) = snapshot(m);
+  r.planes.reserve(r.faces.size());
   for (FaceId f : m.faces()) {
-    ModelRows::Face row{gkey[m.group_of(f).value],
-                        opt_key(ckey, m.front_volume(f).value),
-                        opt_key(ckey, m.back_volume(f).value),
-                        kNone,
-                        {},
-                        0};
-    if (const std::uint32_t s = m.surface_of(f); s != kInvalidIndex) row.surface = s;
     Vec3 area;
     for (LoopId l = m.outer_loop(f); l.is_valid(); l = m.next_loop(l)) {
       area = area + newell(m.loop_points(l));
     }
-    row.normal = normalized(area);
-    row.d = -dot(row.normal, m.position(m.loop_vertices(m.outer_loop(f)).front()));
-    r.faces.push_back(row);
-
-    std::uint32_t ord = 0;
-    for (LoopId l = m.outer_loop(f); l.is_valid(); l = m.next_loop(l), ++ord) {
-      const auto loop_key = static_cast<std::uint32_t>(r.loops.size());
-      ModelRows::Loop lr{fkey[f.value], ord, kNone};
-      if (m.is_point_loop(l)) {
-        lr.point_vertex = vkey[m.point_loop_vertex(l).value];
-      } else {
-        const EdgeUseId first = m.loop_first(l);
-        EdgeUseId u = first;
-        std::uint32_t k = 0;
-        do {
-          r.uses.push_back(
-              {loop_key, k++, ekey[m.edge_of(u).value], m.is_reversed(u), radial_ord[u.value]});
-          u = m.loop_next(u);
-        } while (u != first);
-      }
-      r.loops.push_back(lr);
-    }
+    const Vec3 n = normalized(area);
+    r.planes.push_back({n, -dot(n, m.position(m.loop_vertices(m.outer_loop(f)).front()))});
   }
+  r.edge_uses.reserve(r.edges.size());
+  for (EdgeId e : m.edges()) r.edge_uses.push_back(static_cast<std::uint32_t>(m.use_count(e)));
   return r;
 }
 
 Result<Model> to_model(const ModelRows& r) {
-  const std::size_t ng = r.groups.size(), nc = r.cells.size(), nv = r.vertices.size();
-  const std::size_t ne = r.edges.size(), ns = r.surfaces.size(), nf = r.faces.size();
-  const std::size_t nl = r.loops.size();
-  // References first: the editor trusts its callers.
-  for (const auto& p : r.parameters) {
-    if (p.group >= ng) return inconsistent("a parameter names group " + std::to_string(p.group));
-  }
-  for (std::uint32_t g : r.cells) {
-    if (g >= ng) return inconsistent("a cell names group " + std::to_string(g));
-  }
-  for (std::size_t i = 0; i < nv; ++i) {
-    const Vec3 p = r.vertices[i].p;
-    if (r.vertices[i].group >= ng || !std::isfinite(p.x) || !std::isfinite(p.y) ||
-        !std::isfinite(p.z)) {
-      return inconsistent("vertex " + std::to_string(i) + " has a bad group or coordinate");
-    }
-  }
-  for (std::size_t i = 0; i < ne; ++i) {
-    const auto& e = r.edges[i];
-    if (e.start >= nv || e.end >= nv || e.start == e.end ||
-        r.vertices[e.start].group != r.vertices[e.end].group) {
-      return inconsistent("edge " + std::to_string(i) + " has bad vertices");
-    }
-  }
-  for (std::size_t i = 0; i < nf; ++i) {
-    const auto& f = r.faces[i];
-    auto bad_cell = [&](std::int64_t c) {
-      return c != kNone && (c < 0 || static_cast<std::size_t>(c) >= nc || r.cells[c] != f.group);
-    };
-    if (f.group >= ng || bad_cell(f.front) || bad_cell(f.back) ||
-        (f.surface != kNone && (f.surface < 0 || static_cast<std::size_t>(f.surface) >= ns))) {
-      return inconsistent("face " + std::to_string(i) + " has a bad group, cell or surface");
-    }
-  }
-  std::vector<std::uint32_t> loop_size(nl, 0);
-  std::vector<bool> has_point_loop(nv, false), has_edge(nv, false);
-  for (const auto& e : r.edges) has_edge[e.start] = has_edge[e.end] = true;
-  for (std::size_t i = 0; i < nl; ++i) {
-    const auto& l = r.loops[i];
-    const bool in_order =
-        i == 0 ? l.ord == 0
-               : (l.face == r.loops[i - 1].face ? l.ord == r.loops[i - 1].ord + 1 : l.ord == 0);
-    if (l.face >= nf || !in_order || (i > 0 && l.face < r.loops[i - 1].face)) {
-      return inconsistent("loop " + std::to_string(i) + " is out of face order");
-    }
-    if (l.point_vertex != kNone) {
-      const auto v = static_cast<std::size_t>(l.point_vertex);
-      if (l.point_vertex < 0 || v >= nv || has_point_loop[v] || has_edge[v]) {
-        return inconsistent("point loop " + std::to_string(i) + " has a bad vertex");
-      }
-      has_point_loop[v] = true;
-    }
-  }
-  for (std::size_t i = 0; i < r.uses.size(); ++i) {
-    const auto& u = r.uses[i];
-    if (u.loop >= nl || u.edge >= ne || r.loops[u.loop].point_vertex != kNone ||
-        u.ord != loop_size[u.loop]++ || (i > 0 && u.loop < r.uses[i - 1].loop)) {
-      return inconsistent("edge use " + std::to_string(i) + " is out of loop order");
-    }
-  }
-  std::vector<bool> face_has_loop(nf, false);
-  for (const auto& l : r.loops) face_has_loop[l.face] = true;
-  for (std::size_t i = 0; i < nf; ++i) {
-    if (!face_has_loop[i]) return inconsistent("face " + std::to_string(i) + " has no loop");
-  }
-  for (std::size_t i = 0; i < nl; ++i) {
-    if (r.loops[i].point_vertex == kNone && loop_size[i] == 0) {
-      return inconsistent("loop " + std::to_string(i) + " has no edge use");
-    }
-  }
-
-  Model m;
-  ModelEditor ed(m);
-  std::vector<GroupId> groups;
-  for (const auto& g : r.groups) groups.push_back(ed.new_group(g.name));
-  for (const auto& p : r.parameters) m.set_attribute(groups[p.group], p.name, p.value);
-  std::vector<VolumeId> cells;
-  for (std::uint32_t g : r.cells) cells.push_back(ed.new_volume(groups[g]));
-  std::vector<VertexId> vertices;
-  vertices.reserve(nv);
-  for (const auto& v : r.vertices) vertices.push_back(ed.new_vertex(groups[v.group], v.p));
-  std::vector<EdgeId> edges;
-  edges.reserve(ne);
-  for (const auto& e : r.edges) edges.push_back(ed.new_edge(vertices[e.start], vertices[e.end]));
-  for (const Surface& s : r.surfaces) m.add_surface(s);
-  std::vector<FaceId> faces;
-  faces.reserve(nf);
-  auto cell = [&](std::int64_t c) { return c == kNone ? VolumeId() : cells[c]; };
-  for (const auto& f : r.faces) {
-    const FaceId face = ed.new_face(ed.intern_sides(cell(f.front), cell(f.back), groups[f.group]));
-    if (f.surface != kNone) m.set_surface(face, static_cast<std::uint32_t>(f.surface));
-    faces.push_back(face);
-  }
-  std::vector<EdgeUseId> uses(r.uses.size());
-  std::size_t next_use = 0;
-  for (std::size_t i = 0; i < nl; ++i) {
-    const auto& l = r.loops[i];
-    LoopId loop;
-    if (l.point_vertex != kNone) {
-      loop = ed.new_point_loop(vertices[l.point_vertex]);
-    } else {
-      EdgeUseId first, prev;
-      for (; next_use < r.uses.size() && r.uses[next_use].loop == i; ++next_use) {
-        const auto& ur = r.uses[next_use];
-        const EdgeUseId u = ed.new_use(edges[ur.edge], ur.reversed, faces[l.face]);
-        uses[next_use] = u;
-        if (prev.is_valid()) {
-          ed.set_next(prev, u);
-        } else {
-          first = u;
-        }
-        prev = u;
-      }
-      ed.set_next(prev, first);
-      loop = ed.new_loop(first);
-    }
-    ed.append_loop(faces[l.face], loop);
-  }
-  // Radial cycles in stored order.
-  std::vector<std::uint32_t> by_edge(r.uses.size());
-  std::iota(by_edge.begin(), by_edge.end(), 0u);
-  std::sort(by_edge.begin(), by_edge.end(), [&](std::uint32_t a, std::uint32_t b) {
-    const auto &x = r.uses[a], &y = r.uses[b];
-    return x.edge != y.edge ? x.edge < y.edge : x.radial_ord < y.radial_ord;
-  });
-  for (std::size_t i = 0; i < by_edge.size();) {
-    std::size_t j = i;
-    const std::uint32_t e = r.uses[by_edge[i]].edge;
-    while (j < by_edge.size() && r.uses[by_edge[j]].edge == e) ++j;
-    for (std::size_t k = i; k < j; ++k) {
-      const std::size_t next = k + 1 < j ? k + 1 : i;
-      ed.rec(uses[by_edge[k]]).radial_next = uses[by_edge[next]].value;
-    }
-    ed.rec(edges[e]).first_use = uses[by_edge[i]].value;
-    i = j;
-  }
-
-  if (auto violations = validate(m); !violations.empty()) {
-    return inconsistent("the rebuilt model is invalid: " + to_string(violations));
-  }
+  auto m = restore(r);
+  if (!m) return Error{ErrorCode::kDatabase, "stored volume: " + m.error().message};
   return m;
 }
 

@@ -504,7 +504,8 @@ class SqlStore final : public Store {
     if (s) {
       s = insert("edges", 6, r.edges.size(), [&](std::size_t i, RowWriter& w) {
         const auto& e = r.edges[i];
-        w.i(id), w.i(static_cast<std::int64_t>(i)), w.i(e.start), w.i(e.end), w.i(1), w.i(e.uses);
+        w.i(id), w.i(static_cast<std::int64_t>(i)), w.i(e.start), w.i(e.end), w.i(1),
+            w.i(r.edge_uses[i]);
       });
     }
     if (s) {
@@ -519,7 +520,8 @@ class SqlStore final : public Store {
       s = insert("faces", 10, r.faces.size(), [&](std::size_t i, RowWriter& w) {
         const auto& f = r.faces[i];
         w.i(id), w.i(static_cast<std::int64_t>(i)), w.i(f.group), w.opt(f.front), w.opt(f.back),
-            w.opt(f.surface), w.d(f.normal.x), w.d(f.normal.y), w.d(f.normal.z), w.d(f.d);
+            w.opt(f.surface), w.d(r.planes[i].normal.x), w.d(r.planes[i].normal.y),
+            w.d(r.planes[i].normal.z), w.d(r.planes[i].d);
       });
     }
     if (s) {
@@ -592,7 +594,8 @@ class SqlStore final : public Store {
       s = db_->select(
           "SELECT start_vertex, end_vertex, uses FROM edges WHERE volume_id = $1 ORDER BY edge_key",
           p, [&](const Row& row) {
-            r.edges.push_back({key(row, 0), key(row, 1), key(row, 2)});
+            r.edges.push_back({key(row, 0), key(row, 1)});
+            r.edge_uses.push_back(key(row, 2));
           });
     }
     if (s) {
@@ -614,12 +617,8 @@ class SqlStore final : public Store {
           "SELECT group_key, front_cell, back_cell, surface_key, nx, ny, nz, d FROM faces "
           "WHERE volume_id = $1 ORDER BY face_key",
           p, [&](const Row& row) {
-            r.faces.push_back({key(row, 0),
-                               opt(row, 1),
-                               opt(row, 2),
-                               opt(row, 3),
-                               {row.d(4), row.d(5), row.d(6)},
-                               row.d(7)});
+            r.faces.push_back({key(row, 0), opt(row, 1), opt(row, 2), opt(row, 3)});
+            r.planes.push_back({{row.d(4), row.d(5), row.d(6)}, row.d(7)});
           });
     }
     if (s) {
