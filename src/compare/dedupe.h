@@ -1,0 +1,38 @@
+// Removes repeated elements from a query answer, keeping first occurrences in
+// order: the same method as cellforge's queries (a quadratic scan for small
+// answers, a sort for large ones), so that the baselines pay the same for it.
+#pragma once
+
+#include <algorithm>
+#include <cstddef>
+#include <utility>
+#include <vector>
+
+namespace cellforge::compare {
+
+template <class T>
+void dedupe_in_order(std::vector<T>& v) {
+  std::size_t n = 0;
+  if (v.size() <= 32) {
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      const auto kept_end = v.begin() + static_cast<std::ptrdiff_t>(n);
+      if (std::find(v.begin(), kept_end, v[i]) == kept_end) v[n++] = v[i];
+    }
+    v.resize(n);
+    return;
+  }
+  std::vector<std::pair<T, std::size_t>> keyed;
+  keyed.reserve(v.size());
+  for (std::size_t i = 0; i < v.size(); ++i) keyed.emplace_back(v[i], i);
+  std::sort(keyed.begin(), keyed.end());
+  std::vector<char> keep(v.size(), 0);
+  for (std::size_t i = 0; i < keyed.size(); ++i) {
+    if (i == 0 || keyed[i].first != keyed[i - 1].first) keep[keyed[i].second] = 1;
+  }
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    if (keep[i]) v[n++] = v[i];
+  }
+  v.resize(n);
+}
+
+}  // namespace cellforge::compare
