@@ -1,0 +1,124 @@
+// Reading and writing models: STL (ASCII and binary), OBJ, OFF, 3MF and the native
+// JSON format (docs/io.md).
+//
+// Mesh formats are read in two steps: a parser turns the bytes into an indexed
+// polygon soup (positions, polygons, wires, points), and import() welds the
+// positions and builds the soup into one new group through build_mesh. The native
+// JSON format is lossless and bypasses the soup: it restores the model's tables
+// (topo/snapshot.h) exactly.
+//
+// Errors name where the input went wrong: "line 12:7" for text, "byte 184" for
+// binary data. No parser allocates from a count it has not checked against the
+// size of the input.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "cellforge/result.h"
+#include "cellforge/topo/model.h"
+
+namespace cellforge::io {
+
+enum class Format { kStl, kObj, kOff, k3mf, kJson };
+
+// "stl", "obj", "off", "3mf", "json".
+std::string_view format_name(Format f);
+// From a file name's extension (case-insensitive); an error names the extension.
+Result<Format> format_from_path(std::string_view path);
+// Whether this build can read and write 3MF (lib3mf was found at configure time).
+bool has_3mf();
+
+// What a mesh parser produces: polygons as index cycles into `positions` (a
+// polygon with holes comes only from formats that have them), wire edges and
+// isolated points. Indices are checked against positions by the parser.
+struct PolygonSoup {
+  std::vector<Vec3> positions;
+  std::vector<std::vector<std::uint32_t>> polygons;
+  std::vector<std::array<std::uint32_t, 2>> wires;
+  std::vector<std::uint32_t> points;
+  std::string name;  // a name the file gives its object, if any
+};
+
+// How import() assigns 3-cells to the faces it builds.
+enum class VolumeMode {
+  kAuto,  // each face-connected closed, consistently oriented shell of positive
+          // signed volume bounds its own cell (on the back of its faces)
+  kNone,  // every face is a sheet face without volumes
+};
+
+struct ImportOptions {
+  // Positions closer than this (max-norm distance) weld into one vertex. 0 (the
+  // default) welds only positions whose coordinates are equal. With a tolerance the
+  // first position of a cluster is kept and welding is greedy in input order.
+  double weld_tolerance = 0;
+  // Merge edge-adjacent coplanar triangles (exactly coplanar, same orientation) into
+  // polygon faces, possibly with holes.
+  bool merge_coplanar = false;
+  // Flip faces so that each face-connected manifold patch is consistently oriented
+  // (and closed shells point outward).
+  bool repair_orientation = false;
+  VolumeMode volumes = VolumeMode::kAuto;
+  std::string group_name;  // overrides the soup's name
+};
+
+// What import() did to the soup before building it.
+struct ImportReport {
+  std::size_t input_positions = 0;
+  std::size_t input_polygons = 0;
+  std::size_t welded_vertices = 0;     // distinct positions after welding
+  std::size_t unused_vertices = 0;     // positions no polygon, wire or point names (dropped)
+  std::size_t degenerate_dropped = 0;  // polygons collapsed by welding (< 3 distinct corners)
+  std::vector<std::size_t> degenerate_polygons;  // their indices in the soup (first 100)
+  std::size_t merged_faces = 0;   // faces after merge_coplanar (== polygons without it)
+  std::size_t flipped_faces = 0;  // faces turned by repair_orientation
+  std::size_t closed_shells = 0;  // cells made by VolumeMode::kAuto
+};
+
+struct ReadOptions {
+  ImportOptions import;
+};
+
+// Sets one import option by name, as the command line and scripts give them:
+// weld_tolerance=<number>, merge_coplanar=true|false, repair_orientation=true|false,
+// volumes=auto|none, group_name=<text>. An error names the key or the bad value.
+Status set_option(ImportOptions& options, std::string_view key, std::string_view value);
+
+struct ReadResult {
+  GroupId group;  // the first group read (formats other than JSON make one)
+  ImportReport report;
+};
+
+// Parses the bytes of a mesh format (not kJson) into a soup.
+Result<PolygonSoup> parse_mesh(std::span<const std::uint8_t> bytes, Format format);
+// Welds the soup and builds it into a new group of m. On error m is unchanged.
+Result<ReadResult> import_soup(Model& m, const PolygonSoup& soup, const ImportOptions& options);
+
+// Reads the bytes of any format into m (JSON: every group of the file is added).
+Result<ReadResult> read_model(Model& m, std::span<const std::uint8_t> bytes, Format format,
+                              const ReadOptions& options = {});
+// Reads a file; the format comes from the extension, the group name (for mesh
+// formats) from the file's stem unless options name one.
+Result<ReadResult> read_file(Model& m, const std::string& path, const ReadOptions& options = {});
+
+struct WriteOptions {
+  bool stl_binary = true;  // false: ASCII STL
+  // OBJ and OFF keep polygons without holes as polygons; with `triangulate` every
+  // face is written as triangles (faces with holes always are).
+  bool triangulate = false;
+};
+
+// The bytes of m in a format. Mesh formats triangulate faces as needed and write
+// every group into one mesh (3MF: one object per group); OBJ also writes wire
+// edges (`l`) and isolated vertices (`p`).
+Result<std::string> write_model(const Model& m, Format format, const WriteOptions& options = {});
+Status write_file(const Model& m, const std::string& path, const WriteOptions& options = {});
+
+// Reads a whole file into memory; errors name the path.
+Result<std::vector<std::uint8_t>> read_bytes(const std::string& path);
+
+}  // namespace cellforge::io

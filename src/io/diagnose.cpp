@@ -1,0 +1,296 @@
+// diagnose(): what a model is as a mesh (diagnose.h). Every count walks the local
+// cycles of the structure once; degeneracy and duplicates use exact tests on the
+// vertices; mass properties come from the divergence theorem over the faces'
+// triangulations.
+#include "cellforge/io/diagnose.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <numeric>
+
+#include "cellforge/io/triangulate.h"
+#include "cellforge/topo/queries.h"
+#include "cellforge/topo/validate.h"
+#include "io/exact.h"
+#include "io/intersect.h"
+
+namespace cellforge::io {
+
+MassProperties mass_properties(const Model& m) {
+  MassProperties mp;
+  bool first = true;
+  Vec3 vertex_sum;
+  for (VertexId v : m.vertices()) {
+    const Vec3 p = m.position(v);
+    vertex_sum = vertex_sum + p;
+    if (first) {
+      mp.bbox_min = mp.bbox_max = p;
+      first = false;
+    }
+    mp.bbox_min = {std::min(mp.bbox_min.x, p.x), std::min(mp.bbox_min.y, p.y),
+                   std::min(mp.bbox_min.z, p.z)};
+    mp.bbox_max = {std::max(mp.bbox_max.x, p.x), std::max(mp.bbox_max.y, p.y),
+                   std::max(mp.bbox_max.z, p.z)};
+  }
+  if (first) return mp;
+  // Integrate about the box centre: smaller terms, less cancellation.
+  const Vec3 o = (mp.bbox_min + mp.bbox_max) * 0.5;
+  double volume = 0, area = 0;
+  Vec3 vmoment, amoment;
+  for (FaceId f : m.faces()) {
+    const int weight =
+        (m.back_volume(f).is_valid() ? 1 : 0) - (m.front_volume(f).is_valid() ? 1 : 0);
+    for (const auto& t : triangulate_face(m, f)) {
+      const Vec3 a = m.position(t[0]) - o, b = m.position(t[1]) - o, c = m.position(t[2]) - o;
+      const double tri_area = length(cross(b - a, c - a)) / 2;
+      area += tri_area;
+      amoment = amoment + (a + b + c) * (tri_area / 3);
+      if (weight != 0) {
+        const double tet = weight * dot(a, cross(b, c)) / 6;
+        volume += tet;
+        vmoment = vmoment + (a + b + c) * (tet / 4);
+      }
+    }
+  }
+  mp.volume = volume;
+  mp.area = area;
+  if (volume > 0)
+    mp.centroid = o + vmoment / volume;
+  else if (area > 0)
+    mp.centroid = o + amoment / area;
+  else
+    mp.centroid = vertex_sum / static_cast<double>(m.num_vertices());
+  return mp;
+}
+
+namespace {
+
+// All vertices of f on one line (exact, in each coordinate plane).
+bool degenerate(const Model& m, FaceId f) {
+  const std::vector<Vec3> p = m.loop_points(m.outer_loop(f));
+  if (p.size() < 3) return true;
+  for (int drop = 0; drop < 3; ++drop) {
+    const auto q = [&](Vec3 v) { return Point2{v[(drop + 1) % 3], v[(drop + 2) % 3]}; };
+    for (std::size_t k = 2; k < p.size(); ++k)
+      if (orient2d(q(p[0]), q(p[1]), q(p[k])) != 0) return false;
+  }
+  return true;
+}
+
+// Faces around v that form separate fans (joined across the edges at v).
+std::size_t fans_at(const Model& m, VertexId v, std::vector<FaceId>& faces,
+                    std::vector<std::uint32_t>& parent) {
+  faces.clear();
+  std::vector<EdgeId> edges;
+  edges_of(m, v, edges);
+  std::vector<FaceId> around;
+  for (EdgeId e : edges) {
+    faces_of(m, e, around);
+    faces.insert(faces.end(), around.begin(), around.end());
+  }
+  std::sort(faces.begin(), faces.end());
+  faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
+  parent.resize(faces.size());
+  std::iota(parent.begin(), parent.end(), 0);
+  const auto index = [&](FaceId f) {
+    return static_cast<std::uint32_t>(std::lower_bound(faces.begin(), faces.end(), f) -
+                                      faces.begin());
+  };
+  const auto root = [&](std::uint32_t x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  };
+  std::size_t fans = faces.size();
+  for (EdgeId e : edges) {
+    faces_of(m, e, around);
+    for (std::size_t k = 1; k < around.size(); ++k) {
+      const std::uint32_t a = root(index(around[0])), b = root(index(around[k]));
+      if (a != b) {
+        parent[a] = b;
+        --fans;
+      }
+    }
+  }
+  return fans;
+}
+
+template <class T>
+void put_ids(std::string& out, const char* key, const std::vector<T>& ids) {
+  out += std::string(",\n  \"") + key + "\": [";
+  for (std::size_t i = 0; i < ids.size() && i < 100; ++i) {
+    if (i) out += ", ";
+    if constexpr (std::is_same_v<T, std::pair<FaceId, FaceId>>)
+      out += "[\"" + ids[i].first.str() + "\", \"" + ids[i].second.str() + "\"]";
+    else
+      out += "\"" + ids[i].str() + "\"";
+  }
+  out += "],\n  \"" + std::string(key) + "_count\": " + std::to_string(ids.size());
+}
+
+template <class T>
+std::string list_text(const std::vector<T>& ids) {
+  std::string s = std::to_string(ids.size());
+  for (std::size_t i = 0; i < ids.size() && i < 20; ++i) {
+    s += i ? ", " : " (";
+    if constexpr (std::is_same_v<T, std::pair<FaceId, FaceId>>)
+      s += ids[i].first.str() + "/" + ids[i].second.str();
+    else
+      s += ids[i].str();
+  }
+  if (!ids.empty()) s += ids.size() > 20 ? ", ...)" : ")";
+  return s;
+}
+
+std::string num(double d) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.17g", d);
+  return buf;
+}
+
+std::string vec_json(Vec3 v) { return "[" + num(v.x) + ", " + num(v.y) + ", " + num(v.z) + "]"; }
+
+}  // namespace
+
+Diagnosis diagnose(const Model& m, const DiagnoseOptions& options) {
+  Diagnosis d;
+  d.vertices = m.num_vertices();
+  d.edges = m.num_edges();
+  d.faces = m.num_faces();
+  d.loops = m.num_loops();
+  d.volumes = m.num_volumes();
+  d.groups = m.num_groups();
+  d.euler_characteristic = euler_figures(m).lhs();
+  const auto violations = validate(m);
+  d.valid = violations.empty();
+  for (std::size_t i = 0; i < violations.size() && i < 10; ++i)
+    d.violations.push_back(violations[i].check + ": " + violations[i].message);
+
+  std::vector<bool> on_nm_edge(m.vertex_slots(), false);
+  for (EdgeId e : m.edges()) {
+    const std::size_t uses = m.use_count(e);
+    if (uses == 0) {
+      ++d.wire_edges;
+    } else if (uses == 1) {
+      d.boundary_edges.push_back(e);
+    } else if (uses == 2) {
+      const EdgeUseId u = m.first_use(e);
+      if (m.is_reversed(u) == m.is_reversed(m.radial_next(u))) d.inconsistent_edges.push_back(e);
+    } else {
+      d.non_manifold_edges.push_back(e);
+      on_nm_edge[m.start_of(e).value] = on_nm_edge[m.end_of(e).value] = true;
+    }
+  }
+  std::vector<FaceId> faces;
+  std::vector<std::uint32_t> parent;
+  for (VertexId v : m.vertices()) {
+    if (!m.first_end(v).edge.is_valid()) {
+      if (!m.point_loop(v).is_valid()) ++d.isolated_vertices;
+      continue;
+    }
+    if (on_nm_edge[v.value]) continue;
+    if (fans_at(m, v, faces, parent) > 1) d.non_manifold_vertices.push_back(v);
+  }
+  std::vector<std::pair<std::vector<std::uint32_t>, FaceId>> keys;
+  keys.reserve(m.num_faces());
+  for (FaceId f : m.faces()) {
+    if (degenerate(m, f)) d.degenerate_faces.push_back(f);
+    std::vector<std::uint32_t> key;
+    for (LoopId l = m.outer_loop(f); l.is_valid(); l = m.next_loop(l))
+      for (VertexId v : m.loop_vertices(l)) key.push_back(v.value);
+    std::sort(key.begin(), key.end());
+    keys.push_back({std::move(key), f});
+  }
+  std::sort(keys.begin(), keys.end());
+  for (std::size_t i = 1; i < keys.size(); ++i)
+    if (keys[i].first == keys[i - 1].first)
+      d.duplicate_faces.push_back({keys[i - 1].second, keys[i].second});
+  if (options.self_intersections) {
+    d.self_intersections = self_intersections(m);
+    d.self_intersections_checked = true;
+  }
+  d.closed = d.faces > 0 && d.boundary_edges.empty();
+  d.manifold = d.non_manifold_edges.empty() && d.non_manifold_vertices.empty() &&
+               d.wire_edges == 0 && d.isolated_vertices == 0;
+  d.mass = mass_properties(m);
+  return d;
+}
+
+std::string to_text(const Diagnosis& d) {
+  std::string s;
+  const auto line = [&](const std::string& k, const std::string& v) { s += k + ": " + v + "\n"; };
+  line("vertices", std::to_string(d.vertices));
+  line("edges", std::to_string(d.edges));
+  line("faces", std::to_string(d.faces));
+  line("loops", std::to_string(d.loops));
+  line("volumes", std::to_string(d.volumes));
+  line("groups", std::to_string(d.groups));
+  line("euler_characteristic", std::to_string(d.euler_characteristic));
+  line("valid", d.valid ? "yes" : "no");
+  for (const auto& v : d.violations) line("  violation", v);
+  line("closed", d.closed ? "yes" : "no");
+  line("manifold", d.manifold ? "yes" : "no");
+  line("boundary_edges", list_text(d.boundary_edges));
+  line("non_manifold_edges", list_text(d.non_manifold_edges));
+  line("non_manifold_vertices", list_text(d.non_manifold_vertices));
+  line("inconsistent_edges", list_text(d.inconsistent_edges));
+  line("degenerate_faces", list_text(d.degenerate_faces));
+  line("duplicate_faces", list_text(d.duplicate_faces));
+  line("self_intersections",
+       d.self_intersections_checked ? list_text(d.self_intersections) : "not checked");
+  line("wire_edges", std::to_string(d.wire_edges));
+  line("isolated_vertices", std::to_string(d.isolated_vertices));
+  line("volume", num(d.mass.volume));
+  line("area", num(d.mass.area));
+  const auto v = [](Vec3 p) { return num(p.x) + " " + num(p.y) + " " + num(p.z); };
+  line("centroid", v(d.mass.centroid));
+  line("bbox", v(d.mass.bbox_min) + " .. " + v(d.mass.bbox_max));
+  return s;
+}
+
+std::string to_json(const Diagnosis& d) {
+  std::string s = "{\n";
+  const auto field = [&](const char* k, const std::string& v) {
+    s += (s.size() > 2 ? ",\n  \"" : "  \"") + std::string(k) + "\": " + v;
+  };
+  field("vertices", std::to_string(d.vertices));
+  field("edges", std::to_string(d.edges));
+  field("faces", std::to_string(d.faces));
+  field("loops", std::to_string(d.loops));
+  field("volumes", std::to_string(d.volumes));
+  field("groups", std::to_string(d.groups));
+  field("euler_characteristic", std::to_string(d.euler_characteristic));
+  field("valid", d.valid ? "true" : "false");
+  field("closed", d.closed ? "true" : "false");
+  field("manifold", d.manifold ? "true" : "false");
+  field("volume", num(d.mass.volume));
+  field("area", num(d.mass.area));
+  field("centroid", vec_json(d.mass.centroid));
+  field("bbox",
+        "{\"min\": " + vec_json(d.mass.bbox_min) + ", \"max\": " + vec_json(d.mass.bbox_max) + "}");
+  field("boundary_edges", std::to_string(d.boundary_edges.size()));
+  field("wire_edges", std::to_string(d.wire_edges));
+  field("isolated_vertices", std::to_string(d.isolated_vertices));
+  put_ids(s, "non_manifold_edges", d.non_manifold_edges);
+  put_ids(s, "non_manifold_vertices", d.non_manifold_vertices);
+  put_ids(s, "inconsistent_edges", d.inconsistent_edges);
+  put_ids(s, "degenerate_faces", d.degenerate_faces);
+  put_ids(s, "duplicate_faces", d.duplicate_faces);
+  if (d.self_intersections_checked)
+    put_ids(s, "self_intersections", d.self_intersections);
+  else
+    field("self_intersections", "null");
+  std::string v = "[";
+  for (std::size_t i = 0; i < d.violations.size(); ++i) {
+    if (i) v += ", ";
+    v += '"';
+    for (char c : d.violations[i]) {
+      if (c == '"' || c == '\\') v += '\\';
+      if (static_cast<unsigned char>(c) >= 0x20) v += c;
+    }
+    v += '"';
+  }
+  field("violations", v + "]");
+  return s + "\n}\n";
+}
+
+}  // namespace cellforge::io

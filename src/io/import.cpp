@@ -1,0 +1,455 @@
+// import_soup: from a polygon soup to a group of the model.
+//
+// 1. weld positions (weld.h) and rewrite the polygons; drop repeated consecutive
+//    corners, and polygons left with fewer than 3 distinct corners (reported);
+// 2. repair orientation (optional): flip faces across two-face edges so that
+//    neighbours agree, then turn closed patches of negative volume outward;
+// 3. merge coplanar triangles (optional) into polygons, with holes, when the
+//    boundary of the merged patch is a set of simple loops;
+// 4. give each closed, consistently oriented face-connected shell of positive
+//    volume its own cell (VolumeMode::kAuto);
+// 5. build_mesh, with the positions no face, wire or point uses left out.
+#include <algorithm>
+#include <numeric>
+#include <optional>
+#include <unordered_set>
+
+#include "cellforge/topo/builder.h"
+#include "io/exact.h"
+#include "io/formats.h"
+#include "io/weld.h"
+
+namespace cellforge::io {
+
+namespace {
+
+using Polygon = std::vector<std::uint32_t>;
+
+// Undirected edges of a polygon list, with the corners (polygon, position) using
+// each; corner c of polygon p runs from p[c] to p[c + 1].
+class EdgeTable {
+ public:
+  explicit EdgeTable(const std::vector<Polygon>& polys) {
+    first_corner_.resize(polys.size() + 1, 0);
+    for (std::size_t p = 0; p < polys.size(); ++p)
+      first_corner_[p + 1] = first_corner_[p] + static_cast<std::uint32_t>(polys[p].size());
+    const std::uint32_t corners = first_corner_.back();
+    std::vector<std::pair<std::uint64_t, std::uint32_t>> keys(corners);
+    corner_poly_.resize(corners);
+    forward_.resize(corners);
+    for (std::size_t p = 0; p < polys.size(); ++p) {
+      for (std::size_t k = 0; k < polys[p].size(); ++k) {
+        const std::uint32_t a = polys[p][k], b = polys[p][(k + 1) % polys[p].size()];
+        const std::uint32_t c = first_corner_[p] + static_cast<std::uint32_t>(k);
+        keys[c] = {a < b ? (std::uint64_t{a} << 32 | b) : (std::uint64_t{b} << 32 | a), c};
+        corner_poly_[c] = static_cast<std::uint32_t>(p);
+        forward_[c] = a < b;
+      }
+    }
+    std::sort(keys.begin(), keys.end());
+    edge_of_.resize(corners);
+    for (std::size_t i = 0; i < keys.size(); ++i) {
+      if (i == 0 || keys[i].first != keys[i - 1].first)
+        use_begin_.push_back(static_cast<std::uint32_t>(i));
+      edge_of_[keys[i].second] = static_cast<std::uint32_t>(use_begin_.size() - 1);
+      uses_.push_back(keys[i].second);
+    }
+    use_begin_.push_back(static_cast<std::uint32_t>(keys.size()));
+  }
+
+  std::size_t num_edges() const { return use_begin_.size() - 1; }
+  std::uint32_t corner(std::size_t poly, std::size_t k) const {
+    return first_corner_[poly] + static_cast<std::uint32_t>(k);
+  }
+  std::uint32_t edge_of(std::uint32_t corner) const { return edge_of_[corner]; }
+  std::uint32_t poly_of(std::uint32_t corner) const { return corner_poly_[corner]; }
+  bool forward(std::uint32_t corner) const { return forward_[corner]; }
+  std::span<const std::uint32_t> uses(std::uint32_t edge) const {
+    return {uses_.data() + use_begin_[edge], use_begin_[edge + 1] - use_begin_[edge]};
+  }
+  // The other corner of a two-use edge (or ~0).
+  std::uint32_t mate(std::uint32_t corner) const {
+    const auto u = uses(edge_of_[corner]);
+    if (u.size() != 2) return kNoRep;
+    return u[0] == corner ? u[1] : u[0];
+  }
+
+ private:
+  std::vector<std::uint32_t> first_corner_, corner_poly_, edge_of_, uses_, use_begin_;
+  std::vector<bool> forward_;
+};
+
+double signed_volume(const std::vector<Vec3>& pos, const Polygon& p) {
+  double v = 0;
+  for (std::size_t k = 1; k + 1 < p.size(); ++k)
+    v += dot(pos[p[0]], cross(pos[p[k]], pos[p[k + 1]]));
+  return v / 6;
+}
+
+// Face-connected patches: polygons joined across edges that `join` accepts.
+template <class Join>
+std::vector<std::uint32_t> patches(const std::vector<Polygon>& polys, const EdgeTable& edges,
+                                   Join join, std::uint32_t& count) {
+  std::vector<std::uint32_t> patch(polys.size(), kNoRep);
+  count = 0;
+  std::vector<std::uint32_t> stack;
+  for (std::uint32_t seed = 0; seed < polys.size(); ++seed) {
+    if (patch[seed] != kNoRep) continue;
+    patch[seed] = count;
+    stack.push_back(seed);
+    while (!stack.empty()) {
+      const std::uint32_t p = stack.back();
+      stack.pop_back();
+      for (std::size_t k = 0; k < polys[p].size(); ++k) {
+        const std::uint32_t c = edges.corner(p, k), o = edges.mate(c);
+        if (o == kNoRep || !join(c, o)) continue;
+        const std::uint32_t q = edges.poly_of(o);
+        if (patch[q] != kNoRep) continue;
+        patch[q] = count;
+        stack.push_back(q);
+      }
+    }
+    ++count;
+  }
+  return patch;
+}
+
+// Whether every edge used by a patch is used by it equally often in both
+// directions (a closed, consistently oriented shell).
+std::vector<bool> closed_patches(const std::vector<Polygon>& polys, const EdgeTable& edges,
+                                 const std::vector<std::uint32_t>& patch, std::uint32_t count) {
+  std::vector<bool> closed(count, true);
+  for (std::uint32_t e = 0; e < edges.num_edges(); ++e) {
+    const auto uses = edges.uses(e);
+    // Balance per patch among this edge's uses (few uses per edge: quadratic is fine).
+    for (std::uint32_t c : uses) {
+      const std::uint32_t pa = patch[edges.poly_of(c)];
+      if (!closed[pa]) continue;
+      int balance = 0;
+      for (std::uint32_t d : uses)
+        if (patch[edges.poly_of(d)] == pa) balance += edges.forward(d) ? 1 : -1;
+      if (balance != 0) closed[pa] = false;
+    }
+  }
+  (void)polys;
+  return closed;
+}
+
+std::size_t repair_orientation(const std::vector<Vec3>& pos, std::vector<Polygon>& polys) {
+  const EdgeTable edges(polys);
+  std::vector<std::int8_t> flip(polys.size(), -1);  // -1 undecided, 0 keep, 1 flip
+  std::vector<std::uint32_t> stack, patch(polys.size(), kNoRep);
+  std::uint32_t count = 0;
+  for (std::uint32_t seed = 0; seed < polys.size(); ++seed) {
+    if (flip[seed] >= 0) continue;
+    flip[seed] = 0;
+    patch[seed] = count;
+    stack.push_back(seed);
+    while (!stack.empty()) {
+      const std::uint32_t p = stack.back();
+      stack.pop_back();
+      for (std::size_t k = 0; k < polys[p].size(); ++k) {
+        const std::uint32_t c = edges.corner(p, k), o = edges.mate(c);
+        if (o == kNoRep) continue;
+        const std::uint32_t q = edges.poly_of(o);
+        if (flip[q] >= 0) continue;
+        // Agreeing neighbours run the shared edge in opposite directions.
+        const bool same_way = edges.forward(c) == edges.forward(o);
+        flip[q] = static_cast<std::int8_t>(flip[p] ^ (same_way ? 1 : 0));
+        patch[q] = count;
+        stack.push_back(q);
+      }
+    }
+    ++count;
+  }
+  for (std::size_t p = 0; p < polys.size(); ++p)
+    if (flip[p] == 1) std::reverse(polys[p].begin(), polys[p].end());
+  // Closed patches enclosing negative volume are inside out.
+  const EdgeTable fixed(polys);
+  const auto closed = closed_patches(polys, fixed, patch, count);
+  std::vector<double> volume(count, 0);
+  for (std::size_t p = 0; p < polys.size(); ++p) volume[patch[p]] += signed_volume(pos, polys[p]);
+  std::size_t flipped = 0;
+  for (std::size_t p = 0; p < polys.size(); ++p) {
+    const bool turn = closed[patch[p]] && volume[patch[p]] < 0;
+    if (turn) std::reverse(polys[p].begin(), polys[p].end());
+    flipped += (turn != (flip[p] == 1)) ? 1 : 0;
+  }
+  return flipped;
+}
+
+// ---- merging coplanar triangles
+
+bool degenerate_triangle(const std::vector<Vec3>& pos, const Polygon& t) {
+  const Vec3 a = pos[t[0]], b = pos[t[1]], c = pos[t[2]];
+  for (int drop = 0; drop < 3; ++drop) {
+    const auto p = [&](Vec3 v) { return Point2{v[(drop + 1) % 3], v[(drop + 2) % 3]}; };
+    if (orient2d(p(a), p(b), p(c)) != 0) return false;
+  }
+  return true;
+}
+
+// Two triangles across corner c (of t1) and its mate o (of t2) lie in one plane and
+// on opposite sides of the shared edge, running it in opposite directions.
+bool flat_across(const std::vector<Vec3>& pos, const std::vector<Polygon>& polys,
+                 const EdgeTable& edges, std::uint32_t c, std::uint32_t o) {
+  if (edges.forward(c) == edges.forward(o)) return false;
+  const Polygon& t1 = polys[edges.poly_of(c)];
+  const Polygon& t2 = polys[edges.poly_of(o)];
+  if (t1.size() != 3 || t2.size() != 3) return false;
+  std::uint32_t d = kNoRep;
+  for (std::uint32_t v : t2)
+    if (v != t1[0] && v != t1[1] && v != t1[2]) d = v;
+  if (d == kNoRep) return false;  // the same three vertices: a folded pair
+  if (orient3d_filtered(pos[t1[0]], pos[t1[1]], pos[t1[2]], pos[d]) != 0) return false;
+  // In the plane: t1's third vertex and d on opposite sides of the shared edge.
+  const Vec3 n = cross(pos[t1[1]] - pos[t1[0]], pos[t1[2]] - pos[t1[0]]);
+  const Projection proj(n);
+  const std::size_t k = c - edges.corner(edges.poly_of(c), 0);
+  const std::uint32_t a = t1[k], b = t1[(k + 1) % 3], third = t1[(k + 2) % 3];
+  return orient2d(proj(pos[a]), proj(pos[b]), proj(pos[third])) *
+             orient2d(proj(pos[a]), proj(pos[b]), proj(pos[d])) <
+         0;
+}
+
+// The boundary of a patch of triangles as loops (outer first), or nothing when it
+// is not a set of simple loops with exactly one counterclockwise outer loop.
+std::vector<Polygon> patch_boundary(const std::vector<Vec3>& pos, const std::vector<Polygon>& polys,
+                                    const EdgeTable& edges, const std::vector<std::uint32_t>& tris,
+                                    const std::vector<std::uint32_t>& patch) {
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> out;  // directed boundary edges
+  for (std::uint32_t t : tris) {
+    for (std::size_t k = 0; k < 3; ++k) {
+      const std::uint32_t c = edges.corner(t, k), o = edges.mate(c);
+      if (o != kNoRep && patch[edges.poly_of(o)] == patch[t]) continue;
+      out.push_back({polys[t][k], polys[t][(k + 1) % 3]});
+    }
+  }
+  std::sort(out.begin(), out.end());
+  for (std::size_t i = 1; i < out.size(); ++i)
+    if (out[i].first == out[i - 1].first) return {};  // a vertex where the boundary touches itself
+  const auto next_of = [&](std::uint32_t v) {
+    const auto it = std::lower_bound(out.begin(), out.end(), std::make_pair(v, 0u));
+    return (it != out.end() && it->first == v) ? static_cast<std::size_t>(it - out.begin())
+                                               : out.size();
+  };
+  std::vector<bool> used(out.size(), false);
+  std::vector<Polygon> loops;
+  const Vec3 n = cross(pos[polys[tris[0]][1]] - pos[polys[tris[0]][0]],
+                       pos[polys[tris[0]][2]] - pos[polys[tris[0]][0]]);
+  const Projection proj(n);
+  int outer = -1;
+  for (std::size_t s = 0; s < out.size(); ++s) {
+    if (used[s]) continue;
+    Polygon loop;
+    for (std::size_t i = s; i < out.size() && !used[i]; i = next_of(out[i].second)) {
+      used[i] = true;
+      loop.push_back(out[i].first);
+    }
+    if (loop.size() < 3 || next_of(out[s].first) != s) return {};
+    double area = 0;
+    for (std::size_t k = 0; k < loop.size(); ++k) {
+      const Point2 p = proj(pos[loop[k]]), q = proj(pos[loop[(k + 1) % loop.size()]]);
+      area += p.u * q.v - q.u * p.v;
+    }
+    if (area > 0) {
+      if (outer >= 0) return {};
+      outer = static_cast<int>(loops.size());
+    }
+    loops.push_back(std::move(loop));
+  }
+  if (outer < 0) return {};
+  std::swap(loops[0], loops[static_cast<std::size_t>(outer)]);
+  return loops;
+}
+
+// Each merged patch becomes one face (its loops); other polygons stay as they are.
+std::vector<std::vector<Polygon>> merge_coplanar(const std::vector<Vec3>& pos,
+                                                 const std::vector<Polygon>& polys) {
+  const EdgeTable edges(polys);
+  std::vector<bool> flat(polys.size());
+  for (std::size_t p = 0; p < polys.size(); ++p)
+    flat[p] = polys[p].size() == 3 && !degenerate_triangle(pos, polys[p]);
+  std::uint32_t count = 0;
+  const auto patch = patches(
+      polys, edges,
+      [&](std::uint32_t c, std::uint32_t o) {
+        return flat[edges.poly_of(c)] && flat[edges.poly_of(o)] &&
+               flat_across(pos, polys, edges, c, o);
+      },
+      count);
+  std::vector<std::vector<std::uint32_t>> members(count);
+  for (std::uint32_t p = 0; p < polys.size(); ++p) members[patch[p]].push_back(p);
+  std::vector<std::vector<Polygon>> faces;
+  faces.reserve(count);
+  for (const auto& tris : members) {
+    std::vector<Polygon> loops;
+    if (tris.size() > 1) loops = patch_boundary(pos, polys, edges, tris, patch);
+    if (!loops.empty()) {
+      faces.push_back(std::move(loops));
+    } else {
+      for (std::uint32_t t : tris) faces.push_back({polys[t]});
+    }
+  }
+  return faces;
+}
+
+}  // namespace
+
+Result<ReadResult> import_soup(Model& m, const PolygonSoup& soup, const ImportOptions& options) {
+  const std::size_t n = soup.positions.size();
+  const auto bad_index = [&](std::size_t i, const char* what, std::size_t k) {
+    return i >= n ? std::optional<Error>(Error{ErrorCode::kInvalidInput,
+                                               std::string(what) + " " + std::to_string(k) +
+                                                   " names vertex " + std::to_string(i) + " of " +
+                                                   std::to_string(n)})
+                  : std::nullopt;
+  };
+  for (std::size_t p = 0; p < soup.polygons.size(); ++p)
+    for (std::uint32_t i : soup.polygons[p])
+      if (auto e = bad_index(i, "polygon", p)) return *e;
+  for (std::size_t w = 0; w < soup.wires.size(); ++w)
+    for (std::uint32_t i : soup.wires[w])
+      if (auto e = bad_index(i, "wire", w)) return *e;
+  for (std::size_t k = 0; k < soup.points.size(); ++k)
+    if (auto e = bad_index(soup.points[k], "point", k)) return *e;
+
+  ReadResult result;
+  ImportReport& report = result.report;
+  report.input_positions = n;
+  report.input_polygons = soup.polygons.size();
+  std::vector<Vec3> welded;
+  auto map = weld(soup.positions, options.weld_tolerance, welded);
+  if (!map) return map.error();
+  report.welded_vertices = welded.size();
+
+  std::vector<Polygon> polys;
+  polys.reserve(soup.polygons.size());
+  for (std::size_t p = 0; p < soup.polygons.size(); ++p) {
+    Polygon poly;
+    for (std::uint32_t i : soup.polygons[p]) {
+      const std::uint32_t w = (*map)[i];
+      if (poly.empty() || poly.back() != w) poly.push_back(w);
+    }
+    while (poly.size() > 1 && poly.front() == poly.back()) poly.pop_back();
+    Polygon sorted = poly;
+    std::sort(sorted.begin(), sorted.end());
+    if (poly.size() < 3 || std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) {
+      ++report.degenerate_dropped;
+      if (report.degenerate_polygons.size() < 100) report.degenerate_polygons.push_back(p);
+      continue;
+    }
+    polys.push_back(std::move(poly));
+  }
+  if (options.repair_orientation) report.flipped_faces = repair_orientation(welded, polys);
+
+  std::vector<std::vector<Polygon>> faces;
+  if (options.merge_coplanar) {
+    faces = merge_coplanar(welded, polys);
+  } else {
+    faces.reserve(polys.size());
+    for (Polygon& p : polys) faces.push_back({std::move(p)});
+  }
+  report.merged_faces = faces.size();
+
+  // Cells: closed, consistently oriented shells of positive volume (outer loops
+  // only decide closedness; inner loops of merged faces lie inside them).
+  std::vector<int> cell(faces.size(), -1);
+  int cells = 0;
+  if (options.volumes == VolumeMode::kAuto && !faces.empty()) {
+    std::vector<Polygon> all;  // every loop, as the edge table sees it
+    std::vector<std::uint32_t> face_of_loop;
+    for (std::size_t f = 0; f < faces.size(); ++f)
+      for (const Polygon& l : faces[f]) {
+        all.push_back(l);
+        face_of_loop.push_back(static_cast<std::uint32_t>(f));
+      }
+    const EdgeTable edges(all);
+    std::uint32_t count = 0;
+    auto patch = patches(
+        all, edges,
+        [&](std::uint32_t c, std::uint32_t o) { return edges.forward(c) != edges.forward(o); },
+        count);
+    // Loops of one face belong to one patch.
+    std::vector<std::uint32_t> face_patch(faces.size(), kNoRep);
+    std::vector<std::uint32_t> parent(count);
+    std::iota(parent.begin(), parent.end(), 0);
+    const auto root = [&](std::uint32_t x) {
+      while (parent[x] != x) x = parent[x] = parent[parent[x]];
+      return x;
+    };
+    for (std::size_t l = 0; l < all.size(); ++l) {
+      std::uint32_t& fp = face_patch[face_of_loop[l]];
+      if (fp == kNoRep)
+        fp = patch[l];
+      else
+        parent[root(patch[l])] = root(fp);
+    }
+    for (auto& p : patch) p = root(p);
+    const auto closed = closed_patches(all, edges, patch, count);
+    std::vector<double> volume(count, 0);
+    for (std::size_t l = 0; l < all.size(); ++l) volume[patch[l]] += signed_volume(welded, all[l]);
+    std::vector<int> cell_of_patch(count, -1);
+    for (std::size_t l = 0; l < all.size(); ++l) {
+      const std::uint32_t p = patch[l];
+      if (!closed[p] || !(volume[p] > 0)) continue;
+      if (cell_of_patch[p] < 0) cell_of_patch[p] = cells++;
+      cell[face_of_loop[l]] = cell_of_patch[p];
+    }
+    report.closed_shells = static_cast<std::size_t>(cells);
+  }
+
+  // Keep the positions something uses, in input order.
+  std::vector<bool> used(welded.size(), false);
+  for (const auto& f : faces)
+    for (const Polygon& l : f)
+      for (std::uint32_t i : l) used[i] = true;
+  std::vector<std::array<std::uint32_t, 2>> wires;
+  for (const auto& w : soup.wires) {
+    const std::uint32_t a = (*map)[w[0]], b = (*map)[w[1]];
+    if (a == b) continue;  // collapsed by welding
+    wires.push_back({a, b});
+    used[a] = used[b] = true;
+  }
+  for (std::uint32_t p : soup.points) used[(*map)[p]] = true;
+  std::vector<std::uint32_t> compact(welded.size(), kNoRep);
+  MeshInput in;
+  for (std::size_t i = 0; i < welded.size(); ++i) {
+    if (!used[i]) continue;
+    compact[i] = static_cast<std::uint32_t>(in.positions.size());
+    in.positions.push_back(welded[i]);
+  }
+  report.unused_vertices = welded.size() - in.positions.size();
+  in.faces.reserve(faces.size());
+  for (std::size_t f = 0; f < faces.size(); ++f) {
+    MeshFace face;
+    for (Polygon& l : faces[f]) {
+      for (std::uint32_t& i : l) i = compact[i];
+      face.loops.push_back(std::move(l));
+    }
+    face.back = cell[f];
+    in.faces.push_back(std::move(face));
+  }
+  // Wires duplicating a face edge or another wire are left out.
+  if (!wires.empty()) {
+    const auto key = [](std::uint32_t a, std::uint32_t b) {
+      return a < b ? (std::uint64_t{a} << 32 | b) : (std::uint64_t{b} << 32 | a);
+    };
+    std::unordered_set<std::uint64_t> known;
+    for (const MeshFace& f : in.faces)
+      for (const Polygon& l : f.loops)
+        for (std::size_t k = 0; k < l.size(); ++k) known.insert(key(l[k], l[(k + 1) % l.size()]));
+    for (auto& w : wires) {
+      const std::uint32_t a = compact[w[0]], b = compact[w[1]];
+      if (known.insert(key(a, b)).second) in.wires.push_back({a, b});
+    }
+  }
+  in.volumes = cells;
+  in.group_name = !options.group_name.empty() ? options.group_name : soup.name;
+  auto built = build_mesh(m, in);
+  if (!built) return built.error();
+  result.group = built->group;
+  return result;
+}
+
+}  // namespace cellforge::io

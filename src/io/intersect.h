@@ -1,0 +1,20 @@
+// Self-intersections of a model's faces: pairs of faces whose triangulations
+// meet (touching counts), found through a uniform grid over triangle boxes and
+// decided by exact orientation tests (exact.h). Triangles that share a vertex
+// are not tested against each other (their meeting there is the mesh's own
+// connectivity), so an overlap between triangles with a common vertex is missed.
+#pragma once
+
+#include <utility>
+#include <vector>
+
+#include "cellforge/topo/model.h"
+
+namespace cellforge::io {
+
+std::vector<std::pair<FaceId, FaceId>> self_intersections(const Model& m);
+
+// Closed triangles abc and def (none of the six points shared) meet.
+bool triangles_meet(const Vec3 a[3], const Vec3 b[3]);
+
+}  // namespace cellforge::io

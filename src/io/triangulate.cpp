@@ -1,0 +1,190 @@
+// Ear clipping with hole bridging (triangulate.h). The polygon is a circular list
+// of indices; holes are spliced in through bridges to visible outer vertices
+// (nearest first, each candidate checked with exact orientation tests), then ears
+// are cut while one exists. O(n^2) per face, which is fine for the faces a
+// B-rep has; triangles, the common case, are returned as they are.
+#include "cellforge/io/triangulate.h"
+
+#include <algorithm>
+#include <numeric>
+
+#include "io/exact.h"
+
+namespace cellforge::io {
+
+namespace {
+
+using Tri = std::array<std::uint32_t, 3>;
+
+double signed_area(const std::vector<Point2>& p, const std::vector<std::uint32_t>& loop) {
+  double a = 0;
+  for (std::size_t i = 0; i < loop.size(); ++i) {
+    const Point2 s = p[loop[i]], t = p[loop[(i + 1) % loop.size()]];
+    a += s.u * t.v - t.u * s.v;
+  }
+  return a / 2;
+}
+
+// Closed segments ab and cd meet (touching counts).
+bool segments_meet(Point2 a, Point2 b, Point2 c, Point2 d) {
+  const int o1 = orient2d(a, b, c), o2 = orient2d(a, b, d);
+  const int o3 = orient2d(c, d, a), o4 = orient2d(c, d, b);
+  if (o1 * o2 < 0 && o3 * o4 < 0) return true;
+  const auto on = [](Point2 p, Point2 q, Point2 r) {  // r on segment pq, given collinear
+    return std::min(p.u, q.u) <= r.u && r.u <= std::max(p.u, q.u) && std::min(p.v, q.v) <= r.v &&
+           r.v <= std::max(p.v, q.v);
+  };
+  return (o1 == 0 && on(a, b, c)) || (o2 == 0 && on(a, b, d)) || (o3 == 0 && on(c, d, a)) ||
+         (o4 == 0 && on(c, d, b));
+}
+
+// Direction p->q leaves vertex p (between prev and next, interior on the left)
+// into the interior.
+bool inside_cone(Point2 prev, Point2 p, Point2 next, Point2 q) {
+  if (orient2d(prev, p, next) > 0) return orient2d(prev, p, q) > 0 && orient2d(p, next, q) > 0;
+  return orient2d(prev, p, q) > 0 || orient2d(p, next, q) > 0;
+}
+
+class Clipper {
+ public:
+  explicit Clipper(std::vector<Point2> points) : p_(std::move(points)) {}
+
+  // Joins every hole into `outer` through a bridge from its rightmost vertex.
+  void bridge(std::vector<std::uint32_t>& outer, std::vector<std::vector<std::uint32_t>> holes) {
+    const auto rightmost = [&](const std::vector<std::uint32_t>& h) {
+      return static_cast<std::size_t>(
+          std::max_element(h.begin(), h.end(),
+                           [&](std::uint32_t a, std::uint32_t b) {
+                             return p_[a].u < p_[b].u || (p_[a].u == p_[b].u && p_[a].v > p_[b].v);
+                           }) -
+          h.begin());
+    };
+    std::sort(holes.begin(), holes.end(), [&](const auto& a, const auto& b) {
+      return p_[a[rightmost(a)]].u > p_[b[rightmost(b)]].u;
+    });
+    for (std::size_t hi = 0; hi < holes.size(); ++hi) {
+      const auto& hole = holes[hi];
+      const std::size_t mi = rightmost(hole);
+      const std::size_t at = find_bridge(outer, hole, mi, holes, hi);
+      std::vector<std::uint32_t> spliced(outer.begin(), outer.begin() + at + 1);
+      for (std::size_t k = 0; k <= hole.size(); ++k)
+        spliced.push_back(hole[(mi + k) % hole.size()]);
+      spliced.insert(spliced.end(), outer.begin() + at, outer.end());
+      outer = std::move(spliced);
+    }
+  }
+
+  std::vector<Tri> clip(const std::vector<std::uint32_t>& poly) {
+    std::vector<Tri> out;
+    std::vector<std::uint32_t> ring = poly;
+    while (ring.size() > 3) {
+      const std::size_t n = ring.size();
+      std::size_t pick = n;
+      for (std::size_t i = 0; i < n && pick == n; ++i)
+        if (is_ear(ring, i, true)) pick = i;
+      for (std::size_t i = 0; i < n && pick == n; ++i)  // degenerate: any convex corner
+        if (is_ear(ring, i, false)) pick = i;
+      if (pick == n) pick = 0;  // all on a line: zero-area triangles keep the edges
+      out.push_back({ring[(pick + n - 1) % n], ring[pick], ring[(pick + 1) % n]});
+      ring.erase(ring.begin() + static_cast<std::ptrdiff_t>(pick));
+    }
+    if (ring.size() == 3) out.push_back({ring[0], ring[1], ring[2]});
+    return out;
+  }
+
+ private:
+  std::size_t find_bridge(const std::vector<std::uint32_t>& outer,
+                          const std::vector<std::uint32_t>& hole, std::size_t mi,
+                          const std::vector<std::vector<std::uint32_t>>& holes, std::size_t hi) {
+    const Point2 m = p_[hole[mi]];
+    const Point2 m_prev = p_[hole[(mi + hole.size() - 1) % hole.size()]];
+    const Point2 m_next = p_[hole[(mi + 1) % hole.size()]];
+    std::vector<std::size_t> order(outer.size());
+    std::iota(order.begin(), order.end(), 0);
+    const auto dist = [&](std::size_t k) {
+      const Point2 q = p_[outer[k]];
+      return (q.u - m.u) * (q.u - m.u) + (q.v - m.v) * (q.v - m.v);
+    };
+    std::sort(order.begin(), order.end(),
+              [&](std::size_t a, std::size_t b) { return dist(a) < dist(b); });
+    for (std::size_t k : order) {
+      const Point2 q = p_[outer[k]];
+      if (q == m) return k;
+      const Point2 q_prev = p_[outer[(k + outer.size() - 1) % outer.size()]];
+      const Point2 q_next = p_[outer[(k + 1) % outer.size()]];
+      if (!inside_cone(q_prev, q, q_next, m) || !inside_cone(m_next, m, m_prev, q)) continue;
+      if (crosses(outer, m, q) || crosses(hole, m, q)) continue;
+      bool blocked = false;
+      for (std::size_t h = hi + 1; h < holes.size() && !blocked; ++h)
+        blocked = crosses(holes[h], m, q);
+      if (!blocked) return k;
+    }
+    return order.front();  // nothing visible (a degenerate face): the nearest vertex
+  }
+
+  // Segment mq meets an edge of `loop` that has neither m nor q as an end.
+  bool crosses(const std::vector<std::uint32_t>& loop, Point2 m, Point2 q) const {
+    for (std::size_t i = 0; i < loop.size(); ++i) {
+      const Point2 c = p_[loop[i]], d = p_[loop[(i + 1) % loop.size()]];
+      if (c == m || c == q || d == m || d == q) continue;
+      if (segments_meet(m, q, c, d)) return true;
+    }
+    return false;
+  }
+
+  bool is_ear(const std::vector<std::uint32_t>& ring, std::size_t i, bool strict) const {
+    const std::size_t n = ring.size();
+    const Point2 a = p_[ring[(i + n - 1) % n]], b = p_[ring[i]], c = p_[ring[(i + 1) % n]];
+    if (orient2d(a, b, c) <= 0) return false;
+    if (!strict) return true;
+    for (std::size_t k = 0; k < n; ++k) {
+      const Point2 q = p_[ring[k]];
+      if (q == a || q == b || q == c) continue;
+      if (orient2d(a, b, q) >= 0 && orient2d(b, c, q) >= 0 && orient2d(c, a, q) >= 0) return false;
+    }
+    return true;
+  }
+
+  std::vector<Point2> p_;
+};
+
+}  // namespace
+
+std::vector<Tri> triangulate_polygon(const std::vector<std::vector<Vec3>>& loops, Vec3 normal) {
+  if (loops.empty()) return {};
+  if (loops.size() == 1 && loops[0].size() == 3) return {{0, 1, 2}};
+  const Projection proj(normal);
+  std::vector<Point2> points;
+  std::vector<std::vector<std::uint32_t>> index(loops.size());
+  for (std::size_t l = 0; l < loops.size(); ++l) {
+    for (const Vec3& p : loops[l]) {
+      index[l].push_back(static_cast<std::uint32_t>(points.size()));
+      points.push_back(proj(p));
+    }
+  }
+  // Outer counterclockwise, holes clockwise, whatever the input said.
+  if (signed_area(points, index[0]) < 0) std::reverse(index[0].begin(), index[0].end());
+  for (std::size_t l = 1; l < index.size(); ++l)
+    if (signed_area(points, index[l]) > 0) std::reverse(index[l].begin(), index[l].end());
+  Clipper clipper(std::move(points));
+  std::vector<std::uint32_t> outer = index[0];
+  clipper.bridge(outer, {index.begin() + 1, index.end()});
+  return clipper.clip(outer);
+}
+
+std::vector<std::array<VertexId, 3>> triangulate_face(const Model& m, FaceId f) {
+  std::vector<VertexId> ids;
+  std::vector<std::vector<Vec3>> loops;
+  for (LoopId l = m.outer_loop(f); l.is_valid(); l = m.next_loop(l)) {
+    if (m.is_point_loop(l)) continue;
+    const std::vector<VertexId> vs = m.loop_vertices(l);
+    ids.insert(ids.end(), vs.begin(), vs.end());
+    loops.push_back(m.loop_points(l));
+  }
+  std::vector<std::array<VertexId, 3>> out;
+  for (const Tri& t : triangulate_polygon(loops, m.face_normal(f)))
+    out.push_back({ids[t[0]], ids[t[1]], ids[t[2]]});
+  return out;
+}
+
+}  // namespace cellforge::io
