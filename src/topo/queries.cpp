@@ -97,8 +97,12 @@ void vertices_of(const Model& m, VertexId v, std::vector<VertexId>& out) {
 
 void faces_of(const Model& m, VertexId v, std::vector<FaceId>& out) {
   out.clear();
+  // Every loop through v leaves it once per visit, so the uses starting at v name
+  // each face touching v along an edge without collecting it twice per corner.
   for_each_end(m, v, [&](EdgeEnd end) {
-    for_each_radial(m, end.edge, [&](EdgeUseId u) { out.push_back(m.face_of(u)); });
+    for_each_radial(m, end.edge, [&](EdgeUseId u) {
+      if (m.is_reversed(u) == (end.end == 1)) out.push_back(m.face_of(u));
+    });
   });
   if (const LoopId l = m.point_loop(v); l.is_valid()) out.push_back(m.face_of(l));
   dedupe_stable(out);

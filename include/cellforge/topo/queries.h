@@ -3,8 +3,8 @@
 // element once. Orders (deterministic, first occurrence wins):
 //   edges_of(v)      the vertex cycle from first_end(v)
 //   vertices_of(v)   the other ends of edges_of(v), in that order
-//   faces_of(v)      for each edge of v in cycle order, its faces in radial order;
-//                    then faces whose point loop is v
+//   faces_of(v)      for each edge of v in cycle order, the faces of its uses that
+//                    leave v, in radial order; then the face whose point loop is v
 //   vertices_of(e)   start, end
 //   edges_of(e)      edges_of(start) then edges_of(end), e itself excluded
 //   faces_of(e)      the radial cycle from first_use(e) (angular order)
