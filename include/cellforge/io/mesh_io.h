@@ -63,7 +63,7 @@ struct ImportOptions {
   // (and closed shells point outward).
   bool repair_orientation = false;
   VolumeMode volumes = VolumeMode::kAuto;
-  std::string group_name;  // overrides the soup's name
+  std::string group_name = {};  // overrides the soup's name
 };
 
 // What import() did to the soup before building it.
