@@ -1,16 +1,17 @@
 // `cellforge db`: the model database (store/). SQLite file by default
 // (cellforge.db, or --db FILE); PostgreSQL when --db is a postgresql:// URL.
 //
-// Models come in and go out through what the library can read and write today:
-// IN is one of the bundled Euler-operator examples (example:box,
-// example:box_with_hole, example:nonmanifold); OUT receives the model's canonical
-// dump (topo/dump.h). File formats arrive with io/.
+// Models come in and go out through io/: IN is a model file (STL, OBJ, OFF, 3MF,
+// native JSON) or one of the bundled Euler-operator examples (example:box,
+// example:box_with_hole, example:nonmanifold); OUT is a model file by extension, or
+// the canonical dump (topo/dump.h) for '-' and *.txt.
 #include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <map>
 #include <sstream>
 
+#include "cellforge/io/mesh_io.h"
 #include "cellforge/store/store.h"
 #include "cellforge/topo/dump.h"
 #include "cellforge/topo/examples.h"
@@ -27,9 +28,10 @@ constexpr const char* kUsage =
     "       cellforge db info N [--version V] [--db DB]\n"
     "       cellforge db sql \"SELECT ...\" [--json] [--db DB]\n"
     "  DB: an SQLite file (default cellforge.db) or a postgresql:// connection string.\n"
-    "  IN: example:box | example:box_with_hole | example:nonmanifold (the bundled\n"
-    "      Euler-operator examples; model files are read once io/ exists).\n"
-    "  OUT: the loaded model's canonical dump (topo/dump.h), '-' for standard output.\n"
+    "  IN: a model file (.stl .obj .off .3mf .json) or example:box |\n"
+    "      example:box_with_hole | example:nonmanifold (the bundled Euler examples).\n"
+    "  OUT: a model file by extension (.json keeps everything the topology holds),\n"
+    "       or the canonical dump (topo/dump.h) for *.txt and '-' (standard output).\n"
     "  Saving a name again adds a version; load and info take the latest unless\n"
     "  --version is given. sql runs one read-only statement (tables and views in\n"
     "  docs/database.md; face_edge_points is seed 004's Table 1).";
@@ -88,11 +90,13 @@ Result<Model> read_input(const std::string& in) {
   } else if (in == "example:nonmanifold") {
     auto g = euler_nonmanifold_example(m, "nonmanifold");
     if (!g) s = g.error();
+  } else if (in.rfind("example:", 0) == 0) {
+    return Error{ErrorCode::kInvalidInput,
+                 "unknown example '" + in +
+                     "' (example:box, example:box_with_hole, example:nonmanifold)"};
   } else {
-    return Error{ErrorCode::kUnsupported,
-                 "cannot read '" + in +
-                     "': this build reads only example:box, example:box_with_hole and "
-                     "example:nonmanifold (model files need io/)"};
+    auto r = io::read_file(m, in);
+    if (!r) return r.error();
   }
   if (!s) return s.error();
   return m;
@@ -242,6 +246,11 @@ int run(const std::vector<std::string>& argv) {
     if (out.empty()) return usage_error("load needs -o OUT");
     auto m = store.get(arg(1), version);
     if (!m) return fail(m.error().message);
+    const bool dump = out == "-" || (out.size() > 4 && out.substr(out.size() - 4) == ".txt");
+    if (!dump) {
+      if (Status s = io::write_file(m.value(), out); !s) return fail(s.error().message);
+      return 0;
+    }
     const std::string text = canonical_dump(m.value());
     if (out == "-") {
       std::cout << text;
