@@ -1,88 +1,92 @@
-// Exact geometric predicates. Interim implementation on GMP rationals (exact for
-// any double input); the filtered expansion-arithmetic version replaces it with the
-// same interface.
+// Exact geometric predicates on double coordinates, and exact 3-vectors.
 //
-// Conventions:
-//   orient3d(a, b, c, d) = sign det[b - a, c - a, d - a]: +1 when d lies on the side
-//   that (b - a) x (c - a) points to.
-//   radial_less orders directions d by their angle in [0, 2pi) from d0, rotating
-//   right-handed about the axis t.
+// Every predicate returns the sign of a polynomial in the input coordinates exactly,
+// as if evaluated in real arithmetic. The double evaluation runs first with Shewchuk's
+// a-priori error bound (errbound * permanent, "Adaptive Precision Floating-Point
+// Arithmetic and Fast Robust Geometric Predicates", 1997, section 4); only when it
+// cannot decide the sign is the polynomial evaluated again in expansion arithmetic
+// (expansion.h).
+//
+// Conventions (note the sign of orient3d):
+//   orient2d(a, b, c)     = sign det[b - a, c - a]; +1 when a, b, c turn counterclockwise.
+//   orient3d(a, b, c, d)  = sign det[b - a, c - a, d - a] = sign ((b - a) x (c - a)) . (d - a);
+//                           +1 when d lies on the side that (b - a) x (c - a) points to,
+//                           the side from which a, b, c appear counterclockwise. This is
+//                           the opposite of Shewchuk's orient3d (his is det[a-d, b-d, c-d]).
+//   Axis k of a Vec3 is x, y, z for k = 0, 1, 2.
+//
+// Exactness holds while no intermediate result overflows or underflows (nor, in the
+// filters, goes subnormal): for the predicates on points (degree <= 3) that means
+// nonzero coordinates of magnitude within [2^-280, 2^280]; for the radial order of
+// directions built as in topo/radial.cpp (degree 8 in the coordinates) within
+// [2^-80, 2^120]. Coordinates must be finite.
 #pragma once
-
-#include <gmpxx.h>
 
 #include <span>
 
+#include "cellforge/geom/expansion.h"
 #include "cellforge/geom/vec.h"
 
 namespace cellforge {
 
-class Expansion {
- public:
-  Expansion(double d = 0) : q_(d) {}  // NOLINT: implicit from double by design
-  explicit Expansion(mpq_class q) : q_(std::move(q)) {}
-  int sign() const { return sgn(q_); }
-  double estimate() const { return q_.get_d(); }
-  friend Expansion operator+(const Expansion& a, const Expansion& b) {
-    return Expansion(mpq_class(a.q_ + b.q_));
-  }
-  friend Expansion operator-(const Expansion& a, const Expansion& b) {
-    return Expansion(mpq_class(a.q_ - b.q_));
-  }
-  friend Expansion operator*(const Expansion& a, const Expansion& b) {
-    return Expansion(mpq_class(a.q_ * b.q_));
-  }
-  friend Expansion operator-(const Expansion& a) { return Expansion(mpq_class(-a.q_)); }
-
- private:
-  mpq_class q_;
+struct Vec2 {
+  double x = 0, y = 0;
+  friend constexpr bool operator==(const Vec2&, const Vec2&) = default;
 };
 
+// sign det[b - a, c - a]: +1 counterclockwise, -1 clockwise, 0 collinear.
+int orient2d(Vec2 a, Vec2 b, Vec2 c);
+
+// sign det[b - a, c - a, d - a]: +1 when d is on the side (b - a) x (c - a) points to,
+// 0 when the four points are coplanar.
+int orient3d(Vec3 a, Vec3 b, Vec3 c, Vec3 d);
+
+// orient2d of the points with axis drop_axis (0, 1 or 2) removed, the two remaining
+// axes taken in cyclic order (drop x: (y, z); drop y: (z, x); drop z: (x, y)). So the
+// result is the sign of component drop_axis of (b - a) x (c - a), and a polygon keeps
+// its orientation when projected along the dominant axis of a normal pointing +axis.
+int orient2d_projected(Vec3 a, Vec3 b, Vec3 c, int drop_axis);
+
+// True when a, b, c lie on one line (also when two or three of them coincide).
+bool collinear3d(Vec3 a, Vec3 b, Vec3 c);
+
+// sign (b - a) . (d - c).
+int dot_sign(Vec3 a, Vec3 b, Vec3 c, Vec3 d);
+
+// Order along the line direction a -> b: sign (b - a) . (q - p), so +1 when q comes after
+// p going from a towards b (for p, q on the line; otherwise compares their projections).
+int compare_along(Vec3 a, Vec3 b, Vec3 p, Vec3 q);
+
+// A 3-vector of exact reals.
 struct ExactVec3 {
   Expansion x, y, z;
 };
 
-inline ExactVec3 exact(Vec3 a) { return {a.x, a.y, a.z}; }
-inline ExactVec3 exact_sub(Vec3 a, Vec3 b) {
-  return {Expansion(a.x) - b.x, Expansion(a.y) - b.y, Expansion(a.z) - b.z};
-}
-inline ExactVec3 exact_cross(const ExactVec3& a, const ExactVec3& b) {
-  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
-inline Expansion exact_dot(const ExactVec3& a, const ExactVec3& b) {
-  return a.x * b.x + a.y * b.y + a.z * b.z;
-}
-inline Expansion exact_det3(const ExactVec3& a, const ExactVec3& b, const ExactVec3& c) {
-  return exact_dot(a, exact_cross(b, c));
-}
-// Newell normal: sum of p_i x p_(i+1), twice the vector area of the polygon.
-inline ExactVec3 exact_newell_normal(std::span<const Vec3> p) {
-  ExactVec3 n{0, 0, 0};
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    const ExactVec3 c = exact_cross(exact(p[i]), exact(p[(i + 1) % p.size()]));
-    n = {n.x + c.x, n.y + c.y, n.z + c.z};
-  }
-  return n;
-}
+ExactVec3 exact(Vec3 a);
+ExactVec3 exact_sub(Vec3 a, Vec3 b);  // a - b
+ExactVec3 exact_cross(const ExactVec3& a, const ExactVec3& b);
+Expansion exact_dot(const ExactVec3& a, const ExactVec3& b);
+Expansion exact_det3(const ExactVec3& a, const ExactVec3& b, const ExactVec3& c);  // a.(b x c)
 
-inline int orient3d(Vec3 a, Vec3 b, Vec3 c, Vec3 d) {
-  return exact_det3(exact_sub(b, a), exact_sub(c, a), exact_sub(d, a)).sign();
-}
+// The Newell normal sum_i p_i x p_(i+1) (indices mod n): twice the vector area of the
+// closed polygon, pointing to the side from which it runs counterclockwise. Zero for
+// fewer than three points.
+ExactVec3 exact_newell_normal(std::span<const Vec3> polygon);
 
-// Which quarter of the turn from d0 a direction d lies in: 0 at angle 0, 1 in
-// (0, pi), 2 at pi, 3 in (pi, 2pi).
-inline int radial_half(const ExactVec3& t, const ExactVec3& d0, const ExactVec3& d) {
-  const int s = exact_det3(t, d0, d).sign();
-  if (s != 0) return s > 0 ? 1 : 3;
-  return exact_dot(exact_cross(t, d0), exact_cross(t, d)).sign() > 0 ? 0 : 2;
-}
+// Radial order of directions about an axis t (e.g. the faces around an edge a -> b,
+// t = b - a, each face given by a direction d leaving the edge into the face). A
+// direction d is measured by the angle theta in [0, 2pi) from the reference direction
+// d0 to d, both projected onto the plane perpendicular to t, turning right-handed about
+// t. Only the projections matter: d and d + s t, and d and k d (k > 0), are at the
+// same angle. Precondition: neither d0 nor any d is parallel to t (nor zero).
+//
+// radial_half tells where d lies: 0 at theta == 0, 1 for theta in (0, pi), 2 at
+// theta == pi, 3 for theta in (pi, 2pi). Exactly: 1 or 3 by the sign of det[t, d0, d];
+// when that is 0, 0 or 2 by the sign of (t x d0) . (t x d).
+int radial_half(const ExactVec3& t, const ExactVec3& d0, const ExactVec3& d);
 
-inline bool radial_less(const ExactVec3& t, const ExactVec3& d0, const ExactVec3& di,
-                        const ExactVec3& dj) {
-  const int hi = radial_half(t, d0, di), hj = radial_half(t, d0, dj);
-  if (hi != hj) return hi < hj;
-  if (hi == 0 || hi == 2) return false;
-  return exact_det3(t, di, dj).sign() > 0;
-}
+// theta(di) < theta(dj): a strict weak order; directions at equal angles are
+// equivalent (neither is less).
+bool radial_less(const ExactVec3& t, const ExactVec3& d0, const ExactVec3& di, const ExactVec3& dj);
 
 }  // namespace cellforge

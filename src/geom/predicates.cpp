@@ -1,0 +1,158 @@
+// Filtered exact predicates. Each predicate evaluates its polynomial in doubles along
+// with a bound on the rounding error, derived for exactly that sequence of operations;
+// when |value| exceeds the bound the sign is certain. Otherwise it evaluates the same
+// polynomial exactly in stack-allocated expansions (expansion_kernels.h), whose lengths
+// are bounded at compile time, so the exact stage never allocates.
+//
+// Notation: eps = 2^-53, the unit roundoff of doubles; a rounded operation returns
+// x (1 + delta) with |delta| <= eps. Should the compiler fuse a multiply and an add
+// (-ffp-contract with FMA hardware), that only sets some delta to 0: the bounds hold.
+#include "cellforge/geom/predicates.h"
+
+#include <cassert>
+#include <cmath>
+
+#include "geom/expansion_kernels.h"
+
+namespace cellforge {
+
+namespace {
+
+using expansion_kernels::exact_diff;
+
+constexpr double kEps = 0x1p-53;
+// Shewchuk (1997), section 4.2: ccwerrboundA and o3derrboundA, for the computed
+// permanents below (their own rounding included).
+constexpr double kOrient2dBound = (3.0 + 16.0 * kEps) * kEps;
+constexpr double kOrient3dBound = (7.0 + 56.0 * kEps) * kEps;
+// For x1 y1 + x2 y2 + x3 y3 with x_i, y_i rounded differences: each term carries at
+// most 5 roundings (two differences, the product, at most two additions), so the
+// error is at most g5 T with g5 = 5 eps / (1 - 5 eps) and T = sum |x_i y_i| in exact
+// arithmetic. The computed permanent P >= (1 - g5) T, so the error is at most
+// 5 eps / (1 - 10 eps) P < 8 eps P; and 8 eps is a power of two, so 8 eps P is exact.
+constexpr double kDot3Bound = 8 * kEps;
+
+// The sign of value when its error is at most bound, else 0 meaning "undecided";
+// a decided sign is never 0, so callers fall through to the exact stage on 0.
+int filtered_sign(double value, double bound) {
+  if (value > bound) return 1;
+  if (-value > bound) return -1;
+  return 0;
+}
+
+int orient2d_exact(Vec2 a, Vec2 b, Vec2 c) {
+  const auto det =
+      exact_diff(b.x, a.x) * exact_diff(c.y, a.y) - exact_diff(b.y, a.y) * exact_diff(c.x, a.x);
+  return det.sign();
+}
+
+int orient3d_exact(Vec3 a, Vec3 b, Vec3 c, Vec3 d) {
+  const auto ux = exact_diff(b.x, a.x), uy = exact_diff(b.y, a.y), uz = exact_diff(b.z, a.z);
+  const auto vx = exact_diff(c.x, a.x), vy = exact_diff(c.y, a.y), vz = exact_diff(c.z, a.z);
+  const auto wx = exact_diff(d.x, a.x), wy = exact_diff(d.y, a.y), wz = exact_diff(d.z, a.z);
+  const auto det = ux * (vy * wz - vz * wy) + uy * (vz * wx - vx * wz) + uz * (vx * wy - vy * wx);
+  return det.sign();
+}
+
+int dot_sign_exact(Vec3 a, Vec3 b, Vec3 c, Vec3 d) {
+  const auto dot = exact_diff(b.x, a.x) * exact_diff(d.x, c.x) +
+                   exact_diff(b.y, a.y) * exact_diff(d.y, c.y) +
+                   exact_diff(b.z, a.z) * exact_diff(d.z, c.z);
+  return dot.sign();
+}
+
+}  // namespace
+
+int orient2d(Vec2 a, Vec2 b, Vec2 c) {
+  const double left = (b.x - a.x) * (c.y - a.y);
+  const double right = (b.y - a.y) * (c.x - a.x);
+  const double bound = kOrient2dBound * (std::fabs(left) + std::fabs(right));
+  const int s = filtered_sign(left - right, bound);
+  return s != 0 ? s : orient2d_exact(a, b, c);
+}
+
+int orient3d(Vec3 a, Vec3 b, Vec3 c, Vec3 d) {
+  const Vec3 u = b - a, v = c - a, w = d - a;
+  const double vywz = v.y * w.z, vzwy = v.z * w.y;
+  const double vzwx = v.z * w.x, vxwz = v.x * w.z;
+  const double vxwy = v.x * w.y, vywx = v.y * w.x;
+  const double det = u.x * (vywz - vzwy) + u.y * (vzwx - vxwz) + u.z * (vxwy - vywx);
+  const double permanent = (std::fabs(vywz) + std::fabs(vzwy)) * std::fabs(u.x) +
+                           (std::fabs(vzwx) + std::fabs(vxwz)) * std::fabs(u.y) +
+                           (std::fabs(vxwy) + std::fabs(vywx)) * std::fabs(u.z);
+  const int s = filtered_sign(det, kOrient3dBound * permanent);
+  return s != 0 ? s : orient3d_exact(a, b, c, d);
+}
+
+int orient2d_projected(Vec3 a, Vec3 b, Vec3 c, int drop_axis) {
+  assert(drop_axis >= 0 && drop_axis <= 2);
+  const int i = (drop_axis + 1) % 3, j = (drop_axis + 2) % 3;
+  return orient2d({a[i], a[j]}, {b[i], b[j]}, {c[i], c[j]});
+}
+
+bool collinear3d(Vec3 a, Vec3 b, Vec3 c) {
+  // (b - a) x (c - a) == 0, one component (one projection) at a time.
+  for (int axis = 0; axis < 3; ++axis) {
+    if (orient2d_projected(a, b, c, axis) != 0) return false;
+  }
+  return true;
+}
+
+int dot_sign(Vec3 a, Vec3 b, Vec3 c, Vec3 d) {
+  const Vec3 x = b - a, y = d - c;
+  const double px = x.x * y.x, py = x.y * y.y, pz = x.z * y.z;
+  const double bound = kDot3Bound * (std::fabs(px) + std::fabs(py) + std::fabs(pz));
+  const int s = filtered_sign(px + py + pz, bound);
+  return s != 0 ? s : dot_sign_exact(a, b, c, d);
+}
+
+int compare_along(Vec3 a, Vec3 b, Vec3 p, Vec3 q) { return dot_sign(a, b, p, q); }
+
+ExactVec3 exact(Vec3 a) { return {a.x, a.y, a.z}; }
+
+ExactVec3 exact_sub(Vec3 a, Vec3 b) {
+  return {Expansion(a.x) - b.x, Expansion(a.y) - b.y, Expansion(a.z) - b.z};
+}
+
+ExactVec3 exact_cross(const ExactVec3& a, const ExactVec3& b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+
+Expansion exact_dot(const ExactVec3& a, const ExactVec3& b) {
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+
+Expansion exact_det3(const ExactVec3& a, const ExactVec3& b, const ExactVec3& c) {
+  return exact_dot(a, exact_cross(b, c));
+}
+
+ExactVec3 exact_newell_normal(std::span<const Vec3> polygon) {
+  ExactVec3 n;
+  if (polygon.size() < 3) return n;
+  for (std::size_t i = 0; i < polygon.size(); ++i) {
+    const Vec3 p = polygon[i], q = polygon[(i + 1) % polygon.size()];
+    n.x += Expansion(p.y) * q.z - Expansion(p.z) * q.y;
+    n.y += Expansion(p.z) * q.x - Expansion(p.x) * q.z;
+    n.z += Expansion(p.x) * q.y - Expansion(p.y) * q.x;
+  }
+  return n;
+}
+
+int radial_half(const ExactVec3& t, const ExactVec3& d0, const ExactVec3& d) {
+  const int s = exact_det3(t, d0, d).sign();
+  if (s != 0) return s > 0 ? 1 : 3;
+  // d is in the plane of t and d0: on d0's side of t (theta 0) or the opposite (pi).
+  return exact_dot(exact_cross(t, d0), exact_cross(t, d)).sign() > 0 ? 0 : 2;
+}
+
+bool radial_less(const ExactVec3& t, const ExactVec3& d0, const ExactVec3& di,
+                 const ExactVec3& dj) {
+  const int hi = radial_half(t, d0, di), hj = radial_half(t, d0, dj);
+  if (hi != hj) return hi < hj;
+  if (hi == 0 || hi == 2) return false;
+  // Both strictly inside the same half turn: the angle from di to dj lies in
+  // (-pi, pi), and it is positive iff det[t, di, dj] > 0.
+  return exact_det3(t, di, dj).sign() > 0;
+}
+
+}  // namespace cellforge
