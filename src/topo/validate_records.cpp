@@ -1,5 +1,7 @@
 // Check "records": every stored reference names a live entity of the right kind
 // and the back-references that a record implies agree.
+#include <vector>
+
 #include "topo/validate_checks.h"
 
 namespace cellforge::checks {
@@ -57,8 +59,18 @@ void records(const Model& m, Violations& out) {
       }
     }
   }
+  // A 3-cell is bounded by faces; one that no face names bounds nothing.
+  std::uint32_t slots = 0;
+  for (VolumeId c : m.volumes()) slots = c.value + 1;
+  std::vector<char> bounded(slots, 0);
+  for (FaceId f : m.faces()) {
+    for (VolumeId c : {m.front_volume(f), m.back_volume(f)}) {
+      if (c.is_valid() && c.value < slots) bounded[c.value] = 1;
+    }
+  }
   for (VolumeId c : m.volumes()) {
     if (!m.is_live(m.group_of(c))) fail(c.str() + " names a dead group");
+    if (!bounded[c.value]) fail(c.str() + " is bounded by no face");
   }
 }
 

@@ -50,5 +50,16 @@ TEST(Snapshot, InconsistentTablesAreRefused) {
   EXPECT_NE(r.error().message.find("invalid"), std::string::npos) << r.error().message;
 }
 
+TEST(Snapshot, ACellWithoutFacesIsRefused) {
+  // Found by the JSON fuzzer: a group with one 3-cell and nothing else.
+  Snapshot s;
+  s.groups.push_back({"a"});
+  s.cells.push_back(0);
+  auto r = restore(s);
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.error().message.find("c0 is bounded by no face"), std::string::npos)
+      << r.error().message;
+}
+
 }  // namespace
 }  // namespace cellforge
