@@ -2,7 +2,8 @@
 # Builds and runs every test: the normal build in build/, then the same tests once
 # more under AddressSanitizer + UndefinedBehaviorSanitizer in build-asan/.
 # The store tests run against a real PostgreSQL server started here (and stopped at
-# exit); if it cannot start, this script fails. Exits non-zero on any failure.
+# exit); if it cannot start, this script fails. Then each file parser is fuzzed for
+# FUZZ_SECONDS (default 30) seconds. Exits non-zero on any failure.
 set -euo pipefail
 cd "$(dirname "$0")"
 
@@ -17,5 +18,8 @@ export CI="${CI:-1}"  # without the server URL the PostgreSQL tests fail, never 
 scripts/setup.sh build-asan -DCMAKE_BUILD_TYPE=Debug -DCELLFORGE_SANITIZE=ON -DCELLFORGE_BENCH=OFF
 (cd build-asan && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
    ctest --output-on-failure -j2)
+
+# Every file parser under libFuzzer (clang, ASan + UBSan) for a bounded time each.
+FUZZ_SECONDS=${FUZZ_SECONDS:-30} scripts/fuzz.sh
 
 echo "test.sh: all tests passed"

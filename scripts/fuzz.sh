@@ -20,7 +20,7 @@ command -v "$CXX" > /dev/null || { echo "fuzz.sh: $CXX not found (apt-get instal
 
 FLAGS=(-std=c++20 -O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined
        -fno-sanitize-recover=undefined -I"$ROOT/include" -I"$ROOT/src")
-LIBS=(-lgmpxx -lgmp)
+LIBS=()
 if [ -f /usr/include/lib3mf/Model/COM/NMR_DLLInterfaces.h ]; then
   FLAGS+=(-DCELLFORGE_HAVE_LIB3MF -I/usr/include/lib3mf)
   LIBS+=(-l3MF)
