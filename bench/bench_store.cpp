@@ -4,7 +4,8 @@
 //   bench_store [--faces N] [--dir DIR] [--pg postgresql://...]
 //
 // The model is a triangulated sheet with irregular coordinates (2 n^2 faces).
-// Rows are every row written to or read from the tables of docs/database.md.
+// Rows are every row written to or read from the tables of docs/database.md. The
+// same model written and read as binary STL is timed first, for comparison.
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -12,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "cellforge/io/mesh_io.h"
 #include "cellforge/store/store.h"
 #include "cellforge/topo/builder.h"
 #include "store/model_rows.h"
@@ -81,6 +83,29 @@ bool run(const std::string& db, const Model& m, std::uint64_t rows) {
   return same;
 }
 
+// The same model as a binary STL file, written and read back (with welding and the
+// topology built), for comparison in the same run.
+void ok_stl(const std::string& dir, const Model& m) {
+  const std::string file = dir + "/bench_store.stl";
+  auto t0 = std::chrono::steady_clock::now();
+  const cellforge::Status w = cellforge::io::write_file(m, file);
+  const double write = seconds_since(t0);
+  Model back;
+  t0 = std::chrono::steady_clock::now();
+  auto r = cellforge::io::read_file(back, file);
+  const double read = seconds_since(t0);
+  std::filesystem::remove(file);
+  if (!w || !r) {
+    std::printf("binary STL  failed: %s\n",
+                !w ? w.error().message.c_str() : r.error().message.c_str());
+    return;
+  }
+  std::printf("binary STL  write %8.2f s  %12.0f faces/s\n", write,
+              static_cast<double>(m.num_faces()) / write);
+  std::printf("binary STL  read  %8.2f s  %12.0f faces/s  (welded, topology built)\n", read,
+              static_cast<double>(m.num_faces()) / read);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -104,7 +129,7 @@ int main(int argc, char** argv) {
   std::printf("model: %zu faces, %zu edges, %zu vertices, %zu edge uses; %llu rows\n",
               m.num_faces(), m.num_edges(), m.num_vertices(), m.num_edge_uses(),
               static_cast<unsigned long long>(rows));
-  std::printf("(binary STL write/read: not measured, io/ has no STL writer yet)\n");
+  ok_stl(dir, m);
   const std::string file = dir + "/bench_store.db";
   for (const char* ext : {"", "-wal", "-shm"}) std::filesystem::remove(file + ext);
   bool ok = run(file, m, rows);
