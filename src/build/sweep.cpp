@@ -251,24 +251,48 @@ void revolve_attributes(Draft& d, const RotateExtrudeOptions& o, const Revolutio
   d.faceting(o.faceting, r.sections);
 }
 
-// Vertices per (section j, loop l, point i); a point on the axis is one vertex.
-std::vector<std::vector<std::vector<std::uint32_t>>> revolve_vertices(
-    Draft& d, const std::vector<std::vector<Vec2>>& loops, const RotateExtrudeOptions& o,
-    const Revolution& r) {
+// Vertices per (section j, loop l, point i), as the end of the profile edge into i
+// (`in`) and the start of the edge out of i (`out`). A point on the axis is one
+// vertex; in a full turn a point on the axis between two points off it gets two
+// coincident vertices, one per cone it tips, so that each shell stays manifold (the
+// two cones touch at a point, as two solids may).
+struct Rings {
+  std::vector<std::vector<std::vector<std::uint32_t>>> in, out;
+};
+
+Rings revolve_vertices(Draft& d, const std::vector<std::vector<Vec2>>& loops,
+                       const RotateExtrudeOptions& o, const Revolution& r, bool closed_profile) {
   const int rings = r.closed ? r.sections : r.sections + 1;
-  std::vector<std::vector<std::vector<std::uint32_t>>> ring(rings);
-  std::vector<std::vector<std::uint32_t>> on_axis(loops.size());
+  Rings ring{std::vector<std::vector<std::vector<std::uint32_t>>>(rings), {}};
+  std::vector<std::vector<std::uint32_t>> axis_in(loops.size()), axis_out(loops.size());
   for (std::size_t l = 0; l < loops.size(); ++l) {
-    for (Vec2 v : loops[l]) on_axis[l].push_back(v.x == 0 ? d.vertex({0, 0, v.y}) : 0);
+    const std::size_t n = loops[l].size();
+    for (std::size_t i = 0; i < n; ++i) {
+      const Vec2 v = loops[l][i];
+      const std::uint32_t id = v.x == 0 ? d.vertex({0, 0, v.y}) : 0;
+      axis_in[l].push_back(id);
+      const bool has_prev = closed_profile || i > 0, has_next = closed_profile || i + 1 < n;
+      const bool pinch = v.x == 0 && r.closed && has_prev && has_next &&
+                         loops[l][(i + n - 1) % n].x != 0 && loops[l][(i + 1) % n].x != 0;
+      axis_out[l].push_back(pinch ? d.vertex({0, 0, v.y}) : id);
+    }
   }
   for (int j = 0; j < rings; ++j) {
     const double a = r.start + j * o.angle / r.sections;
     const double c = cos_degrees(a), s = sin_degrees(a);
     for (std::size_t l = 0; l < loops.size(); ++l) {
-      ring[j].emplace_back();
+      ring.in[j].emplace_back();
       for (std::size_t i = 0; i < loops[l].size(); ++i) {
         const Vec2 v = loops[l][i];
-        ring[j].back().push_back(v.x == 0 ? on_axis[l][i] : d.vertex({v.x * c, v.x * s, v.y}));
+        ring.in[j].back().push_back(v.x == 0 ? axis_in[l][i] : d.vertex({v.x * c, v.x * s, v.y}));
+      }
+    }
+  }
+  ring.out = ring.in;
+  for (int j = 0; j < rings; ++j) {
+    for (std::size_t l = 0; l < loops.size(); ++l) {
+      for (std::size_t i = 0; i < loops[l].size(); ++i) {
+        if (loops[l][i].x == 0) ring.out[j][l][i] = axis_out[l][i];
       }
     }
   }
@@ -276,8 +300,8 @@ std::vector<std::vector<std::vector<std::uint32_t>>> revolve_vertices(
 }
 
 void revolve_into(Draft& d, const Profile& p, const RotateExtrudeOptions& o, const Revolution& r) {
-  const auto ring = revolve_vertices(d, p.loops, o, r);
-  const int rings = static_cast<int>(ring.size());
+  const Rings ring = revolve_vertices(d, p.loops, o, r, p.closed);
+  const int rings = static_cast<int>(ring.in.size());
   for (std::size_t l = 0; l < p.loops.size(); ++l) {
     const std::size_t n = p.loops[l].size();
     for (std::size_t i = 0; i < edge_count(p, l); ++i) {
@@ -292,8 +316,8 @@ void revolve_into(Draft& d, const Profile& p, const RotateExtrudeOptions& o, con
                                             .segments = r.sections});
       for (int j = 0; j < r.sections; ++j) {
         const int j1 = (j + 1) % rings;
-        const std::uint32_t a = ring[j][l][i], b = ring[j][l][k];
-        const std::uint32_t c = ring[j1][l][k], e = ring[j1][l][i];
+        const std::uint32_t a = ring.out[j][l][i], b = ring.in[j][l][k];
+        const std::uint32_t c = ring.in[j1][l][k], e = ring.out[j1][l][i];
         d.face(without_repeats(r.standard ? Loop{a, e, c, b} : Loop{a, b, c, e}), surface);
       }
     }
@@ -301,8 +325,8 @@ void revolve_into(Draft& d, const Profile& p, const RotateExtrudeOptions& o, con
   if (r.closed || !p.closed) return;
   std::vector<Loop> first, last;
   for (std::size_t l = 0; l < p.loops.size(); ++l) {
-    first.push_back(r.standard ? ring[0][l] : reversed(ring[0][l]));
-    last.push_back(r.standard ? reversed(ring[rings - 1][l]) : ring[rings - 1][l]);
+    first.push_back(r.standard ? ring.in[0][l] : reversed(ring.in[0][l]));
+    last.push_back(r.standard ? reversed(ring.in[rings - 1][l]) : ring.in[rings - 1][l]);
   }
   d.face(std::move(first));
   d.face(std::move(last));
@@ -398,9 +422,9 @@ Result<GroupId> rotate_extrude(Model& m, Vec2 point, const RotateExtrudeOptions&
   auto r = plan_revolution({{point}}, o);
   if (!r) return r.error();
   revolve_attributes(d, o, *r);
-  const auto ring = revolve_vertices(d, {{point}}, o, *r);
-  const int rings = static_cast<int>(ring.size());
-  for (int j = 0; j < r->sections; ++j) d.wire(ring[j][0][0], ring[(j + 1) % rings][0][0]);
+  const Rings ring = revolve_vertices(d, {{point}}, o, *r, false);
+  const int rings = static_cast<int>(ring.in.size());
+  for (int j = 0; j < r->sections; ++j) d.wire(ring.in[j][0][0], ring.in[(j + 1) % rings][0][0]);
   return commit(m, d);
 }
 
