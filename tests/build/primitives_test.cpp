@@ -357,3 +357,31 @@ TEST(Polyhedron, ErrorsNameTheFace) {
 
 }  // namespace
 }  // namespace cellforge::build
+
+namespace cellforge::build {
+namespace {
+
+// Every segment count from 3 to 40: valid, Euler 2 (genus 0) or 0 (torus), volume as
+// the closed form.
+TEST(Primitives, EverySegmentCountValidates) {
+  for (int n = 3; n <= 40; ++n) {
+    const Faceting f{.fn = static_cast<double>(n)};
+    Model m;
+    auto s = make_sphere(m, {.r = 3, .faceting = f});
+    auto c = make_cylinder(m, {.h = 2, .r1 = 1, .r2 = 2, .center = true, .faceting = f});
+    auto t = make_torus(m, {.major_radius = 3, .minor_radius = 1, .faceting = f});
+    ASSERT_OK(s);
+    ASSERT_OK(c);
+    ASSERT_OK(t);
+    EXPECT_VALID(m);
+    EXPECT_EQ(counts(m, *s).euler(), 2) << n;
+    EXPECT_EQ(counts(m, *c).euler(), 2) << n;
+    EXPECT_EQ(counts(m, *t).euler(), 0) << n;
+    EXPECT_LE(rel_err(mass_properties(m, *s).volume, sphere_volume(3, n)), 1e-12) << n;
+    EXPECT_LE(rel_err(mass_properties(m, *c).volume, frustum_volume(n, 1, 2, 2)), 1e-12) << n;
+    EXPECT_LE(rel_err(mass_properties(m, *t).volume, torus_volume(3, 1, n, n)), 1e-12) << n;
+  }
+}
+
+}  // namespace
+}  // namespace cellforge::build
