@@ -1,6 +1,6 @@
 // Mass properties by the divergence theorem (mass.h). Positions are taken relative to
-// a reference vertex of the body, so a body far from the origin loses no precision
-// to cancellation.
+// the centre of the body's bounding box, so a body far from the origin loses no
+// precision to cancellation (and a symmetric one sums symmetric terms).
 #include "cellforge/build/mass.h"
 
 #include <algorithm>
@@ -12,8 +12,10 @@ namespace cellforge::build {
 namespace {
 
 struct Sums {
-  double volume = 0;
-  Vec3 moment;  // sum of tetrahedron volume * (centroid - reference)
+  // Six times the volume and 24 times its first moment about the reference: the
+  // tetrahedra's determinants summed whole, divided once at the end.
+  double volume6 = 0;
+  Vec3 moment24;
   double area = 0;
   Vec3 area_moment;  // sum of triangle area * (centroid - reference)
   Vec3 lo{HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
@@ -49,9 +51,9 @@ void add_face(const Model& m, FaceId f, int sign, Vec3 ref, Sums& s) {
       const double tri = dot(unit, cross(b - a, c - a)) / 2;
       s.area_moment = s.area_moment + (a + b + c) * (tri / 3);
       if (sign == 0) continue;
-      const double tet = sign * dot(a, cross(b, c)) / 6;
-      s.volume += tet;
-      s.moment = s.moment + (a + b + c) * (tet / 4);
+      const double tet = sign * dot(a, cross(b, c));  // six times the signed volume
+      s.volume6 += tet;
+      s.moment24 = s.moment24 + (a + b + c) * tet;
     }
   }
 }
@@ -65,10 +67,10 @@ void add_vertex(Vec3 p, Sums& s) {
 MassProperties finish(const Sums& s, bool solid, Vec3 ref) {
   MassProperties out;
   out.solid = solid;
-  out.volume = s.volume;
+  out.volume = s.volume6 / 6;
   out.area = s.area;
-  if (solid && s.volume != 0) {
-    out.centroid = ref + s.moment / s.volume;
+  if (solid && s.volume6 != 0) {
+    out.centroid = ref + s.moment24 / (4 * s.volume6);
   } else if (s.area != 0) {
     out.centroid = ref + s.area_moment / s.area;
   } else {
@@ -81,21 +83,18 @@ MassProperties finish(const Sums& s, bool solid, Vec3 ref) {
   return out;
 }
 
-}  // namespace
-
-MassProperties mass_properties(const Model& m, GroupId g) {
+// The groups for which `keep` is true: their vertices, and their faces with the
+// cells behind (+1) or in front (-1) of each.
+template <class Keep>
+MassProperties accumulate(const Model& m, Keep keep) {
   Sums s;
-  Vec3 ref;
-  bool have_ref = false;
   for (VertexId v : m.vertices()) {
-    if (m.group_of(v) != g) continue;
-    if (!have_ref) ref = m.position(v);
-    have_ref = true;
-    add_vertex(m.position(v), s);
+    if (keep(m.group_of(v))) add_vertex(m.position(v), s);
   }
+  const Vec3 ref = s.any_vertex ? (s.lo + s.hi) * 0.5 : Vec3{};
   bool solid = false;
   for (FaceId f : m.faces()) {
-    if (m.group_of(f) != g) continue;
+    if (!keep(m.group_of(f))) continue;
     const int sign = (m.back_volume(f).is_valid() ? 1 : 0) - (m.front_volume(f).is_valid() ? 1 : 0);
     solid = solid || m.back_volume(f).is_valid() || m.front_volume(f).is_valid();
     add_face(m, f, sign, ref, s);
@@ -103,18 +102,29 @@ MassProperties mass_properties(const Model& m, GroupId g) {
   return finish(s, solid, ref);
 }
 
+}  // namespace
+
+MassProperties mass_properties(const Model& m) {
+  return accumulate(m, [](GroupId) { return true; });
+}
+
+MassProperties mass_properties(const Model& m, GroupId g) {
+  return accumulate(m, [g](GroupId x) { return x == g; });
+}
+
 MassProperties mass_properties(const Model& m, VolumeId c) {
   Sums s;
-  Vec3 ref;
-  bool have_ref = false;
+  auto bounds = [&](FaceId f) { return m.back_volume(f) == c || m.front_volume(f) == c; };
   for (FaceId f : m.faces()) {
-    const int sign = (m.back_volume(f) == c ? 1 : 0) - (m.front_volume(f) == c ? 1 : 0);
-    if (m.back_volume(f) != c && m.front_volume(f) != c) continue;
-    if (!have_ref) ref = m.loop_points(m.outer_loop(f)).front();
-    have_ref = true;
+    if (!bounds(f)) continue;
     for (LoopId l = m.outer_loop(f); l.is_valid(); l = m.next_loop(l)) {
       for (Vec3 p : m.loop_points(l)) add_vertex(p, s);
     }
+  }
+  const Vec3 ref = s.any_vertex ? (s.lo + s.hi) * 0.5 : Vec3{};
+  for (FaceId f : m.faces()) {
+    if (!bounds(f)) continue;
+    const int sign = (m.back_volume(f) == c ? 1 : 0) - (m.front_volume(f) == c ? 1 : 0);
     add_face(m, f, sign, ref, s);
   }
   return finish(s, true, ref);

@@ -1,13 +1,13 @@
 // diagnose(): what a model is as a mesh (diagnose.h). Every count walks the local
 // cycles of the structure once; degeneracy and duplicates use exact tests on the
-// vertices; mass properties come from the divergence theorem over the faces'
-// triangulations.
+// vertices; mass properties are build/'s (divergence theorem over the faces).
 #include "cellforge/io/diagnose.h"
 
 #include <algorithm>
 #include <cstdio>
 #include <numeric>
 
+#include "cellforge/build/mass.h"
 #include "cellforge/io/triangulate.h"
 #include "cellforge/topo/queries.h"
 #include "cellforge/topo/validate.h"
@@ -15,53 +15,6 @@
 #include "io/intersect.h"
 
 namespace cellforge::io {
-
-MassProperties mass_properties(const Model& m) {
-  MassProperties mp;
-  bool first = true;
-  Vec3 vertex_sum;
-  for (VertexId v : m.vertices()) {
-    const Vec3 p = m.position(v);
-    vertex_sum = vertex_sum + p;
-    if (first) {
-      mp.bbox_min = mp.bbox_max = p;
-      first = false;
-    }
-    mp.bbox_min = {std::min(mp.bbox_min.x, p.x), std::min(mp.bbox_min.y, p.y),
-                   std::min(mp.bbox_min.z, p.z)};
-    mp.bbox_max = {std::max(mp.bbox_max.x, p.x), std::max(mp.bbox_max.y, p.y),
-                   std::max(mp.bbox_max.z, p.z)};
-  }
-  if (first) return mp;
-  // Integrate about the box centre: smaller terms, less cancellation.
-  const Vec3 o = (mp.bbox_min + mp.bbox_max) * 0.5;
-  double volume = 0, area = 0;
-  Vec3 vmoment, amoment;
-  for (FaceId f : m.faces()) {
-    const int weight =
-        (m.back_volume(f).is_valid() ? 1 : 0) - (m.front_volume(f).is_valid() ? 1 : 0);
-    for (const auto& t : triangulate_face(m, f)) {
-      const Vec3 a = m.position(t[0]) - o, b = m.position(t[1]) - o, c = m.position(t[2]) - o;
-      const double tri_area = length(cross(b - a, c - a)) / 2;
-      area += tri_area;
-      amoment = amoment + (a + b + c) * (tri_area / 3);
-      if (weight != 0) {
-        const double tet = weight * dot(a, cross(b, c)) / 6;
-        volume += tet;
-        vmoment = vmoment + (a + b + c) * (tet / 4);
-      }
-    }
-  }
-  mp.volume = volume;
-  mp.area = area;
-  if (volume > 0)
-    mp.centroid = o + vmoment / volume;
-  else if (area > 0)
-    mp.centroid = o + amoment / area;
-  else
-    mp.centroid = vertex_sum / static_cast<double>(m.num_vertices());
-  return mp;
-}
 
 namespace {
 
@@ -211,7 +164,7 @@ Diagnosis diagnose(const Model& m, const DiagnoseOptions& options) {
   d.closed = d.faces > 0 && d.boundary_edges.empty();
   d.manifold = d.non_manifold_edges.empty() && d.non_manifold_vertices.empty() &&
                d.wire_edges == 0 && d.isolated_vertices == 0;
-  d.mass = mass_properties(m);
+  d.mass = build::mass_properties(m);
   return d;
 }
 

@@ -7,6 +7,7 @@
 #include <limits>
 #include <numeric>
 
+#include "cellforge/build/mass.h"
 #include "cellforge/topo/validate.h"
 
 namespace cellforge::store {
@@ -64,50 +65,15 @@ VolumeInfo summarize(const Model& m) {
   for (EdgeId e : m.edges()) wire = wire || m.is_wire(e);
   for (VertexId v : m.vertices()) wire = wire || m.degree(v) == 0;
 
-  // Area of every face; volume and centroid by the divergence theorem over the
-  // faces that bound cells (seen from a cell, its face's normal points out when the
-  // cell is behind the face), as fans of signed tetrahedra from the origin.
-  double volume = 0, area = 0;
-  Vec3 vol_moment, area_moment;
   for (FaceId f : m.faces()) {
-    const double w =
-        (m.back_volume(f).is_valid() ? 1.0 : 0.0) - (m.front_volume(f).is_valid() ? 1.0 : 0.0);
     (m.back_volume(f).is_valid() || m.front_volume(f).is_valid() ? solid : sheet) = true;
-    Vec3 face_area;
-    for (LoopId l = m.outer_loop(f); l.is_valid(); l = m.next_loop(l)) {
-      const std::vector<Vec3> p = m.loop_points(l);
-      for (std::size_t i = 1; i + 1 < p.size(); ++i) {
-        const Vec3 c = cross(p[i] - p[0], p[i + 1] - p[0]);
-        face_area = face_area + c;
-        area_moment = area_moment + ((p[0] + p[i] + p[i + 1]) / 3.0) * (length(c) / 2);
-        const double tet = w * dot(p[0], cross(p[i], p[i + 1])) / 6.0;
-        volume += tet;
-        vol_moment = vol_moment + ((p[0] + p[i] + p[i + 1]) / 4.0) * tet;
-      }
-    }
-    area += length(face_area) / 2;
   }
-  info.volume = volume;
-  info.area = area;
-  Vec3 sum;
-  bool first = true;
-  for (VertexId v : m.vertices()) {
-    const Vec3 p = m.position(v);
-    sum = sum + p;
-    if (first) info.bbox_min = info.bbox_max = p;
-    first = false;
-    info.bbox_min = {std::min(info.bbox_min.x, p.x), std::min(info.bbox_min.y, p.y),
-                     std::min(info.bbox_min.z, p.z)};
-    info.bbox_max = {std::max(info.bbox_max.x, p.x), std::max(info.bbox_max.y, p.y),
-                     std::max(info.bbox_max.z, p.z)};
-  }
-  if (volume != 0) {
-    info.centroid = vol_moment / volume;
-  } else if (area > 0) {
-    info.centroid = area_moment / area;
-  } else if (m.num_vertices() > 0) {
-    info.centroid = sum / static_cast<double>(m.num_vertices());
-  }
+  const build::MassProperties mass = build::mass_properties(m);
+  info.volume = mass.volume;
+  info.area = mass.area;
+  info.centroid = mass.centroid;
+  info.bbox_min = mass.bbox_min;
+  info.bbox_max = mass.bbox_max;
   const int kinds = int{solid} + int{sheet} + int{wire};
   info.type = kinds == 0  ? "empty"
               : kinds > 1 ? "mixed"

@@ -19,6 +19,8 @@ struct MassProperties {
   Vec3 bbox_min, bbox_max;  // of the vertices; both zero for an empty group
 };
 
+// The whole model (every group), one group, or one cell.
+MassProperties mass_properties(const Model& m);
 MassProperties mass_properties(const Model& m, GroupId g);
 MassProperties mass_properties(const Model& m, VolumeId c);
 

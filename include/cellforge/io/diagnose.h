@@ -9,21 +9,13 @@
 #include <utility>
 #include <vector>
 
+#include "cellforge/build/mass.h"
 #include "cellforge/topo/model.h"
 
 namespace cellforge::io {
 
-struct MassProperties {
-  // Sum over the cells of the model (a face shared by two cells counts for both);
-  // 0 when the model has no cells.
-  double volume = 0;
-  double area = 0;  // every face, one side
-  // The centroid of the solid when volume > 0, otherwise of the faces' area,
-  // otherwise of the vertices.
-  Vec3 centroid;
-  Vec3 bbox_min, bbox_max;  // over all vertices (zeros for an empty model)
-};
-MassProperties mass_properties(const Model& m);
+// Volume, area, centroid and bounding box of the whole model (build/mass.h).
+using MassProperties = build::MassProperties;
 
 struct DiagnoseOptions {
   // Exact triangle-triangle tests between faces that share no vertex, found
