@@ -17,7 +17,7 @@ export CI="${CI:-1}"  # without the server URL the PostgreSQL tests fail, never 
 
 scripts/setup.sh build-asan -DCMAKE_BUILD_TYPE=Debug -DCELLFORGE_SANITIZE=ON -DCELLFORGE_BENCH=OFF
 (cd build-asan && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
-   ctest --output-on-failure -j2)
+   LSAN_OPTIONS=suppressions=$PWD/../tests/lsan.supp ctest --output-on-failure -j2)
 
 # Every file parser under libFuzzer (clang, ASan + UBSan) for a bounded time each.
 FUZZ_SECONDS=${FUZZ_SECONDS:-30} scripts/fuzz.sh
