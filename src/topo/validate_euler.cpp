@@ -1,7 +1,8 @@
 // Check "euler": the Euler-Poincare relations.
 //
 // Manifold formula (seed 003), per closed shell: a shell is a set of faces joined
-// through edges; it is closed when each of its edges has exactly two uses. Then
+// through edges; it is closed when each of its edges has exactly two uses, and a
+// surface when, besides, its faces form one fan around each of its vertices. Then
 // v - e + f - r = 2 - 2h must give an integer genus h >= 0.
 //
 // Extended formula (seed 001), per connected component K of the model:
@@ -129,6 +130,32 @@ Analysis analyse(const Model& m) {
       piece.emplace_back();
     }
     for (std::uint32_t p : pieces_at[v.value]) ++piece[p].v;
+  }
+  // A shell pinched at a vertex (its faces there form more than one fan) is not a
+  // surface: the manifold formula does not hold for it. Fans: the edge ends at a
+  // vertex joined by each loop that passes through it from one edge to the next.
+  UnionFind fans(2 * static_cast<std::size_t>(m.edge_slots()));
+  for (EdgeUseId u : m.edge_uses()) {
+    const EdgeUseId n = m.loop_next(u);
+    fans.unite(2 * m.edge_of(u).value + (m.is_reversed(u) ? 0 : 1),
+               2 * m.edge_of(n).value + (m.is_reversed(n) ? 1 : 0));
+  }
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> seen;  // (shell, fan) at a vertex
+  for (VertexId v : m.vertices()) {
+    seen.clear();
+    for (EdgeEnd end = m.first_end(v), first = end; end.edge.is_valid();) {
+      if (const EdgeUseId u = m.first_use(end.edge); u.is_valid()) {
+        const std::uint32_t shell = shell_piece[m.face_of(u).value];
+        const std::uint32_t fan =
+            fans.find(2 * end.edge.value + static_cast<std::uint32_t>(end.end));
+        for (const auto& [s2, f2] : seen) {
+          if (s2 == shell && f2 != fan) piece[shell].manifold = false;
+        }
+        seen.emplace_back(shell, fan);
+      }
+      end = m.next_end_around(end);
+      if (end == first) break;
+    }
   }
 
   // Components: pieces joined at shared vertices and through volumes. A vertex

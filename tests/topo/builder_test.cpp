@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "cellforge/topo/validate.h"
 #include "support/fixtures.h"
 
@@ -106,6 +108,35 @@ TEST(Builder, ErrorsNameTheFace) {
   ASSERT_FALSE(r.ok());
   EXPECT_NE(r.error().message.find("face 1 names volume 4"), std::string::npos);
   EXPECT_TRUE(m.empty());
+}
+
+TEST(Builder, AShellPinchedAtAVertexIsValid) {
+  // A cylinder r <= 1, |z| <= 1 with a double cone r < |z| taken out: one closed
+  // shell whose every edge is manifold but whose faces form two fans around the
+  // apex. Its v - e + f = 1 gives no integer genus; the validator must see a pinched
+  // shell there, not a broken one.
+  constexpr int n = 6;
+  MeshInput in;
+  in.volumes = 1;
+  in.positions.push_back({0, 0, 0});
+  for (int i = 0; i < n; ++i) {
+    const double a = 2 * M_PI * i / n;
+    in.positions.push_back({std::cos(a), std::sin(a), 1});   // top ring: 1 + i
+    in.positions.push_back({std::cos(a), std::sin(a), -1});  // bottom ring: 1 + n + i
+  }
+  auto top = [](int i) { return std::uint32_t(1 + 2 * (i % n)); };
+  auto bottom = [](int i) { return std::uint32_t(2 + 2 * (i % n)); };
+  for (int i = 0; i < n; ++i) {
+    in.faces.push_back({{{0, top(i), top(i + 1)}}, -1, 0});
+    in.faces.push_back({{{0, bottom(i + 1), bottom(i)}}, -1, 0});
+    in.faces.push_back({{{bottom(i), bottom(i + 1), top(i + 1), top(i)}}, -1, 0});
+  }
+  Model m = build(in);
+  const auto violations = validate(m);
+  EXPECT_TRUE(violations.empty()) << to_string(violations);
+  const EulerFigures fig = euler_figures(m);
+  EXPECT_EQ(fig.v - fig.e + fig.f, 1);
+  EXPECT_EQ(fig.unchecked, 1);
 }
 
 TEST(Builder, InconsistentOrientationIsAViolation) {
