@@ -23,6 +23,16 @@ done
 "$bin" db list --db "$db"
 "$bin" db sql "SELECT face, edge, direction, point, x, y, z, start_end FROM face_edge_points WHERE volume = 'box' AND version = (SELECT max(version) FROM face_edge_points WHERE volume = 'box') ORDER BY face, use_ord, start_end LIMIT 8" --db "$db"
 
-# What a slicer will see: the exported mesh read back and diagnosed.
+# OpenSCAD-style primitives and sweeps, written for printing and stored.
+"$bin" make sphere r=10 fn=32 -o "$out/sphere.stl"
+"$bin" make cylinder h=5 r1=3 r2=1 fn=17 -o "$out/cone.stl"
+"$bin" make torus R=5 r=1 fn=24 -o "$out/torus.stl"
+"$bin" make linear_extrude shape=ngon n=6 r=2 height=10 twist=90 slices=5 -o "$out/twist.stl"
+for part in sphere cone torus twist; do
+  "$bin" db save "$out/$part.stl" --name "$part" --db "$db"
+done
+
+# What a slicer will see: exported meshes read back and diagnosed.
 "$bin" info "$out/box_with_hole.stl"
+"$bin" info "$out/torus.stl"
 echo "run.sh: exported to $out/"
