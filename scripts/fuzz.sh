@@ -29,9 +29,11 @@ else
   echo "fuzz.sh: lib3mf-dev not installed; skipping the 3mf target"
 fi
 
-# The layers io/ stands on (no database code: it needs no server libraries).
+# The layers io/ stands on (geom, topo, build; no database code: it needs no server
+# libraries).
 mkdir -p "$OUT/obj"
-SOURCES=$(ls "$ROOT"/src/geom/*.cpp "$ROOT"/src/topo/*.cpp "$ROOT"/src/io/*.cpp 2>/dev/null)
+SOURCES=$(ls "$ROOT"/src/geom/*.cpp "$ROOT"/src/topo/*.cpp "$ROOT"/src/build/*.cpp \
+  "$ROOT"/src/io/*.cpp 2>/dev/null)
 compile() {  # src -> obj, when the object is missing or older than a source or header
   local src=$1 obj=$OUT/obj/$(echo "${1#$ROOT/}" | tr / _).o
   if [ ! -f "$obj" ] || [ -n "$(find "$src" "$ROOT/include" "$ROOT/src" -newer "$obj" -name '*.[ch]*' -print -quit)" ]; then
