@@ -4,7 +4,7 @@
 
 #include <cassert>
 
-#include "compare/dedupe.h"
+#include "cellforge/topo/dedupe.h"
 
 namespace cellforge::compare {
 
@@ -273,7 +273,7 @@ void RadialEdge::edges_of(VertexId v, std::vector<EdgeId>& out) const {
   for (const VertexUse* vu = vertices_[v.value].vertexuses; vu; vu = vu->next) {
     if (vu->parent == UseParent::kEdgeUse) out.push_back(id_of(vu->up.edgeuse->edge));
   }
-  dedupe_in_order(out);
+  dedupe_stable(out);
 }
 
 void RadialEdge::vertices_of(VertexId v, std::vector<VertexId>& out) const {
@@ -283,7 +283,7 @@ void RadialEdge::vertices_of(VertexId v, std::vector<VertexId>& out) const {
       out.push_back(id_of(vu->up.edgeuse->mate->vertexuse->vertex));
     }
   }
-  dedupe_in_order(out);
+  dedupe_stable(out);
 }
 
 void RadialEdge::faces_of(VertexId v, std::vector<FaceId>& out) const {
@@ -291,7 +291,7 @@ void RadialEdge::faces_of(VertexId v, std::vector<FaceId>& out) const {
   for (const VertexUse* vu = vertices_[v.value].vertexuses; vu; vu = vu->next) {
     if (const Face* f = face_of(*vu)) out.push_back(id_of(f));
   }
-  dedupe_in_order(out);
+  dedupe_stable(out);
 }
 
 void RadialEdge::vertices_of(EdgeId e, std::vector<VertexId>& out) const {
@@ -314,13 +314,13 @@ void RadialEdge::edges_of(EdgeId e, std::vector<EdgeId>& out) const {
       if (x != e) out.push_back(x);
     }
   }
-  dedupe_in_order(out);
+  dedupe_stable(out);
 }
 
 void RadialEdge::faces_of(EdgeId e, std::vector<FaceId>& out) const {
   out.clear();
   for_each_radial_face(edges_[e.value].edgeuse, [&](const Face* f) { out.push_back(id_of(f)); });
-  dedupe_in_order(out);
+  dedupe_stable(out);
 }
 
 void RadialEdge::vertices_of(FaceId f, std::vector<VertexId>& out) const {
@@ -329,7 +329,7 @@ void RadialEdge::vertices_of(FaceId f, std::vector<VertexId>& out) const {
       faces_[f.value].faceuse,
       [&](const EdgeUse* eu) { out.push_back(id_of(eu->vertexuse->vertex)); },
       [&](const VertexUse* vu) { out.push_back(id_of(vu->vertex)); });
-  dedupe_in_order(out);
+  dedupe_stable(out);
 }
 
 void RadialEdge::edges_of(FaceId f, std::vector<EdgeId>& out) const {
@@ -337,7 +337,7 @@ void RadialEdge::edges_of(FaceId f, std::vector<EdgeId>& out) const {
   for_each_loop_use(
       faces_[f.value].faceuse, [&](const EdgeUse* eu) { out.push_back(id_of(eu->edge)); },
       [](const VertexUse*) {});
-  dedupe_in_order(out);
+  dedupe_stable(out);
 }
 
 void RadialEdge::faces_of(FaceId f, std::vector<FaceId>& out) const {
@@ -351,7 +351,7 @@ void RadialEdge::faces_of(FaceId f, std::vector<FaceId>& out) const {
         });
       },
       [](const VertexUse*) {});
-  dedupe_in_order(out);
+  dedupe_stable(out);
 }
 
 }  // namespace cellforge::compare

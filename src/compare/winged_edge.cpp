@@ -3,7 +3,7 @@
 // wing traversal.
 #include "cellforge/compare/winged_edge.h"
 
-#include "compare/dedupe.h"
+#include "cellforge/topo/dedupe.h"
 
 namespace cellforge::compare {
 
@@ -205,7 +205,7 @@ StorageStats WingedEdge::storage() const {
 void WingedEdge::edges_of(VertexId v, std::vector<EdgeId>& out) const {
   out.clear();
   for_each_edge_around(&vertices_[v.value], [&](const Edge* e) { out.push_back(id_of(e)); });
-  dedupe_in_order(out);
+  dedupe_stable(out);
 }
 
 void WingedEdge::vertices_of(VertexId v, std::vector<VertexId>& out) const {
@@ -213,14 +213,14 @@ void WingedEdge::vertices_of(VertexId v, std::vector<VertexId>& out) const {
   const Vertex* x = &vertices_[v.value];
   for_each_edge_around(
       x, [&](const Edge* e) { out.push_back(id_of(e->start == x ? e->end : e->start)); });
-  dedupe_in_order(out);
+  dedupe_stable(out);
 }
 
 void WingedEdge::faces_of(VertexId v, std::vector<FaceId>& out) const {
   out.clear();
   const Vertex* x = &vertices_[v.value];
   for_each_edge_around(x, [&](const Edge* e) { out.push_back(id_of(face_after(e, x))); });
-  dedupe_in_order(out);
+  dedupe_stable(out);
 }
 
 void WingedEdge::vertices_of(EdgeId e, std::vector<VertexId>& out) const {
@@ -237,7 +237,7 @@ void WingedEdge::edges_of(EdgeId e, std::vector<EdgeId>& out) const {
       if (g != self) out.push_back(id_of(g));
     });
   }
-  dedupe_in_order(out);
+  dedupe_stable(out);
 }
 
 void WingedEdge::faces_of(EdgeId e, std::vector<FaceId>& out) const {
@@ -251,13 +251,13 @@ void WingedEdge::vertices_of(FaceId f, std::vector<VertexId>& out) const {
   for_each_loop_edge(&faces_[f.value], [&](const Edge* e, bool forward) {
     out.push_back(id_of(forward ? e->start : e->end));
   });
-  dedupe_in_order(out);
+  dedupe_stable(out);
 }
 
 void WingedEdge::edges_of(FaceId f, std::vector<EdgeId>& out) const {
   out.clear();
   for_each_loop_edge(&faces_[f.value], [&](const Edge* e, bool) { out.push_back(id_of(e)); });
-  dedupe_in_order(out);
+  dedupe_stable(out);
 }
 
 void WingedEdge::faces_of(FaceId f, std::vector<FaceId>& out) const {
@@ -265,7 +265,7 @@ void WingedEdge::faces_of(FaceId f, std::vector<FaceId>& out) const {
   for_each_loop_edge(&faces_[f.value], [&](const Edge* e, bool forward) {
     out.push_back(id_of(forward ? e->right : e->left));
   });
-  dedupe_in_order(out);
+  dedupe_stable(out);
 }
 
 }  // namespace cellforge::compare

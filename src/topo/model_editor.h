@@ -87,8 +87,4 @@ std::vector<EdgeUseId> sort_radially(const Model& m, EdgeId e, std::vector<EdgeU
 // True when `cycle` (a radial cycle read from its first use) is in that order.
 bool radially_ordered(const Model& m, EdgeId e, const std::vector<EdgeUseId>& cycle);
 
-// Removes repeated elements keeping first occurrences, in place.
-template <class T>
-void dedupe_stable(std::vector<T>& v);
-
 }  // namespace cellforge

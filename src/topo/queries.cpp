@@ -4,41 +4,9 @@
 
 #include <algorithm>
 
-#include "topo/model_editor.h"
+#include "cellforge/topo/dedupe.h"
 
 namespace cellforge {
-
-template <class T>
-void dedupe_stable(std::vector<T>& v) {
-  if (v.size() <= 32) {  // small answers: quadratic scan, no allocation
-    std::size_t n = 0;
-    for (std::size_t i = 0; i < v.size(); ++i) {
-      if (std::find(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(n), v[i]) ==
-          v.begin() + static_cast<std::ptrdiff_t>(n)) {
-        v[n++] = v[i];
-      }
-    }
-    v.resize(n);
-    return;
-  }
-  std::vector<std::pair<T, std::size_t>> keyed;
-  keyed.reserve(v.size());
-  for (std::size_t i = 0; i < v.size(); ++i) keyed.emplace_back(v[i], i);
-  std::sort(keyed.begin(), keyed.end());
-  std::vector<char> keep(v.size(), 0);
-  for (std::size_t i = 0; i < keyed.size(); ++i) {
-    if (i == 0 || keyed[i].first != keyed[i - 1].first) keep[keyed[i].second] = 1;
-  }
-  std::size_t n = 0;
-  for (std::size_t i = 0; i < v.size(); ++i) {
-    if (keep[i]) v[n++] = v[i];
-  }
-  v.resize(n);
-}
-
-template void dedupe_stable(std::vector<VertexId>&);
-template void dedupe_stable(std::vector<EdgeId>&);
-template void dedupe_stable(std::vector<FaceId>&);
 
 namespace {
 

@@ -1,6 +1,7 @@
-// Removes repeated elements from a query answer, keeping first occurrences in
-// order: the same method as cellforge's queries (a quadratic scan for small
-// answers, a sort for large ones), so that the baselines pay the same for it.
+// dedupe_stable: removes repeated elements from a query answer, keeping first
+// occurrences in order: a quadratic scan for small answers (no allocation), a sort
+// for large ones. The 9 queries use it, and so do the comparison baselines, so that
+// every structure pays the same for it.
 #pragma once
 
 #include <algorithm>
@@ -8,10 +9,10 @@
 #include <utility>
 #include <vector>
 
-namespace cellforge::compare {
+namespace cellforge {
 
 template <class T>
-void dedupe_in_order(std::vector<T>& v) {
+void dedupe_stable(std::vector<T>& v) {
   std::size_t n = 0;
   if (v.size() <= 32) {
     for (std::size_t i = 0; i < v.size(); ++i) {
@@ -35,4 +36,4 @@ void dedupe_in_order(std::vector<T>& v) {
   v.resize(n);
 }
 
-}  // namespace cellforge::compare
+}  // namespace cellforge
