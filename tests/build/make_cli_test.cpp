@@ -9,24 +9,13 @@
 #include "build/build_test_util.h"
 #include "cellforge/build/mass.h"
 #include "cellforge/io/mesh_io.h"
+#include "support/cli.h"
 
 namespace cellforge::build {
 namespace {
 
-struct CliRun {
-  int status;
-  std::string out;
-};
-
-CliRun run(const std::string& args) {
-  const std::string cmd = std::string(CELLFORGE_BIN) + " " + args + " 2>&1";
-  FILE* p = popen(cmd.c_str(), "r");
-  std::string out;
-  std::array<char, 4096> buf;
-  while (std::size_t n = std::fread(buf.data(), 1, buf.size(), p)) out.append(buf.data(), n);
-  const int status = pclose(p);
-  return {WEXITSTATUS(status), out};
-}
+using cellforge::testing::CliRun;
+CliRun run(const std::string& args) { return cellforge::testing::run_cli(args); }
 
 std::string temp_path(const std::string& name) {
   return (std::filesystem::temp_directory_path() / ("cellforge_make_" + name)).string();

@@ -1,4 +1,6 @@
 // `cellforge info` and `cellforge convert` end to end.
+#include "support/cli.h"
+
 #include <gtest/gtest.h>
 
 #include <array>
@@ -10,20 +12,8 @@
 namespace cellforge {
 namespace {
 
-struct CliRun {
-  int status;
-  std::string out;
-};
-
-CliRun run(const std::string& args) {
-  const std::string cmd = std::string(CELLFORGE_BIN) + " " + args + " 2>&1";
-  FILE* p = popen(cmd.c_str(), "r");
-  std::string out;
-  std::array<char, 4096> buf;
-  while (std::size_t n = std::fread(buf.data(), 1, buf.size(), p)) out.append(buf.data(), n);
-  const int status = pclose(p);
-  return {WEXITSTATUS(status), out};
-}
+using cellforge::testing::CliRun;
+CliRun run(const std::string& args) { return cellforge::testing::run_cli(args); }
 
 TEST(Cli, InfoJsonOfTheNonManifoldStl) {
   const CliRun r = run("info " + testing::data_path("two_cubes_edge.stl") + " --json");
