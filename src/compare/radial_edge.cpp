@@ -60,8 +60,8 @@ RadialEdge RadialEdge::from_model(const Model& m) {
   r.shells_.resize(groups);
   r.faces_.resize(m.face_slots());
   r.faceuses_.resize(2 * std::size_t{m.face_slots()});
-  r.loops_.resize(m.loop_slots());
-  r.loopuses_.resize(2 * std::size_t{m.loop_slots()});
+  r.loops_.resize(m.num_loops());
+  r.loopuses_.resize(2 * m.num_loops());
   r.edges_.resize(m.edge_slots());
   r.edgeuses_.resize(use_eus + 2 * wires);
   r.vertexuses_.reserve(r.edgeuses_.size() + 2 * point_loops + isolated);
@@ -92,6 +92,7 @@ RadialEdge RadialEdge::from_model(const Model& m) {
   };
 
   std::vector<EdgeUseId> uses;
+  std::size_t next_loop = 0;  // loops numbered in face order
   for (FaceId f : m.faces()) {
     Shell& shell = r.shells_[m.group_of(f).value];
     Face& face = r.faces_[f.value];
@@ -106,8 +107,9 @@ RadialEdge RadialEdge::from_model(const Model& m) {
     }
     LoopUse* tail[2] = {nullptr, nullptr};
     for (LoopId l = m.outer_loop(f); l.is_valid(); l = m.next_loop(l)) {
-      Loop& loop = r.loops_[l.value];
-      LoopUse* lu[2] = {&r.loopuses_[2 * l.value], &r.loopuses_[2 * l.value + 1]};
+      const std::size_t li = next_loop++;
+      Loop& loop = r.loops_[li];
+      LoopUse* lu[2] = {&r.loopuses_[2 * li], &r.loopuses_[2 * li + 1]};
       loop.loopuse = lu[0];
       for (int s = 0; s < 2; ++s) {
         lu[s]->faceuse = side[s];

@@ -166,29 +166,20 @@ Result<BuildResult> build_mesh(Model& m, const MeshInput& in) {
         prev = u;
       }
       ed.set_next(prev, first);
-      ed.append_loop(face, ed.new_loop(first));
+      ed.add_loop(face, first);
     }
   }
 
   // Radial cycles: uses in input order, then angular order where three or more meet.
+  std::vector<EdgeUseId> cycle;
   for (std::size_t g = 0; g < groups.size(); ++g) {
     const EdgeId e = edge_of_group[g];
-    EdgeUseId first, prev;
-    std::size_t count = 0;
+    cycle.clear();
     for (std::size_t i = groups[g].first; i < groups[g].second; ++i) {
-      if (sides[i].slot == kInvalidIndex) continue;
-      const EdgeUseId u = use_of_slot[sides[i].slot];
-      if (prev.is_valid())
-        ed.rec(prev).radial_next = u.value;
-      else
-        first = u;
-      prev = u;
-      ++count;
+      if (sides[i].slot != kInvalidIndex) cycle.push_back(use_of_slot[sides[i].slot]);
     }
-    if (count == 0) continue;
-    ed.rec(prev).radial_next = first.value;
-    ed.rec(e).first_use = first.value;
-    if (count >= 3) ed.radial_sort(e);
+    ed.set_radial_cycle(e, cycle);
+    if (cycle.size() >= 3) ed.radial_sort(e);
   }
   return out;
 }

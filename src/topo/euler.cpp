@@ -368,8 +368,7 @@ Status can_kfmrh(const Model& m, FaceId keep, FaceId dying) {
 Result<LoopId> kfmrh(Model& m, FaceId keep, FaceId dying) {
   CF_CHECK(can_kfmrh(m, keep, dying));
   ModelEditor ed(m);
-  const LoopId l = m.outer_loop(dying);
-  ed.rec(dying).first_loop = kInvalidIndex;
+  const LoopId l = ed.take_outer_loop(dying);
   ed.append_loop(keep, l);
   ed.assign_face(l, keep);
   ed.free_face(dying);
@@ -412,7 +411,7 @@ Result<EdgeVertex> semv(Model& m, EdgeId e, Vec3 position) {
   const std::vector<EdgeUseId> uses = ops::radial_uses(m, e);
   ed.move_end({e, 1}, w);
   const EdgeId e2 = ed.new_edge(w, b);
-  EdgeUseId first, prev;
+  std::vector<EdgeUseId> cycle;  // e2's uses, in the radial order of e's
   for (EdgeUseId u : uses) {
     const bool reversed = m.is_reversed(u);
     const EdgeUseId u2 = ed.new_use(e2, reversed, m.face_of(u));
@@ -423,16 +422,9 @@ Result<EdgeVertex> semv(Model& m, EdgeId e, Vec3 position) {
       ed.set_next(m.loop_prev(u), u2);
       ed.set_next(u2, u);
     }
-    if (prev.is_valid())
-      ed.rec(prev).radial_next = u2.value;
-    else
-      first = u2;
-    prev = u2;
+    cycle.push_back(u2);
   }
-  if (first.is_valid()) {
-    ed.rec(prev).radial_next = first.value;
-    ed.rec(e2).first_use = first.value;
-  }
+  ed.set_radial_cycle(e2, cycle);
   return EdgeVertex{e2, w};
 }
 

@@ -24,7 +24,26 @@ bool Model::empty() const {
 LiveIds<VertexId> Model::vertices() const { return live_range<VertexId>(*this, vertex_slots()); }
 LiveIds<EdgeId> Model::edges() const { return live_range<EdgeId>(*this, edge_slots()); }
 LiveIds<EdgeUseId> Model::edge_uses() const { return live_range<EdgeUseId>(*this, use_slots()); }
-LiveIds<LoopId> Model::loops() const { return live_range<LoopId>(*this, loop_slots()); }
+std::vector<LoopId> Model::loops() const {
+  std::vector<LoopId> out;
+  out.reserve(num_loops());
+  for (FaceId f : faces()) {
+    if (faces_[f.value].first != kInvalidIndex) out.push_back(LoopId(f.value));
+  }
+  for (FaceId f : faces()) {
+    for (LoopId l = next_loop(LoopId(f.value)); l.is_valid(); l = next_loop(l)) out.push_back(l);
+  }
+  return out;
+}
+
+bool Model::is_live(LoopId l) const {
+  if (!l.is_valid()) return false;
+  if (!(l.value & kInnerLoopBit)) return is_live(FaceId(l.value)) && faces_[l.value].first != kInvalidIndex;
+  const std::uint32_t r = l.value & ~kInnerLoopBit;
+  if (r >= loops_.size() || loops_[r].first == kDead) return false;
+  const FaceId f = face_of(l);  // a listed face's first record is its outer loop
+  return f.is_valid() && is_live(f) && faces_[f.value].first != (r | kTagBit);
+}
 LiveIds<FaceId> Model::faces() const { return live_range<FaceId>(*this, face_slots()); }
 LiveIds<VolumeId> Model::volumes() const {
   return live_range<VolumeId>(*this, static_cast<std::uint32_t>(volumes_.size()));
@@ -65,6 +84,7 @@ EdgeUseId Model::loop_prev(EdgeUseId u) const {
 
 LoopId Model::loop_of(EdgeUseId u) const {
   const FaceId f = face_of(u);
+  if (!(faces_[f.value].first & kTagBit)) return LoopId(f.value);  // the face's only loop
   for (LoopId l = outer_loop(f); l.is_valid(); l = next_loop(l)) {
     const EdgeUseId first = loop_first(l);
     if (!first.is_valid()) continue;
@@ -75,12 +95,6 @@ LoopId Model::loop_of(EdgeUseId u) const {
     } while (w != first);
   }
   return LoopId();
-}
-
-FaceId Model::face_of(LoopId l) const {
-  std::uint32_t n = loops_[l.value].next;
-  while (!(n & kTagBit)) n = loops_[n].next;
-  return FaceId(n & ~kTagBit);
 }
 
 std::size_t Model::loop_length(LoopId l) const {

@@ -50,39 +50,154 @@ EdgeId ModelEditor::new_edge(VertexId a, VertexId b) {
 
 EdgeUseId ModelEditor::new_use(EdgeId e, bool reversed, FaceId f) {
   const std::uint32_t i = take_slot(m_.uses_, Model::kUse, &UseRec::next);
-  m_.uses_[i] = {(e.value << 1) | (reversed ? 1u : 0u), f.value, i, i};
+  m_.uses_[i] = {f.value | (reversed ? kTagBit : 0u), i, e.value | kTagBit};
   return EdgeUseId(i);
 }
 
-LoopId ModelEditor::new_point_loop(VertexId v) {
+std::uint32_t ModelEditor::new_record(std::uint32_t first, std::uint32_t next) {
   const std::uint32_t i = take_slot(m_.loops_, Model::kLoop, &LoopRec::next);
-  m_.loops_[i] = {kInvalidIndex, kInvalidIndex};
-  set_point_loop(LoopId(i), v);
-  return LoopId(i);
+  m_.loops_[i] = {first, next};
+  return i;
+}
+
+LoopId ModelEditor::new_point_loop(VertexId v) {
+  const LoopId l(new_record(kInvalidIndex, kInvalidIndex) | Model::kInnerLoopBit);
+  set_point_loop(l, v);
+  return l;
+}
+
+LoopId ModelEditor::new_loop(EdgeUseId first) {
+  return LoopId(new_record(first.value, kInvalidIndex) | Model::kInnerLoopBit);
+}
+
+void ModelEditor::set_face_first(FaceId f, std::uint32_t first) {
+  auto listed = [](std::uint32_t x) { return (x & kTagBit) && x != kInvalidIndex; };
+  std::uint32_t& slot = rec(f).first;
+  if (listed(slot)) --m_.listed_faces_;
+  if (listed(first)) ++m_.listed_faces_;
+  slot = first;
+}
+
+void ModelEditor::list_loops(FaceId f) {
+  const std::uint32_t first = rec(f).first;
+  if ((first & kTagBit) != 0) return;  // listed already, or empty
+  set_face_first(f, new_record(first, f.value | kTagBit) | kTagBit);
+}
+
+bool ModelEditor::is_open(FaceId f) const {
+  for (std::uint32_t g : m_.open_faces_) {
+    if (g == f.value) return true;
+  }
+  return false;
+}
+
+void ModelEditor::open(FaceId f) {
+  if (is_open(f)) return;
+  m_.open_faces_.push_back(f.value);
+  list_loops(f);
+}
+
+void ModelEditor::close(FaceId f) {
+  list_loops(f);
+  const std::uint32_t head = rec(f).first & ~kTagBit;
+  for (std::uint32_t r = head;; r = loop_rec(r).next) {
+    const std::uint32_t first = loop_rec(r).first;
+    if (first & kTagBit) {  // a point loop: its vertex names it by its final id
+      const std::uint32_t code = r == head ? f.value : (r | Model::kInnerLoopBit);
+      rec(VertexId(first & ~kTagBit)).first_end = code | kTagBit;
+    }
+    if (loop_rec(r).next & kTagBit) break;
+  }
+  // A face with one loop of edges keeps it in its own record.
+  const LoopRec only = loop_rec(head);
+  if ((only.next & kTagBit) && !(only.first & kTagBit)) {
+    set_face_first(f, only.first);
+    free_loop(LoopId(head | Model::kInnerLoopBit));
+  }
+}
+
+ModelEditor::~ModelEditor() {
+  if (--m_.edit_depth_ != 0) return;
+  // Close in order of opening; a face freed meanwhile (or freed and made again
+  // as another face) is closed once if live.
+  std::vector<std::uint32_t> faces;
+  faces.swap(m_.open_faces_);
+  for (std::size_t i = 0; i < faces.size(); ++i) {
+    const FaceId f(faces[i]);
+    bool seen = false;
+    for (std::size_t j = 0; j < i; ++j) seen = seen || faces[j] == faces[i];
+    if (!seen && m_.is_live(f) && rec(f).first != kInvalidIndex) close(f);
+  }
+}
+
+LoopId ModelEditor::add_loop(FaceId f, EdgeUseId first) {
+  if (rec(f).first == kInvalidIndex) {
+    set_face_first(f, first.value);
+    return LoopId(f.value);
+  }
+  list_loops(f);
+  std::uint32_t r = rec(f).first & ~kTagBit;
+  while (!(loop_rec(r).next & kTagBit)) r = loop_rec(r).next;
+  const std::uint32_t n = new_record(first.value, f.value | kTagBit);
+  loop_rec(r).next = n;
+  return LoopId(n | Model::kInnerLoopBit);
+}
+
+LoopId ModelEditor::add_point_loop(FaceId f, VertexId v) {
+  const std::uint32_t n = new_record(v.value | kTagBit, f.value | kTagBit);
+  LoopId l;
+  if (rec(f).first == kInvalidIndex) {
+    set_face_first(f, n | kTagBit);
+    l = LoopId(f.value);
+  } else {
+    list_loops(f);
+    std::uint32_t r = rec(f).first & ~kTagBit;
+    while (!(loop_rec(r).next & kTagBit)) r = loop_rec(r).next;
+    loop_rec(r).next = n;
+    l = LoopId(n | Model::kInnerLoopBit);
+  }
+  assert(!m_.first_end(v).edge.is_valid());
+  rec(v).first_end = l.value | kTagBit;
+  return l;
+}
+
+std::uint32_t ModelEditor::record_of(LoopId l) {
+  if (l.value & Model::kInnerLoopBit) {
+    const FaceId f = m_.face_of(l);  // invalid while the record is in no face
+    if (f.is_valid()) open(f);
+    return l.value & ~Model::kInnerLoopBit;
+  }
+  open(FaceId(l.value));
+  return rec(FaceId(l.value)).first & ~kTagBit;
 }
 
 void ModelEditor::set_loop_first(LoopId l, EdgeUseId u) {
-  if (rec(l).first != kInvalidIndex && m_.is_point_loop(l)) {
-    VertexRec& vr = rec(m_.point_loop_vertex(l));
-    if (vr.first_end == (l.value | kTagBit)) vr.first_end = kInvalidIndex;
+  const std::uint32_t r = record_of(l);
+  const std::uint32_t old = loop_rec(r).first;
+  if (old != kInvalidIndex && (old & kTagBit)) {
+    VertexRec& vr = rec(VertexId(old & ~kTagBit));
+    if (vr.first_end & kTagBit) vr.first_end = kInvalidIndex;
   }
-  rec(l).first = u.value;
+  loop_rec(r).first = u.value;
 }
 
 void ModelEditor::set_point_loop(LoopId l, VertexId v) {
   assert(!m_.first_end(v).edge.is_valid());
-  rec(l).first = v.value | kTagBit;
-  rec(v).first_end = l.value | kTagBit;
+  const std::uint32_t r = record_of(l);
+  loop_rec(r).first = v.value | kTagBit;
+  rec(v).first_end = l.value | kTagBit;  // the final id is written when the face closes
 }
 
-LoopId ModelEditor::new_loop(EdgeUseId first) {
-  const std::uint32_t i = take_slot(m_.loops_, Model::kLoop, &LoopRec::next);
-  m_.loops_[i] = {first.value, kInvalidIndex};
-  return LoopId(i);
+LoopId ModelEditor::take_outer_loop(FaceId f) {
+  open(f);
+  const std::uint32_t r = rec(f).first & ~kTagBit;
+  set_face_first(f, kInvalidIndex);
+  loop_rec(r).next = kInvalidIndex;
+  return LoopId(r | Model::kInnerLoopBit);
 }
 
 FaceId ModelEditor::new_face(std::uint32_t sides) {
-  const std::uint32_t i = take_slot(m_.faces_, Model::kFace, &FaceRec::first_loop);
+  const std::uint32_t i = take_slot(m_.faces_, Model::kFace, &FaceRec::first);
   m_.faces_[i] = {kInvalidIndex, sides};
   if (i < m_.face_surface_.size()) m_.face_surface_[i] = kInvalidIndex;
   return FaceId(i);
@@ -129,25 +244,35 @@ void ModelEditor::free_edge(EdgeId e) {
 }
 
 void ModelEditor::free_use(EdgeUseId u) {
-  rec(u).edge_dir = kDead;
+  rec(u).face_dir = kDead;
   push_free(m_.uses_, m_.free_[Model::kUse], u.value, &UseRec::next);
   --m_.live_[Model::kUse];
 }
 
 void ModelEditor::free_loop(LoopId l) {
-  if (m_.is_point_loop(l)) {
-    VertexRec& vr = rec(m_.point_loop_vertex(l));
-    if (vr.first_end == (l.value | kTagBit)) vr.first_end = kInvalidIndex;
+  std::uint32_t r;
+  if (l.value & Model::kInnerLoopBit) {
+    r = l.value & ~Model::kInnerLoopBit;
+  } else {
+    r = rec(FaceId(l.value)).first;
+    if (!(r & kTagBit) || r == kInvalidIndex) return;  // kept in the face's own record
+    r &= ~kTagBit;
   }
-  rec(l).first = kDead;
-  push_free(m_.loops_, m_.free_[Model::kLoop], l.value, &LoopRec::next);
+  const std::uint32_t first = loop_rec(r).first;
+  if (first != kInvalidIndex && (first & kTagBit)) {
+    VertexRec& vr = rec(VertexId(first & ~kTagBit));
+    if (vr.first_end & kTagBit) vr.first_end = kInvalidIndex;
+  }
+  loop_rec(r).first = kDead;
+  push_free(m_.loops_, m_.free_[Model::kLoop], r, &LoopRec::next);
   --m_.live_[Model::kLoop];
 }
 
 void ModelEditor::free_face(FaceId f) {
+  set_face_first(f, kInvalidIndex);
   rec(f).sides = kDead;
   if (f.value < m_.face_surface_.size()) m_.face_surface_[f.value] = kInvalidIndex;
-  push_free(m_.faces_, m_.free_[Model::kFace], f.value, &FaceRec::first_loop);
+  push_free(m_.faces_, m_.free_[Model::kFace], f.value, &FaceRec::first);
   --m_.live_[Model::kFace];
 }
 
@@ -199,82 +324,97 @@ void ModelEditor::move_end(EdgeEnd end, VertexId to) {
   link_end(to, end);
 }
 
-void ModelEditor::radial_insert(EdgeUseId u) {
-  const EdgeId e = m_.edge_of(u);
-  EdgeRec& er = rec(e);
-  if (er.first_use == kInvalidIndex) {
-    er.first_use = u.value;
-    rec(u).radial_next = u.value;
-    return;
+namespace {
+
+std::vector<EdgeUseId> radial_cycle(const Model& m, EdgeId e) {
+  std::vector<EdgeUseId> out;
+  const EdgeUseId first = m.first_use(e);
+  if (!first.is_valid()) return out;
+  for (EdgeUseId u = first;; u = m.radial_next(u)) {
+    out.push_back(u);
+    if (m.is_radial_tail(u)) break;
   }
-  // Put u anywhere, then restore the angular order of the whole cycle.
-  rec(u).radial_next = rec(EdgeUseId(er.first_use)).radial_next;
-  rec(EdgeUseId(er.first_use)).radial_next = u.value;
-  radial_sort(e);
+  return out;
+}
+
+}  // namespace
+
+void ModelEditor::set_radial_cycle(EdgeId e, const std::vector<EdgeUseId>& uses) {
+  for (std::size_t i = 0; i + 1 < uses.size(); ++i) rec(uses[i]).radial = uses[i + 1].value;
+  if (!uses.empty()) rec(uses.back()).radial = e.value | kTagBit;
+  rec(e).first_use = uses.empty() ? kInvalidIndex : uses.front().value;
+}
+
+void ModelEditor::radial_insert(EdgeUseId u) {
+  const EdgeId e = m_.edge_of(u);  // u is alone in a cycle that names e
+  std::vector<EdgeUseId> cycle = radial_cycle(m_, e);
+  cycle.push_back(u);
+  if (cycle.size() >= 3) cycle = sort_radially(m_, e, std::move(cycle));
+  set_radial_cycle(e, cycle);
 }
 
 void ModelEditor::radial_remove(EdgeUseId u) {
   const EdgeId e = m_.edge_of(u);
-  EdgeRec& er = rec(e);
-  if (rec(u).radial_next == u.value) {
-    er.first_use = kInvalidIndex;
-    return;
-  }
-  EdgeUseId p = u;
-  while (m_.radial_next(p) != u) p = m_.radial_next(p);
-  rec(p).radial_next = rec(u).radial_next;
-  if (er.first_use == u.value) er.first_use = rec(u).radial_next;
-  rec(u).radial_next = u.value;
+  std::vector<EdgeUseId> cycle = radial_cycle(m_, e);
+  std::erase(cycle, u);
+  set_radial_cycle(e, cycle);
+  rec(u).radial = e.value | kTagBit;
 }
 
 void ModelEditor::radial_sort(EdgeId e) {
-  const EdgeUseId first = m_.first_use(e);
-  if (!first.is_valid()) return;
-  std::vector<EdgeUseId> uses;
-  EdgeUseId u = first;
-  do {
-    uses.push_back(u);
-    u = m_.radial_next(u);
-  } while (u != first);
-  if (uses.size() <= 2) return;
-  uses = sort_radially(m_, e, std::move(uses));
-  for (std::size_t i = 0; i < uses.size(); ++i) {
-    rec(uses[i]).radial_next = uses[(i + 1) % uses.size()].value;
-  }
-  rec(e).first_use = uses[0].value;
+  std::vector<EdgeUseId> cycle = radial_cycle(m_, e);
+  if (cycle.size() <= 2) return;
+  set_radial_cycle(e, sort_radially(m_, e, std::move(cycle)));
+}
+
+void ModelEditor::set_use_edge(EdgeUseId u, EdgeId e, bool flip) {
+  assert(m_.is_radial_tail(u) && m_.first_use(m_.edge_of(u)) != u);
+  rec(u).radial = e.value | kTagBit;
+  if (flip) rec(u).face_dir ^= kTagBit;
+}
+
+void ModelEditor::set_reversed(EdgeUseId u, bool reversed) {
+  rec(u).face_dir = (rec(u).face_dir & ~kTagBit) | (reversed ? kTagBit : 0u);
 }
 
 void ModelEditor::append_loop(FaceId f, LoopId l) {
-  FaceRec& fr = rec(f);
-  rec(l).next = f.value | kTagBit;
-  if (fr.first_loop == kInvalidIndex) {
-    fr.first_loop = l.value;
+  assert(l.value & Model::kInnerLoopBit);  // a record from new_loop or remove_loop
+  open(f);
+  const std::uint32_t r = l.value & ~Model::kInnerLoopBit;
+  loop_rec(r).next = f.value | kTagBit;
+  if (rec(f).first == kInvalidIndex) {
+    set_face_first(f, r | kTagBit);
     return;
   }
-  std::uint32_t p = fr.first_loop;
-  while (!(m_.loops_[p].next & kTagBit)) p = m_.loops_[p].next;
-  m_.loops_[p].next = l.value;
+  std::uint32_t p = rec(f).first & ~kTagBit;
+  while (!(loop_rec(p).next & kTagBit)) p = loop_rec(p).next;
+  loop_rec(p).next = r;
 }
 
 void ModelEditor::remove_loop(FaceId f, LoopId l) {
-  FaceRec& fr = rec(f);
-  if (fr.first_loop == l.value) {
-    assert(!(rec(l).next & kTagBit));
-    fr.first_loop = rec(l).next;
-    return;
+  open(f);
+  const std::uint32_t r = l.value & Model::kInnerLoopBit ? l.value & ~Model::kInnerLoopBit
+                                                          : rec(f).first & ~kTagBit;
+  const std::uint32_t head = rec(f).first & ~kTagBit;
+  if (head == r) {
+    assert(!(loop_rec(r).next & kTagBit));
+    set_face_first(f, loop_rec(r).next | kTagBit);
+  } else {
+    std::uint32_t p = head;
+    while (loop_rec(p).next != r) p = loop_rec(p).next;
+    loop_rec(p).next = loop_rec(r).next;
   }
-  std::uint32_t p = fr.first_loop;
-  while (m_.loops_[p].next != l.value) p = m_.loops_[p].next;
-  m_.loops_[p].next = rec(l).next;
+  loop_rec(r).next = kInvalidIndex;
 }
 
 void ModelEditor::assign_face(LoopId l, FaceId f) {
-  const EdgeUseId first = m_.loop_first(l);
-  if (!first.is_valid()) return;
-  EdgeUseId u = first;
+  const std::uint32_t first = loop_rec(record_of(l)).first;
+  if (first & kTagBit) return;
+  std::uint32_t u = first;
   do {
-    rec(u).face = f.value;
-    u = m_.loop_next(u);
+    UseRec& r = m_.uses_[u];
+    r.face_dir = f.value | (r.face_dir & kTagBit);
+    u = r.next;
   } while (u != first);
 }
 

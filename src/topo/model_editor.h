@@ -1,5 +1,13 @@
 // ModelEditor: the one place that writes Model records. Operators and the bulk
 // builder use it; it does no checking of its own (callers check first).
+//
+// Two ways to give faces loops:
+//  - in bulk (build_mesh, restore): add_loop() / add_point_loop();
+//  - in an operator: the loop calls below open the face they touch, which moves
+//    its loops into Loop records so that loops can come and go. When the last
+//    editor goes out of scope every opened face that is left with one loop of
+//    edges keeps that loop in its own record again.
+// Radial cycles are kept closed with their tails by every call that edits them.
 #pragma once
 
 #include "cellforge/topo/model.h"
@@ -8,7 +16,10 @@ namespace cellforge {
 
 class ModelEditor {
  public:
-  explicit ModelEditor(Model& m) : m_(m) {}
+  explicit ModelEditor(Model& m) : m_(m) { ++m_.edit_depth_; }
+  ~ModelEditor();
+  ModelEditor(const ModelEditor&) = delete;
+  ModelEditor& operator=(const ModelEditor&) = delete;
 
   using VertexRec = Model::VertexRec;
   using EdgeRec = Model::EdgeRec;
@@ -22,14 +33,16 @@ class ModelEditor {
   VertexRec& rec(VertexId v) { return m_.vertices_[v.value]; }
   EdgeRec& rec(EdgeId e) { return m_.edges_[e.value]; }
   UseRec& rec(EdgeUseId u) { return m_.uses_[u.value]; }
-  LoopRec& rec(LoopId l) { return m_.loops_[l.value]; }
   FaceRec& rec(FaceId f) { return m_.faces_[f.value]; }
 
   // ---- creation (records come back initialised, not yet linked)
   GroupId new_group(std::string name);
   VertexId new_vertex(GroupId g, Vec3 p);
   EdgeId new_edge(VertexId a, VertexId b);               // links both ends into the vertex cycles
-  EdgeUseId new_use(EdgeId e, bool reversed, FaceId f);  // not yet in loop or radial cycle
+  // Not yet in a loop; alone in a radial cycle of its own that names e (so
+  // edge_of works) until radial_insert puts it into e's cycle.
+  EdgeUseId new_use(EdgeId e, bool reversed, FaceId f);
+  // A Loop record not yet in any face, for append_loop (operators only).
   LoopId new_point_loop(VertexId v);
   LoopId new_loop(EdgeUseId first);
   FaceId new_face(std::uint32_t sides);
@@ -40,7 +53,7 @@ class ModelEditor {
   void free_vertex(VertexId v);
   void free_edge(EdgeId e);  // unlinks both ends from the vertex cycles first
   void free_use(EdgeUseId u);
-  void free_loop(LoopId l);
+  void free_loop(LoopId l);  // its uses are dead or moved; clears a point loop's mark
   void free_face(FaceId f);
   void free_volume(VolumeId c);
   void free_group(GroupId g);
@@ -54,11 +67,25 @@ class ModelEditor {
   // ---- radial cycles
   // Inserts u into its edge's radial cycle at its angular place.
   void radial_insert(EdgeUseId u);
+  // Takes u out of its edge's cycle; u is left alone, still naming the edge.
   void radial_remove(EdgeUseId u);
   // Sorts the whole radial cycle of e by angle (after bulk changes).
   void radial_sort(EdgeId e);
+  // Makes `uses` (in this order) the radial cycle of e.
+  void set_radial_cycle(EdgeId e, const std::vector<EdgeUseId>& uses);
+  // Moves a use that is alone (after radial_remove) to edge e, optionally
+  // flipping its direction; radial_insert then puts it into e's cycle.
+  void set_use_edge(EdgeUseId u, EdgeId e, bool flip = false);
+  void set_reversed(EdgeUseId u, bool reversed);
 
-  // ---- loops and faces
+  // ---- loops in bulk (faces never opened)
+  // Gives f the loop that starts at `first` (its uses already linked in a cycle).
+  LoopId add_loop(FaceId f, EdgeUseId first);
+  LoopId add_point_loop(FaceId f, VertexId v);
+
+  // ---- loops and faces, in operators
+  // Opens f for editing (see above); opening twice is harmless.
+  void open(FaceId f);
   // Makes l start at use u (clearing a point loop's mark on its vertex).
   void set_loop_first(LoopId l, EdgeUseId u);
   // Makes l the point loop of v (v must have no edges).
@@ -68,6 +95,9 @@ class ModelEditor {
   void append_loop(FaceId f, LoopId l);
   // Removes l from its face's loop list (l must not be the only loop).
   void remove_loop(FaceId f, LoopId l);
+  // Takes f's loops away from it (f is about to die) and returns its outer loop
+  // as a Loop record, ready for append_loop to another face.
+  LoopId take_outer_loop(FaceId f);
   // Sets the face of every use of loop l.
   void assign_face(LoopId l, FaceId f);
   void set_sides(FaceId f, VolumeId front, VolumeId back);
@@ -77,6 +107,16 @@ class ModelEditor {
  private:
   template <class Rec>
   std::uint32_t take_slot(std::vector<Rec>& recs, int kind, std::uint32_t Rec::*link);
+  bool is_open(FaceId f) const;
+  // The Loop record behind l (opening its face first).
+  std::uint32_t record_of(LoopId l);
+  LoopRec& loop_rec(std::uint32_t r) { return m_.loops_[r]; }
+  std::uint32_t new_record(std::uint32_t first, std::uint32_t next);
+  // Writes a face's first field, keeping the count of listed faces.
+  void set_face_first(FaceId f, std::uint32_t first);
+  // Moves f's single loop into a Loop record.
+  void list_loops(FaceId f);
+  void close(FaceId f);
   Model& m_;
 };
 

@@ -393,7 +393,7 @@ Result<EdgeId> split_edge(Model& m, EdgeId e, const std::vector<EdgeUseId>& movi
   const EdgeId e2 = ed.new_edge(m.start_of(e), m.end_of(e));
   for (EdgeUseId u : moving) {
     ed.radial_remove(u);
-    ed.rec(u).edge_dir = (e2.value << 1) | (ed.rec(u).edge_dir & 1u);
+    ed.set_use_edge(u, e2);
     ed.radial_insert(u);
   }
   return e2;
@@ -419,7 +419,7 @@ Status can_merge_edges(const Model& m, EdgeId keep, EdgeId dying) {
     ModelEditor ed(trial);
     for (EdgeUseId u : more) {
       ed.radial_remove(u);
-      ed.rec(u).edge_dir = (keep.value << 1) | ((ed.rec(u).edge_dir & 1u) ^ 1u);
+      ed.set_use_edge(u, keep, /*flip=*/true);
       ed.radial_insert(u);
     }
     if (const EdgeUseId bad = ops::inconsistent_wedge(trial, ops::radial_uses(trial, keep));
@@ -448,8 +448,7 @@ Status merge_edges(Model& m, EdgeId keep, EdgeId dying) {
   const bool flipped = m.start_of(keep) != m.start_of(dying);
   for (EdgeUseId u : ops::radial_uses(m, dying)) {
     ed.radial_remove(u);
-    const std::uint32_t reversed = (ed.rec(u).edge_dir & 1u) ^ (flipped ? 1u : 0u);
-    ed.rec(u).edge_dir = (keep.value << 1) | reversed;
+    ed.set_use_edge(u, keep, flipped);
     ed.radial_insert(u);
   }
   ed.free_edge(dying);

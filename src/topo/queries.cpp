@@ -21,15 +21,15 @@ void for_each_end(const Model& m, VertexId v, Fn fn) {
   } while (end != first);
 }
 
+// The radial cycle of e, from its first use to its tail.
 template <class Fn>
 void for_each_radial(const Model& m, EdgeId e, Fn fn) {
   const EdgeUseId first = m.first_use(e);
   if (!first.is_valid()) return;
-  EdgeUseId u = first;
-  do {
+  for (EdgeUseId u = first;; u = m.radial_next(u)) {
     fn(u);
-    u = m.radial_next(u);
-  } while (u != first);
+    if (m.is_radial_tail(u)) break;
+  }
 }
 
 // Visits every loop of f; for each, its uses (or, for a point loop, calls
@@ -119,7 +119,7 @@ void faces_of(const Model& m, FaceId f, std::vector<FaceId>& out) {
       m, f,
       [&](EdgeUseId u) {
         for (EdgeUseId w = m.radial_next(u); w != u; w = m.radial_next(w)) {
-          if (m.face_of(w) != f) out.push_back(m.face_of(w));
+          if (const FaceId g = m.face_of(w); g != f) out.push_back(g);
         }
       },
       [](VertexId) {});

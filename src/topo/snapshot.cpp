@@ -200,9 +200,8 @@ Result<Model> restore(const Snapshot& r) {
   std::size_t next_use = 0;
   for (std::size_t i = 0; i < nl; ++i) {
     const auto& l = r.loops[i];
-    LoopId loop;
     if (l.point_vertex != kNone) {
-      loop = ed.new_point_loop(vertices[l.point_vertex]);
+      ed.add_point_loop(faces[l.face], vertices[l.point_vertex]);
     } else {
       EdgeUseId first, prev;
       for (; next_use < r.uses.size() && r.uses[next_use].loop == i; ++next_use) {
@@ -217,9 +216,8 @@ Result<Model> restore(const Snapshot& r) {
         prev = u;
       }
       ed.set_next(prev, first);
-      loop = ed.new_loop(first);
+      ed.add_loop(faces[l.face], first);
     }
-    ed.append_loop(faces[l.face], loop);
   }
   // Radial cycles in stored order.
   std::vector<std::uint32_t> by_edge(r.uses.size());
@@ -228,16 +226,12 @@ Result<Model> restore(const Snapshot& r) {
     const auto &x = r.uses[a], &y = r.uses[b];
     return x.edge != y.edge ? x.edge < y.edge : x.radial_ord < y.radial_ord;
   });
+  std::vector<EdgeUseId> cycle;
   for (std::size_t i = 0; i < by_edge.size();) {
-    std::size_t j = i;
     const std::uint32_t e = r.uses[by_edge[i]].edge;
-    while (j < by_edge.size() && r.uses[by_edge[j]].edge == e) ++j;
-    for (std::size_t k = i; k < j; ++k) {
-      const std::size_t next = k + 1 < j ? k + 1 : i;
-      ed.rec(uses[by_edge[k]]).radial_next = uses[by_edge[next]].value;
-    }
-    ed.rec(edges[e]).first_use = uses[by_edge[i]].value;
-    i = j;
+    cycle.clear();
+    for (; i < by_edge.size() && r.uses[by_edge[i]].edge == e; ++i) cycle.push_back(uses[by_edge[i]]);
+    ed.set_radial_cycle(edges[e], cycle);
   }
 
   if (auto violations = validate(m); !violations.empty()) {

@@ -33,11 +33,36 @@ void records(const Model& m, Violations& out) {
       fail(e.str() + " starts its radial cycle at " + u.str() + ", not one of its uses");
     }
   }
+  // A use does not name its edge: walking its radial cycle must reach the tail,
+  // which names a live edge. Checked first, as edge_of(use) takes that walk.
+  std::vector<char> ends(m.use_slots(), 0);
+  std::vector<EdgeUseId> path;
   for (EdgeUseId u : m.edge_uses()) {
-    if (!m.is_live(m.edge_of(u))) fail(u.str() + " uses dead edge " + m.edge_of(u).str());
+    path.clear();
+    for (EdgeUseId x = u; !ends[x.value];) {
+      path.push_back(x);
+      if (m.is_radial_tail(x)) {
+        if (!m.is_live(m.edge_of(x))) {
+          fail(x.str() + " ends the radial cycle of a dead edge");
+          return;
+        }
+        break;
+      }
+      x = m.radial_next(x);
+      if (!m.is_live(x)) {
+        fail(path.back().str() + " links its radial cycle to a dead use");
+        return;
+      }
+      if (path.size() > m.num_edge_uses()) {
+        fail("the radial cycle through " + u.str() + " has no last use");
+        return;
+      }
+    }
+    for (EdgeUseId x : path) ends[x.value] = 1;
+  }
+  for (EdgeUseId u : m.edge_uses()) {
     if (!m.is_live(m.face_of(u))) fail(u.str() + " names dead face " + m.face_of(u).str());
     if (!m.is_live(m.loop_next(u))) fail(u.str() + " links its loop to a dead use");
-    if (!m.is_live(m.radial_next(u))) fail(u.str() + " links its radial cycle to a dead use");
   }
   for (LoopId l : m.loops()) {
     if (m.is_point_loop(l)) {

@@ -215,10 +215,15 @@ TEST(Cellforge, StorageMatchesTheDocumentedRecordSizes) {
   const Model m = build(testing::unit_cube());
   const StorageStats s = cellforge_storage(m);
   EXPECT_EQ(s.bytes, m.topology_bytes());
-  EXPECT_GE(s.bytes, 8u * 8 + 12 * 20 + 24 * 16 + 6 * 8 + 6 * 8);
+  // Vertices 8 B, edges 20, uses 12, faces 8; no Loop records (every face is
+  // one loop); one side row (12), one volume (8), one group (4).
+  EXPECT_EQ(s.bytes, 8u * 8 + 12 * 20 + 24 * 12 + 6 * 8 + 12 + 8 + 4);
   EXPECT_EQ(s.references, s.bytes / 4);
-  // 56 records of the five kinds, one side row, one volume, one group.
-  EXPECT_EQ(s.records, 8u + 12 + 24 + 6 + 6 + 1 + 1 + 1);
+  EXPECT_EQ(s.records, 8u + 12 + 24 + 6 + 1 + 1 + 1);
+  // A face with a hole lists its two loops in Loop records.
+  const Model holed = build(testing::cube_with_through_hole());
+  EXPECT_EQ(holed.num_loop_records(), 4u);
+  EXPECT_EQ(holed.num_loops(), 12u);
 }
 
 std::string refusal(const MeshInput& in) {

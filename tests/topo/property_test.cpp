@@ -34,9 +34,17 @@ class Handles {
       if (*h == from) *h = to;
     }
   }
+  // An entity that a step kills and its inverse re-creates: until then its
+  // handles hold a token no live id can equal (the killed id may be reused).
+  IdT retire(IdT id) {
+    const IdT token(next_token_++);
+    renamed(id, token);
+    return token;
+  }
 
  private:
   std::vector<std::shared_ptr<IdT>> all_;
+  std::uint32_t next_token_ = 0xF0000000u;
 };
 
 struct Remap {
@@ -59,7 +67,7 @@ class RandomEdits {
   }
   template <class Ids>
   static auto all(const Ids& ids) {
-    std::vector<decltype(*ids.begin())> out;
+    std::vector<std::decay_t<decltype(*ids.begin())>> out;
     for (auto id : ids) out.push_back(id);
     return out;
   }
@@ -151,10 +159,11 @@ class RandomEdits {
     }
     auto l1 = map_.loops.hold(rest);
     auto l2 = map_.loops.hold(*ring);
-    push("mekr", [this, e, a, b, l1, l2] {
+    const EdgeId gone = map_.edges.retire(e);  // kemr killed e
+    push("mekr", [this, gone, a, b, l1, l2] {
       auto r = mekr(m_, *l1, a, *l2, b);
       if (!r) return Status(r.error());
-      map_.edges.renamed(e, *r);
+      map_.edges.renamed(gone, *r);
       return Status::Ok();
     });
     return "kemr";
@@ -170,12 +179,13 @@ class RandomEdits {
     auto r = mekr(m_, l1, a, l2, b);
     if (!r) return "";
     auto e = map_.edges.hold(*r);
-    push("kemr", [this, e, a, l2] {
+    const LoopId gone = map_.loops.retire(l2);  // mekr killed l2
+    push("kemr", [this, e, a, gone] {
       EdgeUseId u = m_.first_use(*e);
       if (m_.use_start(u) != a) u = m_.radial_next(u);
       auto ring = kemr(m_, u);
       if (!ring) return Status(ring.error());
-      map_.loops.renamed(l2, *ring);
+      map_.loops.renamed(gone, *ring);
       return Status::Ok();
     });
     return "mekr";
@@ -187,24 +197,34 @@ class RandomEdits {
       for (LoopId l = m_.next_loop(m_.outer_loop(keep)); l.is_valid(); l = m_.next_loop(l)) {
         auto g = mfkrh(m_, l);
         if (!g) return "";
+        // The ring is now the new face's outer loop, named after that face.
+        map_.loops.renamed(l, m_.outer_loop(*g));
         auto made = map_.faces.hold(*g);
         auto kept = map_.faces.hold(keep);
         push("kfmrh", [this, kept, made] {
+          const LoopId was = m_.outer_loop(*made);
           auto r = kfmrh(m_, *kept, *made);
-          return r ? Status::Ok() : Status(r.error());
+          if (!r) return Status(r.error());
+          map_.loops.renamed(was, *r);
+          return Status::Ok();
         });
         return "mfkrh";
       }
       return "";
     }
     const FaceId dying = pick(all(m_.faces()));
+    const LoopId was = keep == dying ? LoopId() : m_.outer_loop(dying);
     auto ring = kfmrh(m_, keep, dying);
     if (!ring) return "";
+    map_.loops.renamed(was, *ring);
     auto l = map_.loops.hold(*ring);
-    push("mfkrh", [this, dying, l] {
-      auto f = mfkrh(m_, *l);
+    const FaceId gone = map_.faces.retire(dying);
+    push("mfkrh", [this, gone, l] {
+      const LoopId ring_id = *l;
+      auto f = mfkrh(m_, ring_id);
       if (!f) return Status(f.error());
-      map_.faces.renamed(dying, *f);
+      map_.faces.renamed(gone, *f);
+      map_.loops.renamed(ring_id, m_.outer_loop(*f));
       return Status::Ok();
     });
     return "kfmrh";
@@ -294,7 +314,7 @@ class RandomEdits {
 };
 
 TEST(Property, RandomOperatorSequencesStayValidAndUndoToEmpty) {
-  constexpr int kSeeds = 100, kSteps = 100;
+  constexpr int kSeeds = 300, kSteps = 100;
   long applied = 0;
   for (std::uint32_t seed = 1; seed <= kSeeds; ++seed) {
     RandomEdits run(seed);

@@ -5,11 +5,11 @@
 //   Vertex   first edge end of its vertex cycle, group            (8 B)
 //   Edge     per end: vertex, next end around that vertex;
 //            first use of its radial cycle                         (20 B)
-//   EdgeUse  edge + direction bit, face, next use in its loop,
-//            next use around its edge (radial cycle)               (16 B)
-//   Loop     first use (or, for a point loop, its vertex),
-//            next loop of the same face (the last one names the face) (8 B)
-//   Face     first loop (the outer one), interned side record      (8 B)
+//   EdgeUse  face + direction bit, next use in its loop,
+//            next use around its edge (radial cycle)               (12 B)
+//   Face     first use of its loop, interned side record           (8 B)
+//   Loop     only for faces with holes or a point loop: first use
+//            (or the point's vertex), next loop of the face         (8 B)
 //   Sides    front volume, back volume, group (shared by all faces with
 //            the same three values; a closed solid's faces share one)
 //
@@ -18,6 +18,16 @@
 //             vertex (an "edge end" is 2*edge + end, end 0 = the edge's start);
 //   edge -> its uses: each edge use links to the next use around the same edge,
 //           in angular order (right-handed about the edge's start->end axis).
+//
+// A use does not name its edge: the last use of every radial cycle names the edge
+// instead of a next use (the cycle's "tail"; the edge names the first use). An
+// edge of a closed manifold has two uses, so edge_of(use) is one or two loads.
+//
+// A face with one loop of edges keeps that loop in its own record (the face names
+// the loop's first use); only a face with holes, or whose loop is a single vertex,
+// lists its loops in Loop records. Loop ids name loops either way: LoopId(f)
+// (f < kInnerLoopBit) is face f's outer loop, LoopId(kInnerLoopBit | r) the inner
+// loop kept in Loop record r.
 //
 // Orientation: a face's loops are oriented so that, seen from the front side (the
 // side its normal points to), the outer loop runs counterclockwise and inner loops
@@ -119,7 +129,10 @@ class Model {
   std::size_t num_vertices() const { return live_[kVertex]; }
   std::size_t num_edges() const { return live_[kEdge]; }
   std::size_t num_edge_uses() const { return live_[kUse]; }
-  std::size_t num_loops() const { return live_[kLoop]; }
+  // Every face has one outer loop; Loop records beyond a listed face's first are
+  // inner loops.
+  std::size_t num_loops() const { return live_[kFace] + live_[kLoop] - listed_faces_; }
+  std::size_t num_loop_records() const { return live_[kLoop]; }
   std::size_t num_faces() const { return live_[kFace]; }
   std::size_t num_volumes() const { return live_[kVolume]; }
   std::size_t num_groups() const { return live_[kGroup]; }
@@ -133,9 +146,9 @@ class Model {
     return e.value < edges_.size() && edges_[e.value].vertex[0] != kDead;
   }
   bool is_live(EdgeUseId u) const {
-    return u.value < uses_.size() && uses_[u.value].edge_dir != kDead;
+    return u.value < uses_.size() && uses_[u.value].face_dir != kDead;
   }
-  bool is_live(LoopId l) const { return l.value < loops_.size() && loops_[l.value].first != kDead; }
+  bool is_live(LoopId l) const;
   bool is_live(FaceId f) const { return f.value < faces_.size() && faces_[f.value].sides != kDead; }
   bool is_live(VolumeId c) const {
     return c.value < volumes_.size() && volumes_[c.value].group != kDead;
@@ -146,7 +159,7 @@ class Model {
   LiveIds<VertexId> vertices() const;
   LiveIds<EdgeId> edges() const;
   LiveIds<EdgeUseId> edge_uses() const;
-  LiveIds<LoopId> loops() const;
+  std::vector<LoopId> loops() const;  // outer loops by face, then inner loops
   LiveIds<FaceId> faces() const;
   LiveIds<VolumeId> volumes() const;
   LiveIds<GroupId> groups() const;
@@ -188,17 +201,18 @@ class Model {
   std::size_t use_count(EdgeId e) const;  // number of uses in its radial cycle
 
   // ---- edge uses
+  // Walks u's radial cycle to its tail: one step at most on a manifold edge.
   EdgeId edge_of(EdgeUseId u) const {
     assert(is_live(u));
-    return EdgeId(uses_[u.value].edge_dir >> 1);
+    return EdgeId(radial_tail_code(u.value));
   }
   // True when u runs from the edge's end vertex to its start vertex.
-  bool is_reversed(EdgeUseId u) const { return (uses_[u.value].edge_dir & 1u) != 0; }
+  bool is_reversed(EdgeUseId u) const { return (uses_[u.value].face_dir & kTagBit) != 0; }
   VertexId use_start(EdgeUseId u) const { return vertex_of(edge_of(u), is_reversed(u) ? 1 : 0); }
   VertexId use_end(EdgeUseId u) const { return vertex_of(edge_of(u), is_reversed(u) ? 0 : 1); }
   FaceId face_of(EdgeUseId u) const {
     assert(is_live(u));
-    return FaceId(uses_[u.value].face);
+    return FaceId(uses_[u.value].face_dir & ~kTagBit);
   }
   EdgeUseId loop_next(EdgeUseId u) const {
     assert(is_live(u));
@@ -207,30 +221,52 @@ class Model {
   EdgeUseId loop_prev(EdgeUseId u) const;  // walks the loop: O(loop length)
   EdgeUseId radial_next(EdgeUseId u) const {
     assert(is_live(u));
-    return EdgeUseId(uses_[u.value].radial_next);
+    const std::uint32_t n = uses_[u.value].radial;
+    return (n & kTagBit) ? EdgeUseId(edges_[n & ~kTagBit].first_use) : EdgeUseId(n);
   }
+  // True when u is the last use of its radial cycle (radial_next(u) is first_use).
+  bool is_radial_tail(EdgeUseId u) const { return (uses_[u.value].radial & kTagBit) != 0; }
   LoopId loop_of(EdgeUseId u) const;  // walks the face's loops: O(face size)
 
   // ---- loops
+  // LoopId(f) is face f's outer loop; LoopId(kInnerLoopBit | r) an inner loop.
+  static constexpr std::uint32_t kInnerLoopBit = 0x40000000u;
   // First use of l; invalid when l is a point loop (a loop that is one vertex).
   EdgeUseId loop_first(LoopId l) const {
-    const std::uint32_t f = loops_[l.value].first;
+    const std::uint32_t f = loop_start(l);
     return (f & kTagBit) ? EdgeUseId() : EdgeUseId(f);
   }
-  bool is_point_loop(LoopId l) const { return (loops_[l.value].first & kTagBit) != 0; }
-  VertexId point_loop_vertex(LoopId l) const { return VertexId(loops_[l.value].first & ~kTagBit); }
+  bool is_point_loop(LoopId l) const {
+    const std::uint32_t f = loop_start(l);
+    return f != kInvalidIndex && (f & kTagBit) != 0;
+  }
+  VertexId point_loop_vertex(LoopId l) const { return VertexId(loop_start(l) & ~kTagBit); }
   // Next loop of the same face; invalid after the last one.
   LoopId next_loop(LoopId l) const {
-    const std::uint32_t n = loops_[l.value].next;
-    return (n & kTagBit) ? LoopId() : LoopId(n);
+    std::uint32_t r;
+    if (l.value & kInnerLoopBit) {
+      r = l.value & ~kInnerLoopBit;
+    } else {
+      r = faces_[l.value].first;
+      if (!(r & kTagBit) || r == kInvalidIndex) return LoopId();  // the face's only loop
+      r &= ~kTagBit;
+    }
+    const std::uint32_t n = loops_[r].next;
+    return (n & kTagBit) ? LoopId() : LoopId(n | kInnerLoopBit);
   }
-  FaceId face_of(LoopId l) const;           // walks the face's loop list: O(loops of the face)
+  // O(1) for an outer loop; walks the face's loop list for an inner one.
+  FaceId face_of(LoopId l) const {
+    if (!(l.value & kInnerLoopBit)) return FaceId(l.value);
+    std::uint32_t n = loops_[l.value & ~kInnerLoopBit].next;
+    while (!(n & kTagBit)) n = loops_[n].next;
+    return n == kInvalidIndex ? FaceId() : FaceId(n & ~kTagBit);
+  }
   std::size_t loop_length(LoopId l) const;  // number of uses (0 for a point loop)
 
   // ---- faces
   LoopId outer_loop(FaceId f) const {
     assert(is_live(f));
-    return LoopId(faces_[f.value].first_loop);
+    return faces_[f.value].first == kInvalidIndex ? LoopId() : LoopId(f.value);
   }
   std::size_t inner_loop_count(FaceId f) const;
   VolumeId front_volume(FaceId f) const { return VolumeId(sides_[faces_[f.value].sides].front); }
@@ -270,13 +306,16 @@ class Model {
   std::size_t topology_bytes() const;
   std::size_t geometry_bytes() const { return positions_.size() * sizeof(Vec3); }
 
-  // Edge ids stay below 2^30 so that an encoded edge end never sets the tag bit.
+  // Edge ids stay below 2^30 so that an encoded edge end never sets the tag bit;
+  // face ids and Loop records below 2^30 so that a loop id fits beside the tag
+  // (and a face id beside a use's direction bit).
   static constexpr std::uint32_t kMaxEdges = 1u << 30;
+  static constexpr std::uint32_t kMaxFaces = 1u << 30;
 
   // ---- raw record sizes, for the storage comparison
   static constexpr std::size_t kVertexRecordBytes = 8;
   static constexpr std::size_t kEdgeRecordBytes = 20;
-  static constexpr std::size_t kUseRecordBytes = 16;
+  static constexpr std::size_t kUseRecordBytes = 12;
   static constexpr std::size_t kLoopRecordBytes = 8;
   static constexpr std::size_t kFaceRecordBytes = 8;
 
@@ -284,7 +323,7 @@ class Model {
   std::uint32_t vertex_slots() const { return static_cast<std::uint32_t>(vertices_.size()); }
   std::uint32_t edge_slots() const { return static_cast<std::uint32_t>(edges_.size()); }
   std::uint32_t use_slots() const { return static_cast<std::uint32_t>(uses_.size()); }
-  std::uint32_t loop_slots() const { return static_cast<std::uint32_t>(loops_.size()); }
+  std::uint32_t loop_slots() const { return static_cast<std::uint32_t>(loops_.size()); }  // records
   std::uint32_t face_slots() const { return static_cast<std::uint32_t>(faces_.size()); }
 
  private:
@@ -312,18 +351,19 @@ class Model {
     std::uint32_t first_use;
   };
   struct UseRec {
-    std::uint32_t edge_dir;  // 2*edge + reversed; kDead when free (next links the free list)
-    std::uint32_t face;
-    std::uint32_t next;
-    std::uint32_t radial_next;
+    std::uint32_t face_dir;  // face | kTagBit when reversed; kDead when free (next links the list)
+    std::uint32_t next;      // next use of its loop
+    std::uint32_t radial;    // next use around its edge, or kTagBit|edge for the cycle's last
   };
   struct LoopRec {
     std::uint32_t first;  // use id, or kTagBit|vertex for a point loop; kDead when free
-    std::uint32_t next;   // next loop id, or kTagBit|face after the last loop
+    std::uint32_t next;   // next Loop record of the face, or kTagBit|face after the last
   };
   struct FaceRec {
-    std::uint32_t first_loop;
-    std::uint32_t sides;  // index into sides_; kDead when free (first_loop links the list)
+    // The outer loop's first use when the face has that one loop of edges;
+    // kTagBit|Loop record of its first loop otherwise; kInvalidIndex while empty.
+    std::uint32_t first;
+    std::uint32_t sides;  // index into sides_; kDead when free (first links the list)
   };
   struct SidesRec {
     std::uint32_t front, back, group;
@@ -351,6 +391,28 @@ class Model {
   std::vector<VolumeRec> volumes_;
   std::vector<GroupRec> groups_;
   std::vector<Surface> surfaces_;
+  std::size_t listed_faces_ = 0;       // live faces whose loops are in Loop records
+  std::vector<std::uint32_t> open_faces_;  // faces an operator is editing (ModelEditor)
+  int edit_depth_ = 0;
+
+  // The raw start of loop l: a use id, kTagBit|vertex (point loop), or kInvalidIndex.
+  std::uint32_t loop_start(LoopId l) const {
+    if (l.value & kInnerLoopBit) return loops_[l.value & ~kInnerLoopBit].first;
+    const std::uint32_t f = faces_[l.value].first;
+    if (!(f & kTagBit) || f == kInvalidIndex) return f;
+    return loops_[f & ~kTagBit].first;
+  }
+  // The edge named by the tail of u's radial cycle. The second step is taken
+  // without a branch on whether u is the tail (if it is, the step re-reads u):
+  // two uses per edge need no branch the processor could mispredict.
+  std::uint32_t radial_tail_code(std::uint32_t u) const {
+    std::uint32_t c = uses_[u].radial;
+    const bool at_tail = (c & kTagBit) != 0;
+    const std::uint32_t n = uses_[at_tail ? u : c].radial;
+    c = at_tail ? c : n;
+    while (!(c & kTagBit)) [[unlikely]] c = uses_[c].radial;
+    return c & ~kTagBit;
+  }
   std::vector<std::uint32_t> face_surface_;  // per face slot, kInvalidIndex = plane
   std::uint32_t free_[kKinds] = {kInvalidIndex, kInvalidIndex, kInvalidIndex, kInvalidIndex,
                                  kInvalidIndex, kInvalidIndex, kInvalidIndex};

@@ -93,10 +93,12 @@ Status can_mekr(const Model& m, LoopId l1, VertexId v1, LoopId l2, VertexId v2);
 Result<EdgeId> mekr(Model& m, LoopId l1, VertexId v1, LoopId l2, VertexId v2);
 
 // kfmrh: kills face `dying` (one loop, no inner loops, same sides as `keep`); its
-// loop becomes an inner loop of `keep` (a ring and a through-hole).
+// loop becomes an inner loop of `keep` (a ring and a through-hole). Returns that
+// loop's new id (an outer loop is named after its face, an inner one is not).
 Status can_kfmrh(const Model& m, FaceId keep, FaceId dying);
 Result<LoopId> kfmrh(Model& m, FaceId keep, FaceId dying);
-// mfkrh: the inner loop l of its face becomes the outer loop of a new face.
+// mfkrh: the inner loop l of its face becomes the outer loop of a new face g,
+// and so is named outer_loop(g) from then on.
 Status can_mfkrh(const Model& m, LoopId l);
 Result<FaceId> mfkrh(Model& m, LoopId l);
 

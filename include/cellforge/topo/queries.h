@@ -1,6 +1,7 @@
 // The 9 adjacency queries of seed 000 (V->V, V->E, V->F, E->V, E->E, E->F, F->V,
-// F->E, F->F). Each walks only the local cycles of its argument and lists every
-// element once. Orders (deterministic, first occurrence wins):
+// F->E, F->F). Each walks only the local cycles of its argument (on a model no
+// operator is editing) and lists every element once. Orders (deterministic,
+// first occurrence wins):
 //   edges_of(v)      the vertex cycle from first_end(v)
 //   vertices_of(v)   the other ends of edges_of(v), in that order
 //   faces_of(v)      for each edge of v in cycle order, the faces of its uses that
