@@ -4,7 +4,10 @@
 //   build/bin/bench_structures [--svg docs/structure-comparison.svg] [--big N]
 // Prints markdown tables; writes a bar chart as SVG. Query times: every query from
 // every element of a model (a fixed random sample of 100,000 for the big mesh),
-// repeated for at least 10 ms, best of 9 trials; reported per answer element.
+// repeated for at least 10 ms per trial; reported per answer element. The trials
+// of the three structures alternate (cellforge, radial edge, winged edge, then
+// again), 15 rounds, and each structure keeps its best: a slow spell of the
+// shared machine then hits every structure alike instead of one of them.
 // Every structure's answers are deduplicated the same way (compare/dedupe.h is a
 // copy of the method in topo/queries.cpp).
 #include <algorithm>
@@ -83,40 +86,46 @@ Sample sample_of(const Model& m, std::size_t limit) {
   return s;
 }
 
-// Nanoseconds per answer element of one query over the sample. The clock is read
-// after batches of at least ~20,000 queries, so that reading it costs nothing.
+// One trial: nanoseconds per answer element of one query over the sample. The
+// clock is read after batches of at least ~20,000 queries, so that reading it
+// costs nothing.
 template <class Out, class Q, class In>
-double time_query(const Q& q, const std::vector<In>& from) {
+double trial(const Q& q, const std::vector<In>& from) {
   using Clock = std::chrono::steady_clock;
   std::vector<Out> out;
   const std::size_t passes = std::max<std::size_t>(1, 20000 / from.size());
-  double best = INFINITY;
-  for (int trial = 0; trial < 9; ++trial) {
-    std::size_t elements = 0;
-    const auto start = Clock::now();
-    std::chrono::duration<double> elapsed{};
-    do {
-      for (std::size_t pass = 0; pass < passes; ++pass) {
-        for (In x : from) {
-          q.run(x, out);
-          elements += out.size();
-        }
+  std::size_t elements = 0;
+  const auto start = Clock::now();
+  std::chrono::duration<double> elapsed{};
+  do {
+    for (std::size_t pass = 0; pass < passes; ++pass) {
+      for (In x : from) {
+        q.run(x, out);
+        elements += out.size();
       }
-      elapsed = Clock::now() - start;
-    } while (elapsed.count() < 0.01);
-    best = std::min(best, elapsed.count() * 1e9 / static_cast<double>(elements));
-  }
-  return best;
+    }
+    elapsed = Clock::now() - start;
+  } while (elapsed.count() < 0.01);
+  return elapsed.count() * 1e9 / static_cast<double>(elements);
 }
 
+// One trial of query number `query` (kQueryNames order).
 template <class Q>
-std::vector<double> time_all(const Q& q, const Sample& s) {
-  return {time_query<VertexId>(q, s.vertices), time_query<EdgeId>(q, s.vertices),
-          time_query<FaceId>(q, s.vertices),   time_query<VertexId>(q, s.edges),
-          time_query<EdgeId>(q, s.edges),      time_query<FaceId>(q, s.edges),
-          time_query<VertexId>(q, s.faces),    time_query<EdgeId>(q, s.faces),
-          time_query<FaceId>(q, s.faces)};
+double trial(const Q& q, const Sample& s, int query) {
+  switch (query) {
+    case 0: return trial<VertexId>(q, s.vertices);
+    case 1: return trial<EdgeId>(q, s.vertices);
+    case 2: return trial<FaceId>(q, s.vertices);
+    case 3: return trial<VertexId>(q, s.edges);
+    case 4: return trial<EdgeId>(q, s.edges);
+    case 5: return trial<FaceId>(q, s.edges);
+    case 6: return trial<VertexId>(q, s.faces);
+    case 7: return trial<EdgeId>(q, s.faces);
+    default: return trial<FaceId>(q, s.faces);
+  }
 }
+
+constexpr int kRounds = 15;
 
 struct Row {
   std::string model;
@@ -137,17 +146,27 @@ Row measure(const std::string& name, const MeshInput& input, std::size_t sample_
   row.faces = m.num_faces();
   const Sample sample = sample_of(m, sample_limit);
   row.storage[0] = cellforge_storage(m);
-  row.ns[0] = time_all(CellforgeQueries{m}, sample);
-  {
-    const RadialEdge r = RadialEdge::from_model(m);
-    row.storage[1] = r.storage();
-    row.ns[1] = time_all(MemberQueries<RadialEdge>{r}, sample);
-  }
-  if (auto w = WingedEdge::from_model(m); w.ok()) {
+  const RadialEdge r = RadialEdge::from_model(m);
+  row.storage[1] = r.storage();
+  auto w = WingedEdge::from_model(m);
+  if (w.ok()) {
     row.storage[2] = w->storage();
-    row.ns[2] = time_all(MemberQueries<WingedEdge>{*w}, sample);
   } else {
     row.refusal = w.error().message;
+  }
+  const int structures = w.ok() ? 3 : 2;
+  for (int s = 0; s < structures; ++s) row.ns[s].assign(9, INFINITY);
+  for (int q = 0; q < 9; ++q) {
+    for (int round = 0; round < kRounds; ++round) {
+      double& c = row.ns[0][q];
+      c = std::min(c, trial(CellforgeQueries{m}, sample, q));
+      double& re = row.ns[1][q];
+      re = std::min(re, trial(MemberQueries<RadialEdge>{r}, sample, q));
+      if (w.ok()) {
+        double& we = row.ns[2][q];
+        we = std::min(we, trial(MemberQueries<WingedEdge>{*w}, sample, q));
+      }
+    }
   }
   return row;
 }

@@ -3,10 +3,11 @@
 namespace cellforge::compare {
 
 StorageStats cellforge_storage(const Model& m) {
-  const std::size_t main_records =
-      m.vertex_slots() + m.edge_slots() + m.use_slots() + m.loop_slots() + m.face_slots();
+  const std::size_t main_records = m.vertex_slots() + m.vertex_group_runs() + m.edge_slots() +
+                                   m.use_slots() + m.loop_slots() + m.face_slots();
   const std::size_t main_bytes =
-      m.vertex_slots() * Model::kVertexRecordBytes + m.edge_slots() * Model::kEdgeRecordBytes +
+      m.vertex_slots() * Model::kVertexRecordBytes + m.vertex_group_runs() * 8 +
+      m.free_vertex_slots() * 4 + m.edge_slots() * Model::kEdgeRecordBytes +
       m.use_slots() * Model::kUseRecordBytes + m.loop_slots() * Model::kLoopRecordBytes +
       m.face_slots() * Model::kFaceRecordBytes;
   const std::size_t bytes = m.topology_bytes();

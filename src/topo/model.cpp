@@ -1,6 +1,9 @@
 // Model: read access to the cycle structure, iteration, sizes, attributes.
 #include "cellforge/topo/model.h"
 
+#include <algorithm>
+#include <iterator>
+
 namespace cellforge {
 
 namespace {
@@ -13,6 +16,14 @@ LiveIds<IdT> live_range(const Model& m, std::uint32_t slots) {
 }
 
 }  // namespace
+
+GroupId Model::group_of(VertexId v) const {
+  assert(is_live(v));
+  const auto after = std::upper_bound(
+      vertex_groups_.begin(), vertex_groups_.end(), v.value,
+      [](std::uint32_t x, const GroupRun& run) { return x < run.first_vertex; });
+  return GroupId(std::prev(after)->group);
+}
 
 bool Model::empty() const {
   for (std::size_t n : live_) {
@@ -149,7 +160,8 @@ std::size_t Model::topology_bytes() const {
   static_assert(sizeof(UseRec) == kUseRecordBytes);
   static_assert(sizeof(LoopRec) == kLoopRecordBytes);
   static_assert(sizeof(FaceRec) == kFaceRecordBytes);
-  return vertices_.size() * sizeof(VertexRec) + edges_.size() * sizeof(EdgeRec) +
+  return vertices_.size() * sizeof(VertexRec) + vertex_groups_.size() * sizeof(GroupRun) +
+         free_vertices_.size() * sizeof(std::uint32_t) + edges_.size() * sizeof(EdgeRec) +
          uses_.size() * sizeof(UseRec) + loops_.size() * sizeof(LoopRec) +
          faces_.size() * sizeof(FaceRec) + sides_.size() * sizeof(SidesRec) +
          volumes_.size() * sizeof(VolumeRec) + groups_.size() * sizeof(std::uint32_t);

@@ -2,7 +2,9 @@
 // cycles (vertex -> edge ends, edge -> uses) and of loops into faces.
 #include "topo/model_editor.h"
 
+#include <algorithm>
 #include <cassert>
+#include <iterator>
 
 namespace cellforge {
 
@@ -33,8 +35,17 @@ GroupId ModelEditor::new_group(std::string name) {
 }
 
 VertexId ModelEditor::new_vertex(GroupId g, Vec3 p) {
-  const std::uint32_t i = take_slot(m_.vertices_, Model::kVertex, &VertexRec::first_end);
-  m_.vertices_[i] = {kInvalidIndex, g.value};
+  ++m_.live_[Model::kVertex];
+  std::uint32_t i;
+  if (!m_.free_vertices_.empty()) {
+    i = m_.free_vertices_.back();
+    m_.free_vertices_.pop_back();
+  } else {
+    i = static_cast<std::uint32_t>(m_.vertices_.size());
+    m_.vertices_.emplace_back();
+  }
+  m_.vertices_[i] = {kInvalidIndex};
+  set_vertex_group(VertexId(i), g);
   if (m_.positions_.size() <= i) m_.positions_.resize(i + 1);
   m_.positions_[i] = p;
   return VertexId(i);
@@ -218,6 +229,35 @@ std::uint32_t ModelEditor::intern_sides(VolumeId front, VolumeId back, GroupId g
   return static_cast<std::uint32_t>(m_.sides_.size() - 1);
 }
 
+void ModelEditor::set_vertex_group(VertexId v, GroupId g) {
+  auto& runs = m_.vertex_groups_;
+  using Run = Model::GroupRun;
+  auto after = std::upper_bound(runs.begin(), runs.end(), v.value,
+                                [](std::uint32_t x, const Run& r) { return x < r.first_vertex; });
+  if (after != runs.begin() && std::prev(after)->group == g.value) return;  // in a run of g
+  // Split the run holding v (if any) around it: [.., v) old, [v] g, [v+1, ..) old.
+  const bool has_run = after != runs.begin();
+  const std::uint32_t old = has_run ? std::prev(after)->group : kInvalidIndex;
+  const std::uint32_t end = after == runs.end() ? kInvalidIndex : after->first_vertex;
+  std::size_t at = static_cast<std::size_t>(after - runs.begin());
+  if (has_run && std::prev(after)->first_vertex == v.value) {
+    std::prev(after)->group = g.value;
+    --at;
+  } else {
+    runs.insert(runs.begin() + static_cast<std::ptrdiff_t>(at), Run{v.value, g.value});
+  }
+  // The vertex after v goes back to the old group, unless v is the last of the
+  // ids so far (new vertices extend the run of the last one made).
+  if (has_run && v.value + 1 < end && v.value + 1 < m_.vertices_.size()) {
+    runs.insert(runs.begin() + static_cast<std::ptrdiff_t>(at) + 1, Run{v.value + 1, old});
+  }
+  // Merge with neighbours of the same group.
+  if (at + 1 < runs.size() && runs[at + 1].group == g.value) {
+    runs.erase(runs.begin() + static_cast<std::ptrdiff_t>(at) + 1);
+  }
+  if (at > 0 && runs[at - 1].group == g.value) runs.erase(runs.begin() + static_cast<std::ptrdiff_t>(at));
+}
+
 namespace {
 
 template <class Rec>
@@ -230,8 +270,8 @@ void push_free(std::vector<Rec>& recs, std::uint32_t& head, std::uint32_t i,
 }  // namespace
 
 void ModelEditor::free_vertex(VertexId v) {
-  m_.vertices_[v.value].group = kDead;
-  push_free(m_.vertices_, m_.free_[Model::kVertex], v.value, &VertexRec::first_end);
+  m_.vertices_[v.value].first_end = kDead;
+  m_.free_vertices_.push_back(v.value);
   --m_.live_[Model::kVertex];
 }
 

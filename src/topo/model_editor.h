@@ -38,6 +38,7 @@ class ModelEditor {
   // ---- creation (records come back initialised, not yet linked)
   GroupId new_group(std::string name);
   VertexId new_vertex(GroupId g, Vec3 p);
+  void set_vertex_group(VertexId v, GroupId g);
   EdgeId new_edge(VertexId a, VertexId b);               // links both ends into the vertex cycles
   // Not yet in a loop; alone in a radial cycle of its own that names e (so
   // edge_of works) until radial_insert puts it into e's cycle.

@@ -36,6 +36,14 @@ void for_each_radial(const Model& m, EdgeId e, Fn fn) {
 // on_point with the vertex).
 template <class UseFn, class PointFn>
 void for_each_loop_use(const Model& m, FaceId f, UseFn on_use, PointFn on_point) {
+  if (const EdgeUseId first = m.only_loop_first(f); first.is_valid()) {
+    EdgeUseId u = first;
+    do {
+      on_use(u);
+      u = m.loop_next(u);
+    } while (u != first);
+    return;
+  }
   for (LoopId l = m.outer_loop(f); l.is_valid(); l = m.next_loop(l)) {
     const EdgeUseId first = m.loop_first(l);
     if (!first.is_valid()) {

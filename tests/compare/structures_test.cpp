@@ -215,11 +215,12 @@ TEST(Cellforge, StorageMatchesTheDocumentedRecordSizes) {
   const Model m = build(testing::unit_cube());
   const StorageStats s = cellforge_storage(m);
   EXPECT_EQ(s.bytes, m.topology_bytes());
-  // Vertices 8 B, edges 20, uses 12, faces 8; no Loop records (every face is
-  // one loop); one side row (12), one volume (8), one group (4).
-  EXPECT_EQ(s.bytes, 8u * 8 + 12 * 20 + 24 * 12 + 6 * 8 + 12 + 8 + 4);
+  // Vertices 4 B, edges 20, uses 12, faces 8; no Loop records (every face is
+  // one loop); one run of vertex groups (8), one side row (12), one volume (8),
+  // one group (4).
+  EXPECT_EQ(s.bytes, 8u * 4 + 12 * 20 + 24 * 12 + 6 * 8 + 8 + 12 + 8 + 4);
   EXPECT_EQ(s.references, s.bytes / 4);
-  EXPECT_EQ(s.records, 8u + 12 + 24 + 6 + 1 + 1 + 1);
+  EXPECT_EQ(s.records, 8u + 1 + 12 + 24 + 6 + 1 + 1 + 1);
   // A face with a hole lists its two loops in Loop records.
   const Model holed = build(testing::cube_with_through_hole());
   EXPECT_EQ(holed.num_loop_records(), 4u);

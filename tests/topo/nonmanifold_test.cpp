@@ -2,6 +2,9 @@
 // each refusal checked.
 #include <gtest/gtest.h>
 
+#include <map>
+#include <random>
+
 #include "cellforge/topo/operators.h"
 #include "cellforge/topo/queries.h"
 #include "support/checks.h"
@@ -189,6 +192,48 @@ TEST(NonManifold, MakeAndKillVolume) {
   EXPECT_VALID(m);
   EXPECT_EQ(canonical_dump(m), canonical_dump(build(in)));
   EXPECT_EQ(sides_of(m, *c).size(), 0u);
+}
+
+}  // namespace
+}  // namespace cellforge
+
+namespace cellforge {
+namespace {
+
+// Vertices keep their group in runs of ids (model.h): made, killed and made
+// again in random groups, every live vertex still reports the group it was made
+// in, and a model built group by group needs one run per group.
+TEST(NonManifold, VertexGroupsSurviveSlotReuse) {
+  Model m;
+  const GroupId groups[3] = {make_group(m, "a"), make_group(m, "b"), make_group(m, "c")};
+  std::map<VertexId, GroupId> want;
+  std::mt19937 rng(11);
+  for (int step = 0; step < 3000; ++step) {
+    if (!want.empty() && rng() % 3 == 0) {
+      auto it = want.begin();
+      std::advance(it, static_cast<long>(rng() % want.size()));
+      ASSERT_OK(kill_vertex(m, it->first));
+      want.erase(it);
+    } else {
+      const GroupId g = groups[rng() % 3];
+      auto v = make_vertex(m, g, {double(step), 0, 0});
+      ASSERT_OK(v);
+      want[*v] = g;
+    }
+    if (step % 100 == 0) {
+      for (const auto& [v, g] : want) ASSERT_EQ(m.group_of(v), g) << v << " at step " << step;
+    }
+  }
+  for (const auto& [v, g] : want) ASSERT_EQ(m.group_of(v), g) << v;
+  EXPECT_VALID(m);
+
+  Model blocks;
+  for (int k = 0; k < 3; ++k) {
+    const GroupId g = make_group(blocks);
+    for (int i = 0; i < 100; ++i) ASSERT_OK(make_vertex(blocks, g, {double(i), double(k), 0}));
+  }
+  // 300 vertices of 4 B, three runs of 8 B, three groups of 4 B.
+  EXPECT_EQ(blocks.topology_bytes(), 300u * 4 + 3 * 8 + 3 * 4);
 }
 
 }  // namespace

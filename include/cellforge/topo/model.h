@@ -2,7 +2,7 @@
 // non-manifold boundary representation kept in flat arrays with 32-bit ids.
 //
 // Entities and what each record holds (all fields are 32-bit indices):
-//   Vertex   first edge end of its vertex cycle, group            (8 B)
+//   Vertex   first edge end of its vertex cycle                    (4 B)
 //   Edge     per end: vertex, next end around that vertex;
 //            first use of its radial cycle                         (20 B)
 //   EdgeUse  face + direction bit, next use in its loop,
@@ -12,6 +12,8 @@
 //            (or the point's vertex), next loop of the face         (8 B)
 //   Sides    front volume, back volume, group (shared by all faces with
 //            the same three values; a closed solid's faces share one)
+//   Groups of vertices: runs of consecutive vertex ids in one group (a model
+//            built group by group has one run per group)
 //
 // The two cycles that name the structure:
 //   vertex -> its edges: each edge end links to the next edge end around the same
@@ -140,7 +142,7 @@ class Model {
 
   // ---- liveness of a handle (false for invalid or deleted ids)
   bool is_live(VertexId v) const {
-    return v.value < vertices_.size() && vertices_[v.value].group != kDead;
+    return v.value < vertices_.size() && vertices_[v.value].first_end != kDead;
   }
   bool is_live(EdgeId e) const {
     return e.value < edges_.size() && edges_[e.value].vertex[0] != kDead;
@@ -169,7 +171,7 @@ class Model {
     assert(is_live(v));
     return positions_[v.value];
   }
-  GroupId group_of(VertexId v) const { return GroupId(vertices_[v.value].group); }
+  GroupId group_of(VertexId v) const;  // binary search of the group runs
   // First end of v's edge cycle; invalid edge for an isolated vertex.
   EdgeEnd first_end(VertexId v) const { return decode_end(vertices_[v.value].first_end); }
   // The point loop at v (a loop that is the single vertex v), if any. A vertex with
@@ -269,6 +271,12 @@ class Model {
     return faces_[f.value].first == kInvalidIndex ? LoopId() : LoopId(f.value);
   }
   std::size_t inner_loop_count(FaceId f) const;
+  // The first use of f's loop when that loop of edges is f's only one (the
+  // common case, read from the face record alone); invalid otherwise.
+  EdgeUseId only_loop_first(FaceId f) const {
+    const std::uint32_t first = faces_[f.value].first;
+    return (first & kTagBit) ? EdgeUseId() : EdgeUseId(first);
+  }
   VolumeId front_volume(FaceId f) const { return VolumeId(sides_[faces_[f.value].sides].front); }
   VolumeId back_volume(FaceId f) const { return VolumeId(sides_[faces_[f.value].sides].back); }
   GroupId group_of(FaceId f) const { return GroupId(sides_[faces_[f.value].sides].group); }
@@ -313,7 +321,7 @@ class Model {
   static constexpr std::uint32_t kMaxFaces = 1u << 30;
 
   // ---- raw record sizes, for the storage comparison
-  static constexpr std::size_t kVertexRecordBytes = 8;
+  static constexpr std::size_t kVertexRecordBytes = 4;
   static constexpr std::size_t kEdgeRecordBytes = 20;
   static constexpr std::size_t kUseRecordBytes = 12;
   static constexpr std::size_t kLoopRecordBytes = 8;
@@ -321,6 +329,8 @@ class Model {
 
   // Slot counts (live + free), for iteration by index.
   std::uint32_t vertex_slots() const { return static_cast<std::uint32_t>(vertices_.size()); }
+  std::size_t vertex_group_runs() const { return vertex_groups_.size(); }  // 8 B each
+  std::size_t free_vertex_slots() const { return free_vertices_.size(); }  // 4 B each
   std::uint32_t edge_slots() const { return static_cast<std::uint32_t>(edges_.size()); }
   std::uint32_t use_slots() const { return static_cast<std::uint32_t>(uses_.size()); }
   std::uint32_t loop_slots() const { return static_cast<std::uint32_t>(loops_.size()); }  // records
@@ -342,8 +352,13 @@ class Model {
   }
 
   struct VertexRec {
-    std::uint32_t first_end;  // encoded edge end, kTagBit|loop for a point loop, or invalid
-    std::uint32_t group;      // kDead when the slot is free; first_end then links the free list
+    // Encoded edge end, kTagBit|loop id for a point loop, invalid for a bare
+    // vertex; kDead when the slot is free (free slots are kept in free_vertices_).
+    std::uint32_t first_end;
+  };
+  struct GroupRun {
+    std::uint32_t first_vertex;  // the run holds vertex ids from here to the next run
+    std::uint32_t group;
   };
   struct EdgeRec {
     std::uint32_t vertex[2];  // vertex[0] == kDead when free; first_use links the free list
@@ -382,6 +397,8 @@ class Model {
   enum Kind { kVertex, kEdge, kUse, kLoop, kFace, kVolume, kGroup, kKinds };
 
   std::vector<VertexRec> vertices_;
+  std::vector<GroupRun> vertex_groups_;  // sorted by first_vertex
+  std::vector<std::uint32_t> free_vertices_;
   std::vector<Vec3> positions_;
   std::vector<EdgeRec> edges_;
   std::vector<UseRec> uses_;
@@ -402,15 +419,12 @@ class Model {
     if (!(f & kTagBit) || f == kInvalidIndex) return f;
     return loops_[f & ~kTagBit].first;
   }
-  // The edge named by the tail of u's radial cycle. The second step is taken
-  // without a branch on whether u is the tail (if it is, the step re-reads u):
-  // two uses per edge need no branch the processor could mispredict.
+  // The edge named by the tail of u's radial cycle. (A branch-free first step was
+  // measured slower on small models: their branches are learned, and the extra
+  // load then always lies on the path.)
   std::uint32_t radial_tail_code(std::uint32_t u) const {
     std::uint32_t c = uses_[u].radial;
-    const bool at_tail = (c & kTagBit) != 0;
-    const std::uint32_t n = uses_[at_tail ? u : c].radial;
-    c = at_tail ? c : n;
-    while (!(c & kTagBit)) [[unlikely]] c = uses_[c].radial;
+    while (!(c & kTagBit)) c = uses_[c].radial;
     return c & ~kTagBit;
   }
   std::vector<std::uint32_t> face_surface_;  // per face slot, kInvalidIndex = plane
