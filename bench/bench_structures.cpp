@@ -4,10 +4,12 @@
 //   build/bin/bench_structures [--svg docs/structure-comparison.svg] [--big N]
 // Prints markdown tables; writes a bar chart as SVG. Query times: every query from
 // every element of a model (a fixed random sample of 100,000 for the big mesh),
-// repeated for at least 10 ms per trial; reported per answer element. The trials
+// repeated for at least 2 ms per trial; reported per answer element. The trials
 // of the three structures alternate (cellforge, radial edge, winged edge, then
-// again), 15 rounds, and each structure keeps its best: a slow spell of the
-// shared machine then hits every structure alike instead of one of them.
+// again), 41 rounds (9 for the big mesh, whose trials are long), and each
+// structure keeps its best: a slow spell of the shared machine then hits every
+// structure alike instead of one of them. The ratio to radial edge is the median,
+// over the rounds, of the ratio of the two trials taken back to back.
 // Every structure's answers are deduplicated the same way (compare/dedupe.h is a
 // copy of the method in topo/queries.cpp).
 #include <algorithm>
@@ -105,7 +107,7 @@ double trial(const Q& q, const std::vector<In>& from) {
       }
     }
     elapsed = Clock::now() - start;
-  } while (elapsed.count() < 0.01);
+  } while (elapsed.count() < 0.002);
   return elapsed.count() * 1e9 / static_cast<double>(elements);
 }
 
@@ -125,13 +127,14 @@ double trial(const Q& q, const Sample& s, int query) {
   }
 }
 
-constexpr int kRounds = 15;
+constexpr int kRounds = 41, kBigRounds = 9;
 
 struct Row {
   std::string model;
   std::size_t faces = 0;
   std::optional<StorageStats> storage[kStructures];
   std::vector<double> ns[kStructures];  // empty when the structure refused the model
+  std::vector<double> ratio;            // cellforge ÷ radial edge per query (paired median)
   std::string refusal;                  // the winged edge converter's message
 };
 
@@ -156,17 +159,23 @@ Row measure(const std::string& name, const MeshInput& input, std::size_t sample_
   }
   const int structures = w.ok() ? 3 : 2;
   for (int s = 0; s < structures; ++s) row.ns[s].assign(9, INFINITY);
+  row.ratio.assign(9, 0);
   for (int q = 0; q < 9; ++q) {
-    for (int round = 0; round < kRounds; ++round) {
-      double& c = row.ns[0][q];
-      c = std::min(c, trial(CellforgeQueries{m}, sample, q));
-      double& re = row.ns[1][q];
-      re = std::min(re, trial(MemberQueries<RadialEdge>{r}, sample, q));
+    const bool big = sample.faces.size() < row.faces;
+    std::vector<double> paired;
+    for (int round = 0; round < (big ? kBigRounds : kRounds); ++round) {
+      const double tc = trial(CellforgeQueries{m}, sample, q);
+      const double tr = trial(MemberQueries<RadialEdge>{r}, sample, q);
+      row.ns[0][q] = std::min(row.ns[0][q], tc);
+      row.ns[1][q] = std::min(row.ns[1][q], tr);
+      paired.push_back(tc / tr);
       if (w.ok()) {
         double& we = row.ns[2][q];
         we = std::min(we, trial(MemberQueries<WingedEdge>{*w}, sample, q));
       }
     }
+    std::nth_element(paired.begin(), paired.begin() + paired.size() / 2, paired.end());
+    row.ratio[q] = paired[paired.size() / 2];
   }
   return row;
 }
@@ -219,7 +228,7 @@ void print_tables(const std::vector<Row>& rows) {
       std::printf("\n");
     }
     std::printf("| %s | *cellforge ÷ radial edge* |", r.model.c_str());
-    for (int q = 0; q < 9; ++q) std::printf(" *%s* |", fixed(r.ns[0][q] / r.ns[1][q], 2).c_str());
+    for (int q = 0; q < 9; ++q) std::printf(" *%s* |", fixed(r.ratio[q], 2).c_str());
     std::printf("\n");
   }
 }
@@ -232,7 +241,7 @@ void print_verdict(const std::vector<Row>& rows) {
     const double ratio = double(r.storage[0]->bytes) / double(r.storage[1]->bytes);
     if (ratio > worst_bytes) worst_bytes = ratio, worst_bytes_model = r.model;
     for (int q = 0; q < 9; ++q) {
-      const double t = r.ns[0][q] / r.ns[1][q];
+      const double t = r.ratio[q];
       ++total;
       if (t > 1) ++slower;
       if (t > worst_time) worst_time = t, worst_time_at = r.model + " " + kQueryNames[q];

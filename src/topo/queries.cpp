@@ -32,32 +32,6 @@ void for_each_radial(const Model& m, EdgeId e, Fn fn) {
   }
 }
 
-// Visits every loop of f; for each, its uses (or, for a point loop, calls
-// on_point with the vertex).
-template <class UseFn, class PointFn>
-void for_each_loop_use(const Model& m, FaceId f, UseFn on_use, PointFn on_point) {
-  if (const EdgeUseId first = m.only_loop_first(f); first.is_valid()) {
-    EdgeUseId u = first;
-    do {
-      on_use(u);
-      u = m.loop_next(u);
-    } while (u != first);
-    return;
-  }
-  for (LoopId l = m.outer_loop(f); l.is_valid(); l = m.next_loop(l)) {
-    const EdgeUseId first = m.loop_first(l);
-    if (!first.is_valid()) {
-      on_point(m.point_loop_vertex(l));
-      continue;
-    }
-    EdgeUseId u = first;
-    do {
-      on_use(u);
-      u = m.loop_next(u);
-    } while (u != first);
-  }
-}
-
 }  // namespace
 
 void edges_of(const Model& m, VertexId v, std::vector<EdgeId>& out) {
@@ -108,24 +82,24 @@ void faces_of(const Model& m, EdgeId e, std::vector<FaceId>& out) {
 
 void vertices_of(const Model& m, FaceId f, std::vector<VertexId>& out) {
   out.clear();
-  for_each_loop_use(
-      m, f, [&](EdgeUseId u) { out.push_back(m.use_start(u)); },
+  m.for_each_face_use(
+      f, [&](EdgeUseId, EdgeId e, bool reversed) { out.push_back(m.vertex_of(e, reversed ? 1 : 0)); },
       [&](VertexId v) { out.push_back(v); });
   dedupe_stable(out);
 }
 
 void edges_of(const Model& m, FaceId f, std::vector<EdgeId>& out) {
   out.clear();
-  for_each_loop_use(
-      m, f, [&](EdgeUseId u) { out.push_back(m.edge_of(u)); }, [](VertexId) {});
+  m.for_each_face_use(
+      f, [&](EdgeUseId, EdgeId e, bool) { out.push_back(e); }, [](VertexId) {});
   dedupe_stable(out);
 }
 
 void faces_of(const Model& m, FaceId f, std::vector<FaceId>& out) {
   out.clear();
-  for_each_loop_use(
-      m, f,
-      [&](EdgeUseId u) {
+  m.for_each_face_use(
+      f,
+      [&](EdgeUseId u, EdgeId, bool) {
         for (EdgeUseId w = m.radial_next(u); w != u; w = m.radial_next(w)) {
           if (const FaceId g = m.face_of(w); g != f) out.push_back(g);
         }

@@ -271,11 +271,38 @@ class Model {
     return faces_[f.value].first == kInvalidIndex ? LoopId() : LoopId(f.value);
   }
   std::size_t inner_loop_count(FaceId f) const;
-  // The first use of f's loop when that loop of edges is f's only one (the
-  // common case, read from the face record alone); invalid otherwise.
-  EdgeUseId only_loop_first(FaceId f) const {
+  // Walks f's loops in order (outer first), reading each record once: calls
+  // on_use(use, edge_of(use), is_reversed(use)) for every use of a loop of
+  // edges, in loop order, and on_point(vertex) for a point loop. The queries'
+  // face walks; not for a model an operator is editing.
+  template <class UseFn, class PointFn>
+  void for_each_face_use(FaceId f, UseFn on_use, PointFn on_point) const {
+    const UseRec* uses = uses_.data();
+    auto walk = [&](std::uint32_t first) {
+      std::uint32_t u = first;
+      do {
+        const UseRec r = uses[u];
+        std::uint32_t c = r.radial;
+        while (!(c & kTagBit)) c = uses[c].radial;
+        on_use(EdgeUseId(u), EdgeId(c & ~kTagBit), (r.face_dir & kTagBit) != 0);
+        u = r.next;
+      } while (u != first);
+    };
     const std::uint32_t first = faces_[f.value].first;
-    return (first & kTagBit) ? EdgeUseId() : EdgeUseId(first);
+    if (!(first & kTagBit)) {
+      walk(first);
+      return;
+    }
+    if (first == kInvalidIndex) return;
+    for (std::uint32_t r = first & ~kTagBit;;) {
+      const LoopRec loop = loops_[r];
+      if (loop.first & kTagBit)
+        on_point(VertexId(loop.first & ~kTagBit));
+      else
+        walk(loop.first);
+      if (loop.next & kTagBit) return;
+      r = loop.next;
+    }
   }
   VolumeId front_volume(FaceId f) const { return VolumeId(sides_[faces_[f.value].sides].front); }
   VolumeId back_volume(FaceId f) const { return VolumeId(sides_[faces_[f.value].sides].back); }
