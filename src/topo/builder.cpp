@@ -80,6 +80,10 @@ Status check_input(const MeshInput& in) {
 
 Result<BuildResult> build_mesh(Model& m, const MeshInput& in) {
   if (Status s = check_input(in); !s) return s.error();
+  if (m.face_slots() + in.faces.size() >= Model::kMaxFaces) {
+    return Error{ErrorCode::kInvalidInput,
+                 "too many faces: " + std::to_string(m.face_slots() + in.faces.size())};
+  }
   ModelEditor ed(m);
   BuildResult out;
   out.group = ed.new_group(in.group_name);

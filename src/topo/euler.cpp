@@ -13,7 +13,11 @@ using ops::require_live;
 
 // ---------------------------------------------------------------- mvsf / kvsf
 
-Status can_mvsf(const Model& m, GroupId g) { return require_live(m, g, "mvsf: group"); }
+Status can_mvsf(const Model& m, GroupId g) {
+  CF_CHECK(require_live(m, g, "mvsf: group"));
+  if (m.face_slots() + 1 >= Model::kMaxFaces) return precondition("mvsf: too many faces");
+  return Status::Ok();
+}
 
 Result<VertexFace> mvsf(Model& m, GroupId g, Vec3 position) {
   CF_CHECK(can_mvsf(m, g));
@@ -148,6 +152,7 @@ Status can_mef(const Model& m, LoopId l, VertexId v1, VertexId v2) {
     }
   }
   if (m.num_edges() + 1 >= Model::kMaxEdges) return precondition("mef: too many edges");
+  if (m.face_slots() + 1 >= Model::kMaxFaces) return precondition("mef: too many faces");
   return Status::Ok();
 }
 
@@ -377,6 +382,7 @@ Result<LoopId> kfmrh(Model& m, FaceId keep, FaceId dying) {
 
 Status can_mfkrh(const Model& m, LoopId l) {
   CF_CHECK(require_live(m, l, "mfkrh: loop"));
+  if (m.face_slots() + 1 >= Model::kMaxFaces) return precondition("mfkrh: too many faces");
   if (m.outer_loop(m.face_of(l)) == l) {
     return precondition("mfkrh: loop " + l.str() + " is the outer loop of face " +
                         m.face_of(l).str());

@@ -67,6 +67,7 @@ EdgeUseId ModelEditor::new_use(EdgeId e, bool reversed, FaceId f) {
 
 std::uint32_t ModelEditor::new_record(std::uint32_t first, std::uint32_t next) {
   const std::uint32_t i = take_slot(m_.loops_, Model::kLoop, &LoopRec::next);
+  assert(i < Model::kMaxFaces - 2);  // kTagBit|kInnerLoopBit|i must stay apart from kDead
   m_.loops_[i] = {first, next};
   return i;
 }

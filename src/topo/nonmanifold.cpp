@@ -211,6 +211,7 @@ Status can_make_face(const Model& m, const FaceSpec& spec) {
     }
   }
   if (m.num_edges() + uses >= Model::kMaxEdges) return precondition("make_face: too many edges");
+  if (m.face_slots() + 1 >= Model::kMaxFaces) return precondition("make_face: too many faces");
   return Status::Ok();
 }
 
@@ -333,6 +334,7 @@ Status glue_faces(Model& m, FaceId a, FaceId b) {
 
 Status can_unglue_face(const Model& m, FaceId f) {
   CF_CHECK(require_live(m, f, "unglue_face: face"));
+  if (m.face_slots() + 1 >= Model::kMaxFaces) return precondition("unglue_face: too many faces");
   if (!m.front_volume(f).is_valid() || !m.back_volume(f).is_valid()) {
     return precondition("unglue_face: face " + f.str() + " does not have volumes on both sides");
   }
