@@ -21,15 +21,20 @@ bool on_loop(const Model& m, LoopId l, VertexId v) {
   return first_use_from(m, l, v).is_valid();
 }
 
-std::vector<EdgeUseId> radial_uses(const Model& m, EdgeId e) {
-  std::vector<EdgeUseId> out;
+void radial_uses(const Model& m, EdgeId e, std::vector<EdgeUseId>& out) {
+  out.clear();
   const EdgeUseId first = m.first_use(e);
-  if (!first.is_valid()) return out;
+  if (!first.is_valid()) return;
   EdgeUseId u = first;
   do {
     out.push_back(u);
     u = m.radial_next(u);
   } while (u != first);
+}
+
+std::vector<EdgeUseId> radial_uses(const Model& m, EdgeId e) {
+  std::vector<EdgeUseId> out;
+  radial_uses(m, e, out);
   return out;
 }
 

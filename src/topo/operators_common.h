@@ -34,6 +34,7 @@ EdgeUseId first_use_to(const Model& m, LoopId l, VertexId v);
 bool on_loop(const Model& m, LoopId l, VertexId v);
 // The uses of e's radial cycle, from first_use(e).
 std::vector<EdgeUseId> radial_uses(const Model& m, EdgeId e);
+void radial_uses(const Model& m, EdgeId e, std::vector<EdgeUseId>& out);  // reuses out
 // The uses of loop l, in loop order.
 std::vector<EdgeUseId> loop_uses(const Model& m, LoopId l);
 // The edge ends at v, in cycle order.

@@ -65,8 +65,9 @@ Analysis analyse(const Model& m) {
 
   // Shells: faces joined through edges.
   UnionFind faces(nf);
+  std::vector<EdgeUseId> uses;
   for (EdgeId e : m.edges()) {
-    const std::vector<EdgeUseId> uses = ops::radial_uses(m, e);
+    ops::radial_uses(m, e, uses);
     for (std::size_t i = 1; i < uses.size(); ++i) {
       faces.unite(m.face_of(uses[0]).value, m.face_of(uses[i]).value);
     }
@@ -198,7 +199,7 @@ Analysis analyse(const Model& m) {
     return 2 * m.face_of(u).value + (front ? 0u : 1u);
   };
   for (EdgeId e : m.edges()) {
-    const std::vector<EdgeUseId> uses = ops::radial_uses(m, e);
+    ops::radial_uses(m, e, uses);
     for (std::size_t i = 0; i < uses.size(); ++i) {
       sides.unite(side(uses[i], true), side(uses[(i + 1) % uses.size()], false));
     }

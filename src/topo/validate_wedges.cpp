@@ -12,8 +12,9 @@
 namespace cellforge::checks {
 
 void wedges(const Model& m, Violations& out) {
+  std::vector<EdgeUseId> uses;
   for (EdgeId e : m.edges()) {
-    const std::vector<EdgeUseId> uses = ops::radial_uses(m, e);
+    ops::radial_uses(m, e, uses);
     for (std::size_t i = 0; i < uses.size(); ++i) {
       const EdgeUseId a = uses[i], b = uses[(i + 1) % uses.size()];
       using ops::side_after, ops::side_before;
