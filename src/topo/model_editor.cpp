@@ -414,10 +414,6 @@ void ModelEditor::set_use_edge(EdgeUseId u, EdgeId e, bool flip) {
   if (flip) rec(u).face_dir ^= kTagBit;
 }
 
-void ModelEditor::set_reversed(EdgeUseId u, bool reversed) {
-  rec(u).face_dir = (rec(u).face_dir & ~kTagBit) | (reversed ? kTagBit : 0u);
-}
-
 void ModelEditor::append_loop(FaceId f, LoopId l) {
   assert(l.value & Model::kInnerLoopBit);  // a record from new_loop or remove_loop
   open(f);

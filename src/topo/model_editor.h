@@ -77,7 +77,6 @@ class ModelEditor {
   // Moves a use that is alone (after radial_remove) to edge e, optionally
   // flipping its direction; radial_insert then puts it into e's cycle.
   void set_use_edge(EdgeUseId u, EdgeId e, bool flip = false);
-  void set_reversed(EdgeUseId u, bool reversed);
 
   // ---- loops in bulk (faces never opened)
   // Gives f the loop that starts at `first` (its uses already linked in a cycle).
