@@ -6,6 +6,8 @@
 #include <cassert>
 #include <iterator>
 
+#include "topo/operators_common.h"
+
 namespace cellforge {
 
 template <class Rec>
@@ -142,32 +144,29 @@ ModelEditor::~ModelEditor() {
   }
 }
 
-LoopId ModelEditor::add_loop(FaceId f, EdgeUseId first) {
+LoopId ModelEditor::append_record(FaceId f, std::uint32_t r) {
+  loop_rec(r).next = f.value | kTagBit;
   if (rec(f).first == kInvalidIndex) {
-    set_face_first(f, first.value);
+    set_face_first(f, r | kTagBit);
     return LoopId(f.value);
   }
   list_loops(f);
-  std::uint32_t r = rec(f).first & ~kTagBit;
-  while (!(loop_rec(r).next & kTagBit)) r = loop_rec(r).next;
-  const std::uint32_t n = new_record(first.value, f.value | kTagBit);
-  loop_rec(r).next = n;
-  return LoopId(n | Model::kInnerLoopBit);
+  std::uint32_t p = rec(f).first & ~kTagBit;
+  while (!(loop_rec(p).next & kTagBit)) p = loop_rec(p).next;
+  loop_rec(p).next = r;
+  return LoopId(r | Model::kInnerLoopBit);
+}
+
+LoopId ModelEditor::add_loop(FaceId f, EdgeUseId first) {
+  if (rec(f).first == kInvalidIndex) {  // the face's only loop, in its own record
+    set_face_first(f, first.value);
+    return LoopId(f.value);
+  }
+  return append_record(f, new_record(first.value, kInvalidIndex));
 }
 
 LoopId ModelEditor::add_point_loop(FaceId f, VertexId v) {
-  const std::uint32_t n = new_record(v.value | kTagBit, f.value | kTagBit);
-  LoopId l;
-  if (rec(f).first == kInvalidIndex) {
-    set_face_first(f, n | kTagBit);
-    l = LoopId(f.value);
-  } else {
-    list_loops(f);
-    std::uint32_t r = rec(f).first & ~kTagBit;
-    while (!(loop_rec(r).next & kTagBit)) r = loop_rec(r).next;
-    loop_rec(r).next = n;
-    l = LoopId(n | Model::kInnerLoopBit);
-  }
+  const LoopId l = append_record(f, new_record(v.value | kTagBit, kInvalidIndex));
   assert(!m_.first_end(v).edge.is_valid());
   rec(v).first_end = l.value | kTagBit;
   return l;
@@ -365,21 +364,6 @@ void ModelEditor::move_end(EdgeEnd end, VertexId to) {
   link_end(to, end);
 }
 
-namespace {
-
-std::vector<EdgeUseId> radial_cycle(const Model& m, EdgeId e) {
-  std::vector<EdgeUseId> out;
-  const EdgeUseId first = m.first_use(e);
-  if (!first.is_valid()) return out;
-  for (EdgeUseId u = first;; u = m.radial_next(u)) {
-    out.push_back(u);
-    if (m.is_radial_tail(u)) break;
-  }
-  return out;
-}
-
-}  // namespace
-
 void ModelEditor::set_radial_cycle(EdgeId e, const std::vector<EdgeUseId>& uses) {
   for (std::size_t i = 0; i + 1 < uses.size(); ++i) rec(uses[i]).radial = uses[i + 1].value;
   if (!uses.empty()) rec(uses.back()).radial = e.value | kTagBit;
@@ -388,7 +372,7 @@ void ModelEditor::set_radial_cycle(EdgeId e, const std::vector<EdgeUseId>& uses)
 
 void ModelEditor::radial_insert(EdgeUseId u) {
   const EdgeId e = m_.edge_of(u);  // u is alone in a cycle that names e
-  std::vector<EdgeUseId> cycle = radial_cycle(m_, e);
+  std::vector<EdgeUseId> cycle = ops::radial_uses(m_, e);
   cycle.push_back(u);
   if (cycle.size() >= 3) cycle = sort_radially(m_, e, std::move(cycle));
   set_radial_cycle(e, cycle);
@@ -396,14 +380,14 @@ void ModelEditor::radial_insert(EdgeUseId u) {
 
 void ModelEditor::radial_remove(EdgeUseId u) {
   const EdgeId e = m_.edge_of(u);
-  std::vector<EdgeUseId> cycle = radial_cycle(m_, e);
+  std::vector<EdgeUseId> cycle = ops::radial_uses(m_, e);
   std::erase(cycle, u);
   set_radial_cycle(e, cycle);
   rec(u).radial = e.value | kTagBit;
 }
 
 void ModelEditor::radial_sort(EdgeId e) {
-  std::vector<EdgeUseId> cycle = radial_cycle(m_, e);
+  std::vector<EdgeUseId> cycle = ops::radial_uses(m_, e);
   if (cycle.size() <= 2) return;
   set_radial_cycle(e, sort_radially(m_, e, std::move(cycle)));
 }
@@ -417,15 +401,7 @@ void ModelEditor::set_use_edge(EdgeUseId u, EdgeId e, bool flip) {
 void ModelEditor::append_loop(FaceId f, LoopId l) {
   assert(l.value & Model::kInnerLoopBit);  // a record from new_loop or remove_loop
   open(f);
-  const std::uint32_t r = l.value & ~Model::kInnerLoopBit;
-  loop_rec(r).next = f.value | kTagBit;
-  if (rec(f).first == kInvalidIndex) {
-    set_face_first(f, r | kTagBit);
-    return;
-  }
-  std::uint32_t p = rec(f).first & ~kTagBit;
-  while (!(loop_rec(p).next & kTagBit)) p = loop_rec(p).next;
-  loop_rec(p).next = r;
+  append_record(f, l.value & ~Model::kInnerLoopBit);
 }
 
 void ModelEditor::remove_loop(FaceId f, LoopId l) {

@@ -112,6 +112,9 @@ class ModelEditor {
   std::uint32_t record_of(LoopId l);
   LoopRec& loop_rec(std::uint32_t r) { return m_.loops_[r]; }
   std::uint32_t new_record(std::uint32_t first, std::uint32_t next);
+  // Appends Loop record r to f's loop list (listing f's loops first if needed);
+  // returns the loop's id.
+  LoopId append_record(FaceId f, std::uint32_t r);
   // Writes a face's first field, keeping the count of listed faces.
   void set_face_first(FaceId f, std::uint32_t first);
   // Moves f's single loop into a Loop record.

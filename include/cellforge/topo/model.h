@@ -282,9 +282,7 @@ class Model {
       std::uint32_t u = first;
       do {
         const UseRec r = uses[u];
-        std::uint32_t c = r.radial;
-        while (!(c & kTagBit)) c = uses[c].radial;
-        on_use(EdgeUseId(u), EdgeId(c & ~kTagBit), (r.face_dir & kTagBit) != 0);
+        on_use(EdgeUseId(u), EdgeId(radial_tail_code(u)), (r.face_dir & kTagBit) != 0);
         u = r.next;
       } while (u != first);
     };
