@@ -10,17 +10,28 @@
 
 namespace cellforge {
 
-template <class Rec>
-std::uint32_t ModelEditor::take_slot(std::vector<Rec>& recs, int kind, std::uint32_t Rec::*link) {
+// A slot from kind's free list (whose links `link(i)` reads), or a new one that
+// `grow()` appends.
+template <class LinkFn, class GrowFn>
+std::uint32_t ModelEditor::take_slot(int kind, LinkFn link, GrowFn grow) {
   ++m_.live_[kind];
   std::uint32_t& head = m_.free_[kind];
   if (head != kInvalidIndex) {
     const std::uint32_t i = head;
-    head = recs[i].*link;
+    head = link(i);
     return i;
   }
-  recs.emplace_back();
-  return static_cast<std::uint32_t>(recs.size() - 1);
+  return grow();
+}
+
+template <class Rec>
+std::uint32_t ModelEditor::take_slot(std::vector<Rec>& recs, int kind, std::uint32_t Rec::*link) {
+  return take_slot(
+      kind, [&](std::uint32_t i) { return recs[i].*link; },
+      [&] {
+        recs.emplace_back();
+        return static_cast<std::uint32_t>(recs.size() - 1);
+      });
 }
 
 GroupId ModelEditor::new_group(std::string name) {
@@ -54,16 +65,31 @@ VertexId ModelEditor::new_vertex(GroupId g, Vec3 p) {
 }
 
 EdgeId ModelEditor::new_edge(VertexId a, VertexId b) {
-  const std::uint32_t i = take_slot(m_.edges_, Model::kEdge, &EdgeRec::first_use);
-  m_.edges_[i] = {{a.value, b.value}, {kInvalidIndex, kInvalidIndex}, kInvalidIndex};
+  const std::uint32_t i = take_slot(
+      Model::kEdge, [&](std::uint32_t j) { return m_.first_use_[j]; },
+      [&] {
+        m_.ends_.resize(m_.ends_.size() + 2);
+        m_.first_use_.emplace_back();
+        return static_cast<std::uint32_t>(m_.first_use_.size() - 1);
+      });
+  m_.ends_[2 * i] = {a.value, kInvalidIndex};
+  m_.ends_[2 * i + 1] = {b.value, kInvalidIndex};
+  m_.first_use_[i] = kInvalidIndex;
   link_end(a, {EdgeId(i), 0});
   link_end(b, {EdgeId(i), 1});
   return EdgeId(i);
 }
 
 EdgeUseId ModelEditor::new_use(EdgeId e, bool reversed, FaceId f) {
-  const std::uint32_t i = take_slot(m_.uses_, Model::kUse, &UseRec::next);
-  m_.uses_[i] = {f.value | (reversed ? kTagBit : 0u), i, e.value | kTagBit};
+  const std::uint32_t i = take_slot(
+      Model::kUse, [&](std::uint32_t j) { return m_.next_use_[j]; },
+      [&] {
+        m_.uses_.emplace_back();
+        m_.next_use_.emplace_back();
+        return static_cast<std::uint32_t>(m_.uses_.size() - 1);
+      });
+  m_.uses_[i] = {f.value | (reversed ? kTagBit : 0u), e.value | kTagBit};
+  m_.next_use_[i] = i;
   return EdgeUseId(i);
 }
 
@@ -260,10 +286,9 @@ void ModelEditor::set_vertex_group(VertexId v, GroupId g) {
 
 namespace {
 
-template <class Rec>
-void push_free(std::vector<Rec>& recs, std::uint32_t& head, std::uint32_t i,
-               std::uint32_t Rec::*link) {
-  recs[i].*link = head;
+// Puts slot i at the head of a free list whose link for i is `link`.
+void push_free(std::uint32_t& head, std::uint32_t i, std::uint32_t& link) {
+  link = head;
   head = i;
 }
 
@@ -276,16 +301,16 @@ void ModelEditor::free_vertex(VertexId v) {
 }
 
 void ModelEditor::free_edge(EdgeId e) {
-  unlink_end(VertexId(rec(e).vertex[0]), {e, 0});
-  unlink_end(VertexId(rec(e).vertex[1]), {e, 1});
-  rec(e).vertex[0] = kDead;
-  push_free(m_.edges_, m_.free_[Model::kEdge], e.value, &EdgeRec::first_use);
+  unlink_end(m_.vertex_of(e, 0), {e, 0});
+  unlink_end(m_.vertex_of(e, 1), {e, 1});
+  end_rec({e, 0}).vertex = kDead;
+  push_free(m_.free_[Model::kEdge], e.value, m_.first_use_[e.value]);
   --m_.live_[Model::kEdge];
 }
 
 void ModelEditor::free_use(EdgeUseId u) {
   rec(u).face_dir = kDead;
-  push_free(m_.uses_, m_.free_[Model::kUse], u.value, &UseRec::next);
+  push_free(m_.free_[Model::kUse], u.value, m_.next_use_[u.value]);
   --m_.live_[Model::kUse];
 }
 
@@ -304,7 +329,7 @@ void ModelEditor::free_loop(LoopId l) {
     if (vr.first_end & kTagBit) vr.first_end = kInvalidIndex;
   }
   loop_rec(r).first = kDead;
-  push_free(m_.loops_, m_.free_[Model::kLoop], r, &LoopRec::next);
+  push_free(m_.free_[Model::kLoop], r, loop_rec(r).next);
   --m_.live_[Model::kLoop];
 }
 
@@ -312,13 +337,13 @@ void ModelEditor::free_face(FaceId f) {
   set_face_first(f, kInvalidIndex);
   rec(f).sides = kDead;
   if (f.value < m_.face_surface_.size()) m_.face_surface_[f.value] = kInvalidIndex;
-  push_free(m_.faces_, m_.free_[Model::kFace], f.value, &FaceRec::first);
+  push_free(m_.free_[Model::kFace], f.value, rec(f).first);
   --m_.live_[Model::kFace];
 }
 
 void ModelEditor::free_volume(VolumeId c) {
   m_.volumes_[c.value].group = kDead;
-  push_free(m_.volumes_, m_.free_[Model::kVolume], c.value, &Model::VolumeRec::next_free);
+  push_free(m_.free_[Model::kVolume], c.value, m_.volumes_[c.value].next_free);
   --m_.live_[Model::kVolume];
 }
 
@@ -330,7 +355,7 @@ void ModelEditor::free_group(GroupId g) {
 void ModelEditor::link_end(VertexId v, EdgeEnd end) {
   VertexRec& vr = rec(v);
   const std::uint32_t code = Model::encode_end(end);
-  std::uint32_t& next = rec(end.edge).next_end[end.end];
+  std::uint32_t& next = end_rec(end).next_end;
   assert(!m_.point_loop(v).is_valid());
   if (vr.first_end == kInvalidIndex) {
     vr.first_end = code;
@@ -339,7 +364,7 @@ void ModelEditor::link_end(VertexId v, EdgeEnd end) {
   }
   // Insert after the first end: O(1), and the first end stays first.
   const EdgeEnd first = Model::decode_end(vr.first_end);
-  std::uint32_t& first_next = rec(first.edge).next_end[first.end];
+  std::uint32_t& first_next = end_rec(first).next_end;
   next = first_next;
   first_next = code;
 }
@@ -347,27 +372,27 @@ void ModelEditor::link_end(VertexId v, EdgeEnd end) {
 void ModelEditor::unlink_end(VertexId v, EdgeEnd end) {
   VertexRec& vr = rec(v);
   const std::uint32_t code = Model::encode_end(end);
-  const std::uint32_t after = rec(end.edge).next_end[end.end];
+  const std::uint32_t after = end_rec(end).next_end;
   if (after == code) {  // the only end at v
     vr.first_end = kInvalidIndex;
     return;
   }
   EdgeEnd p = Model::decode_end(vr.first_end);
-  while (rec(p.edge).next_end[p.end] != code) p = Model::decode_end(rec(p.edge).next_end[p.end]);
-  rec(p.edge).next_end[p.end] = after;
+  while (end_rec(p).next_end != code) p = Model::decode_end(end_rec(p).next_end);
+  end_rec(p).next_end = after;
   if (vr.first_end == code) vr.first_end = after;
 }
 
 void ModelEditor::move_end(EdgeEnd end, VertexId to) {
-  unlink_end(VertexId(rec(end.edge).vertex[end.end]), end);
-  rec(end.edge).vertex[end.end] = to.value;
+  unlink_end(VertexId(end_rec(end).vertex), end);
+  end_rec(end).vertex = to.value;
   link_end(to, end);
 }
 
 void ModelEditor::set_radial_cycle(EdgeId e, const std::vector<EdgeUseId>& uses) {
   for (std::size_t i = 0; i + 1 < uses.size(); ++i) rec(uses[i]).radial = uses[i + 1].value;
   if (!uses.empty()) rec(uses.back()).radial = e.value | kTagBit;
-  rec(e).first_use = uses.empty() ? kInvalidIndex : uses.front().value;
+  m_.first_use_[e.value] = uses.empty() ? kInvalidIndex : uses.front().value;
 }
 
 void ModelEditor::radial_insert(EdgeUseId u) {
@@ -427,7 +452,7 @@ void ModelEditor::assign_face(LoopId l, FaceId f) {
   do {
     UseRec& r = m_.uses_[u];
     r.face_dir = f.value | (r.face_dir & kTagBit);
-    u = r.next;
+    u = m_.next_use_[u];
   } while (u != first);
 }
 

@@ -22,7 +22,7 @@ class ModelEditor {
   ModelEditor& operator=(const ModelEditor&) = delete;
 
   using VertexRec = Model::VertexRec;
-  using EdgeRec = Model::EdgeRec;
+  using EndRec = Model::EndRec;
   using UseRec = Model::UseRec;
   using LoopRec = Model::LoopRec;
   using FaceRec = Model::FaceRec;
@@ -31,7 +31,7 @@ class ModelEditor {
   static constexpr std::uint32_t kDead = Model::kDead;
 
   VertexRec& rec(VertexId v) { return m_.vertices_[v.value]; }
-  EdgeRec& rec(EdgeId e) { return m_.edges_[e.value]; }
+  EndRec& end_rec(EdgeEnd end) { return m_.ends_[Model::encode_end(end)]; }
   UseRec& rec(EdgeUseId u) { return m_.uses_[u.value]; }
   FaceRec& rec(FaceId f) { return m_.faces_[f.value]; }
 
@@ -90,7 +90,7 @@ class ModelEditor {
   void set_loop_first(LoopId l, EdgeUseId u);
   // Makes l the point loop of v (v must have no edges).
   void set_point_loop(LoopId l, VertexId v);
-  void set_next(EdgeUseId u, EdgeUseId next) { rec(u).next = next.value; }
+  void set_next(EdgeUseId u, EdgeUseId next) { m_.next_use_[u.value] = next.value; }
   // Appends l at the end of f's loop list.
   void append_loop(FaceId f, LoopId l);
   // Removes l from its face's loop list (l must not be the only loop).
@@ -105,6 +105,8 @@ class ModelEditor {
   Model& model() { return m_; }
 
  private:
+  template <class LinkFn, class GrowFn>
+  std::uint32_t take_slot(int kind, LinkFn link, GrowFn grow);
   template <class Rec>
   std::uint32_t take_slot(std::vector<Rec>& recs, int kind, std::uint32_t Rec::*link);
   bool is_open(FaceId f) const;

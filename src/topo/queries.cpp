@@ -10,17 +10,6 @@ namespace cellforge {
 
 namespace {
 
-template <class Fn>
-void for_each_end(const Model& m, VertexId v, Fn fn) {
-  const EdgeEnd first = m.first_end(v);
-  if (!first.edge.is_valid()) return;
-  EdgeEnd end = first;
-  do {
-    fn(end);
-    end = m.next_end_around(end);
-  } while (end != first);
-}
-
 // The radial cycle of e, from its first use to its tail.
 template <class Fn>
 void for_each_radial(const Model& m, EdgeId e, Fn fn) {
@@ -36,12 +25,12 @@ void for_each_radial(const Model& m, EdgeId e, Fn fn) {
 
 void edges_of(const Model& m, VertexId v, std::vector<EdgeId>& out) {
   out.clear();
-  for_each_end(m, v, [&](EdgeEnd end) { out.push_back(end.edge); });
+  m.for_each_end_around(v, [&](const Model::VertexEnd& x) { out.push_back(x.end.edge); });
 }
 
 void vertices_of(const Model& m, VertexId v, std::vector<VertexId>& out) {
   out.clear();
-  for_each_end(m, v, [&](EdgeEnd end) { out.push_back(m.vertex_of(end.edge, 1 - end.end)); });
+  m.for_each_end_around(v, [&](const Model::VertexEnd& x) { out.push_back(x.other); });
   dedupe_stable(out);
 }
 
@@ -49,9 +38,9 @@ void faces_of(const Model& m, VertexId v, std::vector<FaceId>& out) {
   out.clear();
   // Every loop through v leaves it once per visit, so the uses starting at v name
   // each face touching v along an edge without collecting it twice per corner.
-  for_each_end(m, v, [&](EdgeEnd end) {
-    for_each_radial(m, end.edge, [&](EdgeUseId u) {
-      if (m.is_reversed(u) == (end.end == 1)) out.push_back(m.face_of(u));
+  m.for_each_end_around(v, [&](const Model::VertexEnd& x) {
+    for_each_radial(m, x.end.edge, [&](EdgeUseId u) {
+      if (m.is_reversed(u) == (x.end.end == 1)) out.push_back(m.face_of(u));
     });
   });
   if (const LoopId l = m.point_loop(v); l.is_valid()) out.push_back(m.face_of(l));
@@ -67,8 +56,8 @@ void vertices_of(const Model& m, EdgeId e, std::vector<VertexId>& out) {
 void edges_of(const Model& m, EdgeId e, std::vector<EdgeId>& out) {
   out.clear();
   for (int end = 0; end < 2; ++end) {
-    for_each_end(m, m.vertex_of(e, end), [&](EdgeEnd x) {
-      if (x.edge != e) out.push_back(x.edge);
+    m.for_each_end_around(m.vertex_of(e, end), [&](const Model::VertexEnd& x) {
+      if (x.end.edge != e) out.push_back(x.end.edge);
     });
   }
   dedupe_stable(out);
@@ -83,7 +72,7 @@ void faces_of(const Model& m, EdgeId e, std::vector<FaceId>& out) {
 void vertices_of(const Model& m, FaceId f, std::vector<VertexId>& out) {
   out.clear();
   m.for_each_face_use(
-      f, [&](EdgeUseId, EdgeId e, bool reversed) { out.push_back(m.vertex_of(e, reversed ? 1 : 0)); },
+      f, [&](const Model::FaceUse& x) { out.push_back(x.start); },
       [&](VertexId v) { out.push_back(v); });
   dedupe_stable(out);
 }
@@ -91,7 +80,7 @@ void vertices_of(const Model& m, FaceId f, std::vector<VertexId>& out) {
 void edges_of(const Model& m, FaceId f, std::vector<EdgeId>& out) {
   out.clear();
   m.for_each_face_use(
-      f, [&](EdgeUseId, EdgeId e, bool) { out.push_back(e); }, [](VertexId) {});
+      f, [&](const Model::FaceUse& x) { out.push_back(x.edge); }, [](VertexId) {});
   dedupe_stable(out);
 }
 
@@ -99,8 +88,8 @@ void faces_of(const Model& m, FaceId f, std::vector<FaceId>& out) {
   out.clear();
   m.for_each_face_use(
       f,
-      [&](EdgeUseId u, EdgeId, bool) {
-        for (EdgeUseId w = m.radial_next(u); w != u; w = m.radial_next(w)) {
+      [&](const Model::FaceUse& x) {
+        for (EdgeUseId w = m.radial_next(x.use); w != x.use; w = m.radial_next(w)) {
           if (const FaceId g = m.face_of(w); g != f) out.push_back(g);
         }
       },

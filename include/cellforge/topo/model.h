@@ -3,10 +3,10 @@
 //
 // Entities and what each record holds (all fields are 32-bit indices):
 //   Vertex   first edge end of its vertex cycle                    (4 B)
-//   Edge     per end: vertex, next end around that vertex;
-//            first use of its radial cycle                         (20 B)
-//   EdgeUse  face + direction bit, next use in its loop,
-//            next use around its edge (radial cycle)               (12 B)
+//   Edge     per end: vertex, next end around that vertex (8 B each);
+//            first use of its radial cycle (4 B)                   (20 B)
+//   EdgeUse  face + direction bit, next use around its edge (radial
+//            cycle) (8 B); next use in its loop (4 B)              (12 B)
 //   Face     first use of its loop, interned side record           (8 B)
 //   Loop     only for faces with holes or a point loop: first use
 //            (or the point's vertex), next loop of the face         (8 B)
@@ -39,6 +39,13 @@
 //
 // Geometry lives beside the topology: vertex positions in their own array; faces
 // are planar polygons whose plane follows from their vertices.
+//
+// Records are split where the walks want them apart (structure of arrays): the
+// ends of all edges form one array indexed by the encoded end (2*edge + end), so
+// the vertex cycle steps with one load and a use's start vertex is one load
+// from its edge; the loop links of the uses form their own array, so a loop walk
+// steps with one load, and the radial fields (face, direction, radial next) stay
+// together for the walks around an edge. The byte counts above are per entity.
 //
 // Deleted slots go on per-kind free lists threaded through the dead records, so
 // ids stay stable across edits and are reused by later creations. Accessors check
@@ -145,7 +152,7 @@ class Model {
     return v.value < vertices_.size() && vertices_[v.value].first_end != kDead;
   }
   bool is_live(EdgeId e) const {
-    return e.value < edges_.size() && edges_[e.value].vertex[0] != kDead;
+    return e.value < first_use_.size() && ends_[2 * e.value].vertex != kDead;
   }
   bool is_live(EdgeUseId u) const {
     return u.value < uses_.size() && uses_[u.value].face_dir != kDead;
@@ -181,22 +188,40 @@ class Model {
     return (c != kInvalidIndex && (c & kTagBit)) ? LoopId(c & ~kTagBit) : LoopId();
   }
   // The next edge end around the same vertex (the vertex cycle).
-  EdgeEnd next_end_around(EdgeEnd end) const {
-    return decode_end(edges_[end.edge.value].next_end[end.end]);
-  }
+  EdgeEnd next_end_around(EdgeEnd end) const { return decode_end(ends_[encode_end(end)].next_end); }
   std::size_t degree(VertexId v) const;  // number of edge ends at v
+  // One step of a vertex walk: the edge end at the vertex and the vertex at the
+  // edge's other end.
+  struct VertexEnd {
+    EdgeEnd end;
+    VertexId other;
+  };
+  // Walks v's vertex cycle from first_end(v), calling on_end(VertexEnd) for every
+  // edge end at v (a field the callback ignores is not read). The queries' vertex
+  // walks; not for a model an operator is editing.
+  template <class EndFn>
+  void for_each_end_around(VertexId v, EndFn on_end) const {
+    const std::uint32_t first = vertices_[v.value].first_end;
+    if (first & kTagBit) return;        // no edges: a bare vertex, or a point loop's
+    const EndRec* ends = ends_.data();  // held: the callback's stores could alias it
+    std::uint32_t c = first;
+    do {
+      on_end(VertexEnd{{EdgeId(c >> 1), static_cast<int>(c & 1u)}, VertexId(ends[c ^ 1u].vertex)});
+      c = ends[c].next_end;
+    } while (c != first);
+  }
 
   // ---- edges
   VertexId vertex_of(EdgeId e, int end) const {
     assert(is_live(e));
-    return VertexId(edges_[e.value].vertex[end]);
+    return VertexId(ends_[2 * e.value + static_cast<std::uint32_t>(end)].vertex);
   }
   VertexId start_of(EdgeId e) const { return vertex_of(e, 0); }
   VertexId end_of(EdgeId e) const { return vertex_of(e, 1); }
   // First use of e's radial cycle; invalid for a wire edge.
   EdgeUseId first_use(EdgeId e) const {
     assert(is_live(e));
-    return EdgeUseId(edges_[e.value].first_use);
+    return EdgeUseId(first_use_[e.value]);
   }
   GroupId group_of(EdgeId e) const { return group_of(start_of(e)); }
   bool is_wire(EdgeId e) const { return !first_use(e).is_valid(); }
@@ -218,13 +243,13 @@ class Model {
   }
   EdgeUseId loop_next(EdgeUseId u) const {
     assert(is_live(u));
-    return EdgeUseId(uses_[u.value].next);
+    return EdgeUseId(next_use_[u.value]);
   }
   EdgeUseId loop_prev(EdgeUseId u) const;  // walks the loop: O(loop length)
   EdgeUseId radial_next(EdgeUseId u) const {
     assert(is_live(u));
     const std::uint32_t n = uses_[u.value].radial;
-    return (n & kTagBit) ? EdgeUseId(edges_[n & ~kTagBit].first_use) : EdgeUseId(n);
+    return (n & kTagBit) ? EdgeUseId(first_use_[n & ~kTagBit]) : EdgeUseId(n);
   }
   // True when u is the last use of its radial cycle (radial_next(u) is first_use).
   bool is_radial_tail(EdgeUseId u) const { return (uses_[u.value].radial & kTagBit) != 0; }
@@ -271,35 +296,24 @@ class Model {
     return faces_[f.value].first == kInvalidIndex ? LoopId() : LoopId(f.value);
   }
   std::size_t inner_loop_count(FaceId f) const;
+  // One use of a face walk: the use, its edge, its direction and its start vertex.
+  struct FaceUse {
+    EdgeUseId use;
+    EdgeId edge;
+    bool reversed;
+    VertexId start;
+  };
   // Walks f's loops in order (outer first), reading each record once: calls
-  // on_use(use, edge_of(use), is_reversed(use)) for every use of a loop of
-  // edges, in loop order, and on_point(vertex) for a point loop. The queries'
-  // face walks; not for a model an operator is editing.
+  // on_use(FaceUse) for every use of a loop of edges, in loop order, and
+  // on_point(vertex) for a point loop. The queries' face walks (a field the
+  // callback ignores is not read); not for a model an operator is editing.
   template <class UseFn, class PointFn>
   void for_each_face_use(FaceId f, UseFn on_use, PointFn on_point) const {
-    const UseRec* uses = uses_.data();
-    auto walk = [&](std::uint32_t first) {
-      std::uint32_t u = first;
-      do {
-        const UseRec r = uses[u];
-        on_use(EdgeUseId(u), EdgeId(radial_tail(uses, u)), (r.face_dir & kTagBit) != 0);
-        u = r.next;
-      } while (u != first);
-    };
     const std::uint32_t first = faces_[f.value].first;
     if (!(first & kTagBit)) {
-      walk(first);
-      return;
-    }
-    if (first == kInvalidIndex) return;
-    for (std::uint32_t r = first & ~kTagBit;;) {
-      const LoopRec loop = loops_[r];
-      if (loop.first & kTagBit)
-        on_point(VertexId(loop.first & ~kTagBit));
-      else
-        walk(loop.first);
-      if (loop.next & kTagBit) return;
-      r = loop.next;
+      walk_loop(first, on_use);
+    } else if (first != kInvalidIndex) {
+      walk_listed_loops(first & ~kTagBit, on_use, on_point);
     }
   }
   VolumeId front_volume(FaceId f) const { return VolumeId(sides_[faces_[f.value].sides].front); }
@@ -356,7 +370,7 @@ class Model {
   std::uint32_t vertex_slots() const { return static_cast<std::uint32_t>(vertices_.size()); }
   std::size_t vertex_group_runs() const { return vertex_groups_.size(); }  // 8 B each
   std::size_t free_vertex_slots() const { return free_vertices_.size(); }  // 4 B each
-  std::uint32_t edge_slots() const { return static_cast<std::uint32_t>(edges_.size()); }
+  std::uint32_t edge_slots() const { return static_cast<std::uint32_t>(first_use_.size()); }
   std::uint32_t use_slots() const { return static_cast<std::uint32_t>(uses_.size()); }
   std::uint32_t loop_slots() const { return static_cast<std::uint32_t>(loops_.size()); }  // records
   std::uint32_t face_slots() const { return static_cast<std::uint32_t>(faces_.size()); }
@@ -385,14 +399,13 @@ class Model {
     std::uint32_t first_vertex;  // the run holds vertex ids from here to the next run
     std::uint32_t group;
   };
-  struct EdgeRec {
-    std::uint32_t vertex[2];  // vertex[0] == kDead when free; first_use links the free list
-    std::uint32_t next_end[2];
-    std::uint32_t first_use;
+  // One end of an edge, at index 2*edge + end of ends_ (the encoded end).
+  struct EndRec {
+    std::uint32_t vertex;    // kDead at an edge's end 0 when the edge is free
+    std::uint32_t next_end;  // encoded: the next edge end around the same vertex
   };
   struct UseRec {
-    std::uint32_t face_dir;  // face | kTagBit when reversed; kDead when free (next links the list)
-    std::uint32_t next;      // next use of its loop
+    std::uint32_t face_dir;  // face | kTagBit when reversed; kDead when free
     std::uint32_t radial;    // next use around its edge, or kTagBit|edge for the cycle's last
   };
   struct LoopRec {
@@ -425,8 +438,10 @@ class Model {
   std::vector<GroupRun> vertex_groups_;  // sorted by first_vertex
   std::vector<std::uint32_t> free_vertices_;
   std::vector<Vec3> positions_;
-  std::vector<EdgeRec> edges_;
+  std::vector<EndRec> ends_;              // two per edge slot
+  std::vector<std::uint32_t> first_use_;  // per edge slot; links the free list
   std::vector<UseRec> uses_;
+  std::vector<std::uint32_t> next_use_;  // per use slot: next use of its loop; links the free list
   std::vector<LoopRec> loops_;
   std::vector<FaceRec> faces_;
   std::vector<SidesRec> sides_;
@@ -443,6 +458,37 @@ class Model {
     const std::uint32_t f = faces_[l.value].first;
     if (!(f & kTagBit) || f == kInvalidIndex) return f;
     return loops_[f & ~kTagBit].first;
+  }
+  // The uses of the loop of edges that starts at `first`, for for_each_face_use.
+  template <class UseFn>
+  void walk_loop(std::uint32_t first, UseFn& on_use) const {
+    // The arrays' addresses are held here: the callback's stores could alias
+    // the vectors, which would otherwise be re-read for every use.
+    const UseRec* uses = uses_.data();
+    const std::uint32_t* next = next_use_.data();
+    const EndRec* ends = ends_.data();
+    std::uint32_t u = first;
+    do {
+      const std::uint32_t dir = uses[u].face_dir >> 31;
+      const std::uint32_t e = radial_tail(uses, u);
+      on_use(FaceUse{EdgeUseId(u), EdgeId(e), dir != 0, VertexId(ends[2 * e + dir].vertex)});
+      u = next[u];
+    } while (u != first);
+  }
+  // The loops of a face that lists them in Loop records from record r: out of
+  // line, so that the walk of a face with one loop stays small.
+  template <class UseFn, class PointFn>
+  [[gnu::noinline]] void walk_listed_loops(std::uint32_t r, UseFn& on_use,
+                                           PointFn& on_point) const {
+    for (;;) {
+      const LoopRec loop = loops_[r];
+      if (loop.first & kTagBit)
+        on_point(VertexId(loop.first & ~kTagBit));
+      else
+        walk_loop(loop.first, on_use);
+      if (loop.next & kTagBit) return;
+      r = loop.next;
+    }
   }
   // The edge named by the tail of u's radial cycle. It takes the array so that a
   // walk can keep its address in a register. (A branch-free first step was
