@@ -81,15 +81,8 @@ EdgeId ModelEditor::new_edge(VertexId a, VertexId b) {
 }
 
 EdgeUseId ModelEditor::new_use(EdgeId e, bool reversed, FaceId f) {
-  const std::uint32_t i = take_slot(
-      Model::kUse, [&](std::uint32_t j) { return m_.next_use_[j]; },
-      [&] {
-        m_.uses_.emplace_back();
-        m_.next_use_.emplace_back();
-        return static_cast<std::uint32_t>(m_.uses_.size() - 1);
-      });
-  m_.uses_[i] = {f.value | (reversed ? kTagBit : 0u), e.value | kTagBit};
-  m_.next_use_[i] = i;
+  const std::uint32_t i = take_slot(m_.uses_, Model::kUse, &UseRec::next);
+  m_.uses_[i] = {f.value | (reversed ? kTagBit : 0u), i, e.value | kTagBit};
   return EdgeUseId(i);
 }
 
@@ -310,7 +303,7 @@ void ModelEditor::free_edge(EdgeId e) {
 
 void ModelEditor::free_use(EdgeUseId u) {
   rec(u).face_dir = kDead;
-  push_free(m_.free_[Model::kUse], u.value, m_.next_use_[u.value]);
+  push_free(m_.free_[Model::kUse], u.value, rec(u).next);
   --m_.live_[Model::kUse];
 }
 
@@ -452,7 +445,7 @@ void ModelEditor::assign_face(LoopId l, FaceId f) {
   do {
     UseRec& r = m_.uses_[u];
     r.face_dir = f.value | (r.face_dir & kTagBit);
-    u = m_.next_use_[u];
+    u = r.next;
   } while (u != first);
 }
 

@@ -90,7 +90,7 @@ class ModelEditor {
   void set_loop_first(LoopId l, EdgeUseId u);
   // Makes l the point loop of v (v must have no edges).
   void set_point_loop(LoopId l, VertexId v);
-  void set_next(EdgeUseId u, EdgeUseId next) { m_.next_use_[u.value] = next.value; }
+  void set_next(EdgeUseId u, EdgeUseId next) { rec(u).next = next.value; }
   // Appends l at the end of f's loop list.
   void append_loop(FaceId f, LoopId l);
   // Removes l from its face's loop list (l must not be the only loop).

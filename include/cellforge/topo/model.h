@@ -5,8 +5,8 @@
 //   Vertex   first edge end of its vertex cycle                    (4 B)
 //   Edge     per end: vertex, next end around that vertex (8 B each);
 //            first use of its radial cycle (4 B)                   (20 B)
-//   EdgeUse  face + direction bit, next use around its edge (radial
-//            cycle) (8 B); next use in its loop (4 B)              (12 B)
+//   EdgeUse  face + direction bit, next use in its loop,
+//            next use around its edge (radial cycle)               (12 B)
 //   Face     first use of its loop, interned side record           (8 B)
 //   Loop     only for faces with holes or a point loop: first use
 //            (or the point's vertex), next loop of the face         (8 B)
@@ -40,12 +40,12 @@
 // Geometry lives beside the topology: vertex positions in their own array; faces
 // are planar polygons whose plane follows from their vertices.
 //
-// Records are split where the walks want them apart (structure of arrays): the
-// ends of all edges form one array indexed by the encoded end (2*edge + end), so
-// the vertex cycle steps with one load and a use's start vertex is one load
-// from its edge; the loop links of the uses form their own array, so a loop walk
-// steps with one load, and the radial fields (face, direction, radial next) stay
-// together for the walks around an edge. The byte counts above are per entity.
+// An edge's fields live in two arrays: the ends of all edges in one, indexed by
+// the encoded end (2*edge + end), so that the vertex cycle steps with one load
+// and no decoding and a use's start vertex is one load from its edge; the first
+// uses in another. A use's three fields stay in one record, which a loop walk
+// and a walk around an edge each read once per use (docs/topology.md says what
+// splitting them too cost).
 //
 // Deleted slots go on per-kind free lists threaded through the dead records, so
 // ids stay stable across edits and are reused by later creations. Accessors check
@@ -243,7 +243,7 @@ class Model {
   }
   EdgeUseId loop_next(EdgeUseId u) const {
     assert(is_live(u));
-    return EdgeUseId(next_use_[u.value]);
+    return EdgeUseId(uses_[u.value].next);
   }
   EdgeUseId loop_prev(EdgeUseId u) const;  // walks the loop: O(loop length)
   EdgeUseId radial_next(EdgeUseId u) const {
@@ -405,7 +405,8 @@ class Model {
     std::uint32_t next_end;  // encoded: the next edge end around the same vertex
   };
   struct UseRec {
-    std::uint32_t face_dir;  // face | kTagBit when reversed; kDead when free
+    std::uint32_t face_dir;  // face | kTagBit when reversed; kDead when free (next links the list)
+    std::uint32_t next;      // next use of its loop
     std::uint32_t radial;    // next use around its edge, or kTagBit|edge for the cycle's last
   };
   struct LoopRec {
@@ -441,7 +442,6 @@ class Model {
   std::vector<EndRec> ends_;              // two per edge slot
   std::vector<std::uint32_t> first_use_;  // per edge slot; links the free list
   std::vector<UseRec> uses_;
-  std::vector<std::uint32_t> next_use_;  // per use slot: next use of its loop; links the free list
   std::vector<LoopRec> loops_;
   std::vector<FaceRec> faces_;
   std::vector<SidesRec> sides_;
@@ -465,14 +465,13 @@ class Model {
     // The arrays' addresses are held here: the callback's stores could alias
     // the vectors, which would otherwise be re-read for every use.
     const UseRec* uses = uses_.data();
-    const std::uint32_t* next = next_use_.data();
     const EndRec* ends = ends_.data();
     std::uint32_t u = first;
     do {
       const std::uint32_t dir = uses[u].face_dir >> 31;
       const std::uint32_t e = radial_tail(uses, u);
       on_use(FaceUse{EdgeUseId(u), EdgeId(e), dir != 0, VertexId(ends[2 * e + dir].vertex)});
-      u = next[u];
+      u = uses[u].next;
     } while (u != first);
   }
   // The loops of a face that lists them in Loop records from record r: out of
