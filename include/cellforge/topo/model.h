@@ -474,11 +474,9 @@ class Model {
       u = uses[u].next;
     } while (u != first);
   }
-  // The loops of a face that lists them in Loop records from record r: out of
-  // line, so that the walk of a face with one loop stays small.
+  // The loops of a face that lists them in Loop records, from record r.
   template <class UseFn, class PointFn>
-  [[gnu::noinline]] void walk_listed_loops(std::uint32_t r, UseFn& on_use,
-                                           PointFn& on_point) const {
+  void walk_listed_loops(std::uint32_t r, UseFn& on_use, PointFn& on_point) const {
     for (;;) {
       const LoopRec loop = loops_[r];
       if (loop.first & kTagBit)
