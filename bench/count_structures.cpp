@@ -5,10 +5,12 @@
 //   build/bin/count_structures MODEL STRUCTURE QUERY [REPEATS]
 // runs query QUERY (0-8: V→V V→E V→F E→V E→E E→F F→V F→E F→F) of STRUCTURE
 // (cellforge | radial_edge) from every element of MODEL (cube | cube_with_hole |
-// sphere64 | two_cubes_edge | book) REPEATS times (default 10,000), inside
-// measured_queries(), and prints the number of queries and answer elements.
+// sphere64 | two_cubes_edge | book) REPEATS times (default: about 100,000 queries
+// in all), inside measured_queries(), and prints the number of queries and answer
+// elements.
 // scripts/count_queries.sh runs it under callgrind for every combination and
 // prints instructions per query.
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
@@ -30,6 +32,7 @@ struct Elements {
 template <class Out, class Run, class In>
 void repeat(const Run& run, const std::vector<In>& from, int repeats, std::size_t& queries,
             std::size_t& elements) {
+  if (repeats <= 0) repeats = std::max(1, 100000 / static_cast<int>(from.size()));
   std::vector<Out> out;
   for (int i = 0; i < repeats; ++i) {
     for (In x : from) {
@@ -64,7 +67,7 @@ int run(int argc, char** argv) {
   }
   const std::string name = argv[1], structure = argv[2];
   const int q = std::atoi(argv[3]);
-  const int repeats = argc > 4 ? std::atoi(argv[4]) : 10000;
+  const int repeats = argc > 4 ? std::atoi(argv[4]) : 0;  // 0: about 100,000 queries
   MeshInput input;
   if (name == "cube") input = cube_model();
   else if (name == "cube_with_hole") input = cube_with_hole_model();
