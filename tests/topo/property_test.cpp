@@ -146,17 +146,20 @@ class RandomEdits {
     const EdgeId e = m_.edge_of(u);
     const VertexId a = m_.use_start(u), b = m_.use_end(u);
     const LoopId rest = m_.loop_of(u);
+    // mekr, the undo, puts the edge back after the first use ending at a: that is
+    // where kemr took it from only when a and b occur once on their loops. A
+    // trial on a copy tells, and an ambiguous pick is not taken. (Taking it and
+    // putting the edge straight back could move it to another corner of a, after
+    // which an earlier step's undo split the loop elsewhere: seed 2196.)
+    Model trial = m_;
+    const auto trial_ring = kemr(trial, u);
+    if (!trial_ring) return "";
+    if ((!trial.is_point_loop(rest) && count_ends(trial, rest, a) != 1) ||
+        (!trial.is_point_loop(*trial_ring) && count_ends(trial, *trial_ring, b) != 1)) {
+      return "";
+    }
     auto ring = kemr(m_, u);
     if (!ring) return "";
-    // mekr puts the edge back after the first use ending at a: only unambiguous
-    // when a and b occur once on their loops.
-    if ((!m_.is_point_loop(rest) && count_ends(m_, rest, a) != 1) ||
-        (!m_.is_point_loop(*ring) && count_ends(m_, *ring, b) != 1)) {
-      auto back = mekr(m_, rest, a, *ring, b);
-      EXPECT_TRUE(back.ok());
-      map_.edges.renamed(e, *back);
-      return "kemr+mekr";
-    }
     auto l1 = map_.loops.hold(rest);
     auto l2 = map_.loops.hold(*ring);
     const EdgeId gone = map_.edges.retire(e);  // kemr killed e
@@ -314,7 +317,7 @@ class RandomEdits {
 };
 
 TEST(Property, RandomOperatorSequencesStayValidAndUndoToEmpty) {
-  constexpr int kSeeds = 300, kSteps = 100;
+  constexpr int kSeeds = 1000, kSteps = 100;
   long applied = 0;
   for (std::uint32_t seed = 1; seed <= kSeeds; ++seed) {
     RandomEdits run(seed);
