@@ -11,6 +11,7 @@
 #include <memory>
 #include <random>
 #include <set>
+#include <utility>
 
 #include "cellforge/topo/operators.h"
 #include "cellforge/topo/validate.h"
@@ -148,18 +149,18 @@ class RandomEdits {
     const LoopId rest = m_.loop_of(u);
     // mekr, the undo, puts the edge back after the first use ending at a: that is
     // where kemr took it from only when a and b occur once on their loops. A
-    // trial on a copy tells, and an ambiguous pick is not taken. (Taking it and
-    // putting the edge straight back could move it to another corner of a, after
-    // which an earlier step's undo split the loop elsewhere: seed 2196.)
+    // trial on a copy tells, and an ambiguous pick is not taken (the copy then
+    // becomes the model). Taking it and putting the edge straight back could move
+    // it to another corner of a, after which an earlier step's undo split the
+    // loop elsewhere: seed 2196.
     Model trial = m_;
-    const auto trial_ring = kemr(trial, u);
-    if (!trial_ring) return "";
+    const auto ring = kemr(trial, u);
+    if (!ring) return "";
     if ((!trial.is_point_loop(rest) && count_ends(trial, rest, a) != 1) ||
-        (!trial.is_point_loop(*trial_ring) && count_ends(trial, *trial_ring, b) != 1)) {
+        (!trial.is_point_loop(*ring) && count_ends(trial, *ring, b) != 1)) {
       return "";
     }
-    auto ring = kemr(m_, u);
-    if (!ring) return "";
+    m_ = std::move(trial);
     auto l1 = map_.loops.hold(rest);
     auto l2 = map_.loops.hold(*ring);
     const EdgeId gone = map_.edges.retire(e);  // kemr killed e
