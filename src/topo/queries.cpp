@@ -71,9 +71,7 @@ void faces_of(const Model& m, EdgeId e, std::vector<FaceId>& out) {
 
 void vertices_of(const Model& m, FaceId f, std::vector<VertexId>& out) {
   out.clear();
-  m.for_each_face_use(
-      f, [&](const Model::FaceUse& x) { out.push_back(x.start); },
-      [&](VertexId v) { out.push_back(v); });
+  m.for_each_face_vertex(f, [&](VertexId v) { out.push_back(v); });
   dedupe_stable(out);
 }
 

@@ -11,7 +11,9 @@
 #include <memory>
 #include <random>
 #include <set>
+#include <string>
 #include <utility>
+#include <vector>
 
 #include "cellforge/topo/operators.h"
 #include "cellforge/topo/validate.h"
@@ -317,6 +319,45 @@ class RandomEdits {
   std::vector<std::pair<std::string, std::function<Status()>>> undo_;
 };
 
+// The queries' face walks against the step-by-step accessors: for every face,
+// for_each_face_vertex must list each loop's vertices (loop_vertices, through
+// use_start) and for_each_face_use each use with its edge, direction and start,
+// loops in order. Random edits make the loops the walks must get right: odd and
+// even lengths, spurs, holes, point loops and non-manifold edges.
+std::string face_walk_mismatch(const Model& m) {
+  for (FaceId f : m.faces()) {
+    std::vector<VertexId> want;
+    std::vector<EdgeUseId> uses;
+    for (LoopId l = m.outer_loop(f); l.is_valid(); l = m.next_loop(l)) {
+      const auto vs = m.loop_vertices(l);
+      want.insert(want.end(), vs.begin(), vs.end());
+      if (const EdgeUseId first = m.loop_first(l); first.is_valid()) {
+        EdgeUseId u = first;
+        do {
+          uses.push_back(u);
+          u = m.loop_next(u);
+        } while (u != first);
+      }
+    }
+    std::vector<VertexId> got;
+    m.for_each_face_vertex(f, [&](VertexId v) { got.push_back(v); });
+    if (got != want) return "for_each_face_vertex differs on face f" + std::to_string(f.value);
+    std::size_t i = 0;
+    bool same = true;
+    m.for_each_face_use(
+        f,
+        [&](const Model::FaceUse& x) {
+          same = same && i < uses.size() && x.use == uses[i] && x.edge == m.edge_of(x.use) &&
+                 x.reversed == m.is_reversed(x.use) && x.start == m.use_start(x.use);
+          ++i;
+        },
+        [](VertexId) {});
+    if (!same || i != uses.size())
+      return "for_each_face_use differs on face f" + std::to_string(f.value);
+  }
+  return "";
+}
+
 TEST(Property, RandomOperatorSequencesStayValidAndUndoToEmpty) {
   constexpr int kSeeds = 1000, kSteps = 100;
   long applied = 0;
@@ -329,6 +370,10 @@ TEST(Property, RandomOperatorSequencesStayValidAndUndoToEmpty) {
       const auto v = validate(run.model());
       ASSERT_TRUE(v.empty()) << "seed " << seed << " step " << i << " after " << op << ":\n"
                              << to_string(v) << raw_dump(run.model());
+      const std::string walk = face_walk_mismatch(run.model());
+      ASSERT_TRUE(walk.empty()) << "seed " << seed << " step " << i << " after " << op << ": "
+                                << walk << "\n"
+                                << raw_dump(run.model());
     }
     auto& undo = run.undo();
     for (std::size_t i = undo.size(); i-- > 0;) {

@@ -309,12 +309,16 @@ class Model {
   // callback ignores is not read); not for a model an operator is editing.
   template <class UseFn, class PointFn>
   void for_each_face_use(FaceId f, UseFn on_use, PointFn on_point) const {
-    const std::uint32_t first = faces_[f.value].first;
-    if (!(first & kTagBit)) {
-      walk_loop(first, on_use);
-    } else if (first != kInvalidIndex) {
-      walk_listed_loops(first & ~kTagBit, on_use, on_point);
-    }
+    for_each_loop_of(f, [&](std::uint32_t first) { walk_loop(first, on_use); }, on_point);
+  }
+  // Walks f's loops in order (outer first), calling on_vertex(VertexId) for every
+  // use's start vertex, in loop order, and for a point loop's vertex: the F->V walk.
+  // It finds the edge of every other use only: a use's end vertex is the next
+  // use's start, and the edge's two end records sit side by side.
+  template <class VertexFn>
+  void for_each_face_vertex(FaceId f, VertexFn on_vertex) const {
+    for_each_loop_of(f, [&](std::uint32_t first) { walk_loop_vertices(first, on_vertex); },
+                     on_vertex);
   }
   VolumeId front_volume(FaceId f) const { return VolumeId(sides_[faces_[f.value].sides].front); }
   VolumeId back_volume(FaceId f) const { return VolumeId(sides_[faces_[f.value].sides].back); }
@@ -474,15 +478,42 @@ class Model {
       u = uses[u].next;
     } while (u != first);
   }
-  // The loops of a face that lists them in Loop records, from record r.
-  template <class UseFn, class PointFn>
-  void walk_listed_loops(std::uint32_t r, UseFn& on_use, PointFn& on_point) const {
+  // The start vertices of the loop of edges that starts at `first`, for
+  // for_each_face_vertex: two per edge found, u's start and its end (the next
+  // use's start), so a loop of n uses looks up ceil(n / 2) edges.
+  template <class VertexFn>
+  void walk_loop_vertices(std::uint32_t first, VertexFn& on_vertex) const {
+    const UseRec* uses = uses_.data();
+    const EndRec* ends = ends_.data();
+    std::uint32_t u = first;
     for (;;) {
+      const UseRec& rec = uses[u];
+      const std::uint32_t c = 2 * radial_tail(uses, u) + (rec.face_dir >> 31);
+      on_vertex(VertexId(ends[c].vertex));
+      const std::uint32_t n = rec.next;
+      if (n == first) return;
+      on_vertex(VertexId(ends[c ^ 1u].vertex));  // n's start is u's end
+      u = uses[n].next;
+      if (u == first) return;
+    }
+  }
+  // f's loops in order: on_loop(first use) for a loop of edges, on_point(vertex)
+  // for a point loop. A face without holes has its loop's first use in its record;
+  // a face with holes or a point loop lists its loops in Loop records.
+  template <class LoopFn, class PointFn>
+  void for_each_loop_of(FaceId f, LoopFn&& on_loop, PointFn& on_point) const {
+    const std::uint32_t first = faces_[f.value].first;
+    if (!(first & kTagBit)) {
+      on_loop(first);
+      return;
+    }
+    if (first == kInvalidIndex) return;
+    for (std::uint32_t r = first & ~kTagBit;;) {
       const LoopRec loop = loops_[r];
       if (loop.first & kTagBit)
         on_point(VertexId(loop.first & ~kTagBit));
       else
-        walk_loop(loop.first, on_use);
+        on_loop(loop.first);
       if (loop.next & kTagBit) return;
       r = loop.next;
     }
