@@ -385,6 +385,10 @@ TEST(Property, RandomOperatorSequencesStayValidAndUndoToEmpty) {
       const auto v = validate(run.model());
       ASSERT_TRUE(v.empty()) << "seed " << seed << " after undo " << undo[i].first << ":\n"
                              << to_string(v) << raw_dump(run.model());
+      const std::string walk = face_walk_mismatch(run.model());
+      ASSERT_TRUE(walk.empty()) << "seed " << seed << " after undo " << undo[i].first << ": "
+                                << walk << "\n"
+                                << raw_dump(run.model());
     }
     const GroupId g = *run.model().groups().begin();
     ASSERT_OK(kill_group(run.model(), g));

@@ -6,7 +6,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <vector>
 
+#include "cellforge/topo/builder.h"
 #include "support/fixtures.h"
 
 namespace cellforge {
@@ -44,6 +46,36 @@ TEST(Queries, CubeCorner) {
   EXPECT_EQ(q<EdgeId>(m, f).size(), 4u);
   EXPECT_EQ(face_keys(m, q<FaceId>(m, f)),
             (std::set<P>{{0.5, 0, 0.5}, {0.5, 1, 0.5}, {0, 0.5, 0.5}, {1, 0.5, 0.5}}));
+}
+
+// F->V lists a loop's vertices in loop order; its walk takes two vertices from
+// each edge it looks up, so loops of odd length end on a half pair. A pentagonal
+// prism has two 5-gons (odd) and five quads (even); each face must list its input
+// loop, up to where the loop starts.
+TEST(Queries, FaceVerticesInLoopOrderOnOddAndEvenLoops) {
+  std::vector<Vec3> p;
+  for (int z = 0; z < 2; ++z) {
+    p.push_back({0, 0, double(z)});
+    p.push_back({2, 0, double(z)});
+    p.push_back({3, 2, double(z)});
+    p.push_back({1, 3, double(z)});
+    p.push_back({-1, 2, double(z)});
+  }
+  std::vector<std::vector<std::uint32_t>> loops = {{4, 3, 2, 1, 0}, {5, 6, 7, 8, 9}};
+  for (std::uint32_t i = 0; i < 5; ++i) loops.push_back({i, (i + 1) % 5, (i + 1) % 5 + 5, i + 5});
+  Model m;
+  const auto built = build_mesh(m, solid_input(p, loops));
+  ASSERT_TRUE(built) << built.error().message;
+  for (std::size_t k = 0; k < loops.size(); ++k) {
+    std::vector<VertexId> want;
+    for (std::uint32_t i : loops[k]) want.push_back(built->vertices[i]);
+    const auto got = q<VertexId>(m, built->faces[k]);
+    ASSERT_EQ(got.size(), want.size()) << "face " << k;
+    const auto at = std::find(want.begin(), want.end(), got.front());
+    ASSERT_NE(at, want.end()) << "face " << k;
+    std::rotate(want.begin(), at, want.end());
+    EXPECT_EQ(got, want) << "face " << k;
+  }
 }
 
 TEST(Queries, TwoCubesSharingAnEdge) {

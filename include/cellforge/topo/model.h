@@ -314,7 +314,8 @@ class Model {
   // Walks f's loops in order (outer first), calling on_vertex(VertexId) for every
   // use's start vertex, in loop order, and for a point loop's vertex: the F->V walk.
   // It finds the edge of every other use only: a use's end vertex is the next
-  // use's start, and the edge's two end records sit side by side.
+  // use's start, and the edge's two end records sit side by side. Not for a model
+  // an operator is editing (it relies on closed, continuous loops).
   template <class VertexFn>
   void for_each_face_vertex(FaceId f, VertexFn on_vertex) const {
     for_each_loop_of(f, [&](std::uint32_t first) { walk_loop_vertices(first, on_vertex); },
