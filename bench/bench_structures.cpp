@@ -17,7 +17,6 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <cstring>
 #include <fstream>
 #include <optional>
 #include <random>
@@ -330,13 +329,14 @@ int run(int argc, char** argv) {
   std::string svg = "docs/structure-comparison.svg";
   int big_n = 1000;  // torus grid big_n x big_n/2: 2 * 1000 * 500 = 10^6 triangles
   for (int i = 1; i < argc; i += 2) {
-    const bool known = !std::strcmp(argv[i], "--svg") || !std::strcmp(argv[i], "--big");
-    if (!known || i + 1 >= argc) {
+    const std::string flag = argv[i];
+    if ((flag != "--svg" && flag != "--big") || i + 1 >= argc) {
       std::fprintf(stderr, "usage: bench_structures [--svg FILE] [--big N]\n");
       return 2;
     }
-    if (!std::strcmp(argv[i], "--svg")) svg = argv[i + 1];
-    if (!std::strcmp(argv[i], "--big")) {
+    if (flag == "--svg") {
+      svg = argv[i + 1];
+    } else {
       // Peak memory grows ~1.25 kB a triangle (1.24 GB measured at N = 1000, most
       // of it the radial edge copy): N = 3000, 9 * 10^6 triangles, needs ~11 GB.
       char* end = nullptr;

@@ -77,21 +77,17 @@ void vertices_of(const Model& m, FaceId f, std::vector<VertexId>& out) {
 
 void edges_of(const Model& m, FaceId f, std::vector<EdgeId>& out) {
   out.clear();
-  m.for_each_face_use(
-      f, [&](const Model::FaceUse& x) { out.push_back(x.edge); }, [](VertexId) {});
+  m.for_each_face_use(f, [&](const Model::FaceUse& x) { out.push_back(x.edge); });
   dedupe_stable(out);
 }
 
 void faces_of(const Model& m, FaceId f, std::vector<FaceId>& out) {
   out.clear();
-  m.for_each_face_use(
-      f,
-      [&](const Model::FaceUse& x) {
-        for (EdgeUseId w = m.radial_next(x.use); w != x.use; w = m.radial_next(w)) {
-          if (const FaceId g = m.face_of(w); g != f) out.push_back(g);
-        }
-      },
-      [](VertexId) {});
+  m.for_each_face_use(f, [&](const Model::FaceUse& x) {
+    for (EdgeUseId w = m.radial_next(x.use); w != x.use; w = m.radial_next(w)) {
+      if (const FaceId g = m.face_of(w); g != f) out.push_back(g);
+    }
+  });
   dedupe_stable(out);
 }
 

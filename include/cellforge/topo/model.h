@@ -296,20 +296,18 @@ class Model {
     return faces_[f.value].first == kInvalidIndex ? LoopId() : LoopId(f.value);
   }
   std::size_t inner_loop_count(FaceId f) const;
-  // One use of a face walk: the use, its edge, its direction and its start vertex.
+  // One use of a face walk: the use and its edge.
   struct FaceUse {
     EdgeUseId use;
     EdgeId edge;
-    bool reversed;
-    VertexId start;
   };
-  // Walks f's loops in order (outer first), reading each record once: calls
-  // on_use(FaceUse) for every use of a loop of edges, in loop order, and
-  // on_point(vertex) for a point loop. The queries' face walks (a field the
-  // callback ignores is not read); not for a model an operator is editing.
-  template <class UseFn, class PointFn>
-  void for_each_face_use(FaceId f, UseFn on_use, PointFn on_point) const {
-    for_each_loop_of(f, [&](std::uint32_t first) { walk_loop(first, on_use); }, on_point);
+  // Walks f's loops of edges in order (outer first), reading each record once:
+  // calls on_use(FaceUse) for every use, in loop order (point loops have none).
+  // The F->E and F->F walks; not for a model an operator is editing.
+  template <class UseFn>
+  void for_each_face_use(FaceId f, UseFn on_use) const {
+    for_each_loop_of(
+        f, [&](std::uint32_t first) { walk_loop(first, on_use); }, [](VertexId) {});
   }
   // Walks f's loops in order (outer first), calling on_vertex(VertexId) for every
   // use's start vertex, in loop order, and for a point loop's vertex: the F->V walk.
@@ -467,15 +465,12 @@ class Model {
   // The uses of the loop of edges that starts at `first`, for for_each_face_use.
   template <class UseFn>
   void walk_loop(std::uint32_t first, UseFn& on_use) const {
-    // The arrays' addresses are held here: the callback's stores could alias
-    // the vectors, which would otherwise be re-read for every use.
+    // The array's address is held here: the callback's stores could alias the
+    // vector, which would otherwise be re-read for every use.
     const UseRec* uses = uses_.data();
-    const EndRec* ends = ends_.data();
     std::uint32_t u = first;
     do {
-      const std::uint32_t dir = uses[u].face_dir >> 31;
-      const std::uint32_t e = radial_tail(uses, u);
-      on_use(FaceUse{EdgeUseId(u), EdgeId(e), dir != 0, VertexId(ends[2 * e + dir].vertex)});
+      on_use(FaceUse{EdgeUseId(u), EdgeId(radial_tail(uses, u))});
       u = uses[u].next;
     } while (u != first);
   }
@@ -502,7 +497,7 @@ class Model {
   // for a point loop. A face without holes has its loop's first use in its record;
   // a face with holes or a point loop lists its loops in Loop records.
   template <class LoopFn, class PointFn>
-  void for_each_loop_of(FaceId f, LoopFn&& on_loop, PointFn& on_point) const {
+  void for_each_loop_of(FaceId f, LoopFn&& on_loop, PointFn&& on_point) const {
     const std::uint32_t first = faces_[f.value].first;
     if (!(first & kTagBit)) {
       on_loop(first);
