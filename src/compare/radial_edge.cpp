@@ -50,7 +50,14 @@ RadialEdge RadialEdge::from_model(const Model& m) {
     isolated += (!m.first_end(v).edge.is_valid() && !m.point_loop(v).is_valid()) ? 1 : 0;
   }
   const std::uint32_t groups = group_slots(m);
-  const std::size_t use_eus = 2 * std::size_t{m.use_slots()};
+  // Two edgeuses per cellforge use, numbered densely (cellforge's use slots
+  // include empty ones).
+  std::vector<std::uint32_t> dense(m.use_slots(), kInvalidIndex);
+  std::uint32_t live_uses = 0;
+  for (EdgeUseId u : m.edge_uses()) dense[u.value] = live_uses++;
+  auto eu_of = [&](EdgeUseId u) { return &r.edgeuses_[2 * std::size_t{dense[u.value]}]; };
+  const std::size_t use_eus = 2 * std::size_t{live_uses};
+  for (std::uint32_t i = 0; i < m.edge_slots(); ++i) r.spare_edges_ += m.is_spare_pair(i) ? 1 : 0;
 
   // Every array gets its final size first: records are linked by address.
   r.model_storage_.resize(1);
@@ -130,14 +137,14 @@ RadialEdge RadialEdge::from_model(const Model& m) {
       const std::size_t n = uses.size();
       for (std::size_t i = 0; i < n; ++i) {
         const EdgeUseId u = uses[i], after = uses[(i + 1) % n], before = uses[(i + n - 1) % n];
-        EdgeUse* front = &r.edgeuses_[2 * u.value];
+        EdgeUse* front = eu_of(u);
         EdgeUse* back = front + 1;  // the mate runs the other way, in the back loopuse
         front->up.loopuse = lu[0];
         back->up.loopuse = lu[1];
-        front->next = &r.edgeuses_[2 * after.value];
-        front->prev = &r.edgeuses_[2 * before.value];
-        back->next = &r.edgeuses_[2 * before.value + 1];
-        back->prev = &r.edgeuses_[2 * after.value + 1];
+        front->next = eu_of(after);
+        front->prev = eu_of(before);
+        back->next = eu_of(before) + 1;
+        back->prev = eu_of(after) + 1;
         front->mate = back;
         back->mate = front;
         front->edge = back->edge = &r.edges_[m.edge_of(u).value];
@@ -146,8 +153,8 @@ RadialEdge RadialEdge::from_model(const Model& m) {
         edgeuse_at(m.use_start(u), front);
         edgeuse_at(m.use_end(u), back);
       }
-      lu[0]->edgeuses = &r.edgeuses_[2 * uses[0].value];
-      lu[1]->edgeuses = &r.edgeuses_[2 * uses[0].value + 1];
+      lu[0]->edgeuses = eu_of(uses[0]);
+      lu[1]->edgeuses = eu_of(uses[0]) + 1;
     }
   }
 
@@ -181,7 +188,7 @@ RadialEdge RadialEdge::from_model(const Model& m) {
     minus.clear();
     const EdgeUseId first = m.first_use(e);
     for (EdgeUseId u = first; plus.empty() || u != first; u = m.radial_next(u)) {
-      EdgeUse* front = &r.edgeuses_[2 * u.value];
+      EdgeUse* front = eu_of(u);
       plus.push_back(m.is_reversed(u) ? front + 1 : front);
       minus.push_back(m.is_reversed(u) ? front : front + 1);
     }
@@ -226,6 +233,10 @@ StorageStats RadialEdge::storage() const {
   add(loops_, 1);
   add(edges_, 1);
   add(vertices_, 1);
+  // cellforge's spare pairs (overflow use slots) are edge slots but no edges.
+  s.records -= spare_edges_;
+  s.references -= spare_edges_;
+  s.bytes -= spare_edges_ * sizeof(Edge);
   return s;
 }
 

@@ -3,6 +3,7 @@
 namespace cellforge::compare {
 
 StorageStats cellforge_storage(const Model& m) {
+  // Records: edge slots (spare pairs too) and their use slots, two each.
   const std::size_t main_records = m.vertex_slots() + m.vertex_group_runs() + m.edge_slots() +
                                    m.use_slots() + m.loop_slots() + m.face_slots();
   const std::size_t main_bytes =

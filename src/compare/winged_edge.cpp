@@ -120,6 +120,7 @@ Result<WingedEdge> WingedEdge::from_model(const Model& m) {
   WingedEdge w;
   w.vertices_.resize(m.vertex_slots());
   w.edges_.resize(m.edge_slots());
+  for (std::uint32_t i = 0; i < m.edge_slots(); ++i) w.spare_edges_ += m.is_spare_pair(i) ? 1 : 0;
   w.faces_.resize(m.face_slots());
   std::size_t inner = 0;
   for (FaceId f : m.faces()) inner += m.inner_loop_count(f);
@@ -199,6 +200,10 @@ StorageStats WingedEdge::storage() const {
   add(edges_, 10);
   add(faces_, 4);
   add(rings_, 2);
+  // cellforge's spare pairs (overflow use slots) are edge slots but no edges.
+  s.records -= spare_edges_;
+  s.references -= spare_edges_ * 10;
+  s.bytes -= spare_edges_ * sizeof(Edge);
   return s;
 }
 

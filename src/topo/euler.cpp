@@ -128,7 +128,6 @@ Status kev(Model& m, EdgeId e, VertexId v) {
       if (m.loop_first(l) == in || m.loop_first(l) == out) ed.set_loop_first(l, after);
     }
     for (EdgeUseId u : uses) {
-      ed.radial_remove(u);
       ed.free_use(u);
     }
   }
@@ -231,7 +230,6 @@ Status kef(Model& m, EdgeId e, FaceId f) {
     ed.assign_face(inner, keep);
   }
   for (EdgeUseId u : uses) {
-    ed.radial_remove(u);
     ed.free_use(u);
   }
   ed.free_edge(e);
@@ -287,8 +285,6 @@ Result<LoopId> kemr(Model& m, EdgeUseId u) {
     ed.set_next(pu, nw);
     ed.set_loop_first(l, nw);
   }
-  ed.radial_remove(u);
-  ed.radial_remove(w);
   ed.free_use(u);
   ed.free_use(w);
   ed.free_edge(e);
@@ -478,7 +474,6 @@ Status jekv(Model& m, EdgeId dying, VertexId v) {
     const EdgeUseId n = m.loop_next(d);
     ed.set_next(p, n);
     if (m.loop_first(l) == d) ed.set_loop_first(l, n);
-    ed.radial_remove(d);
     ed.free_use(d);
   }
   ed.free_edge(dying);

@@ -156,13 +156,13 @@ Vec3 Model::face_normal(FaceId f) const {
 
 std::size_t Model::topology_bytes() const {
   static_assert(sizeof(VertexRec) == kVertexRecordBytes);
-  static_assert(2 * sizeof(EndRec) + sizeof(std::uint32_t) == kEdgeRecordBytes);
-  static_assert(sizeof(UseRec) == kUseRecordBytes);
+  static_assert(2 * sizeof(EndRec) == kEdgeRecordBytes);
+  static_assert(sizeof(UseRec) + sizeof(std::uint32_t) == kUseRecordBytes);
   static_assert(sizeof(LoopRec) == kLoopRecordBytes);
   static_assert(sizeof(FaceRec) == kFaceRecordBytes);
   return vertices_.size() * sizeof(VertexRec) + vertex_groups_.size() * sizeof(GroupRun) +
          free_vertices_.size() * sizeof(std::uint32_t) + ends_.size() * sizeof(EndRec) +
-         first_use_.size() * sizeof(std::uint32_t) + uses_.size() * sizeof(UseRec) +
+         uses_.size() * sizeof(UseRec) + radial_.size() * sizeof(std::uint32_t) +
          loops_.size() * sizeof(LoopRec) +
          faces_.size() * sizeof(FaceRec) + sides_.size() * sizeof(SidesRec) +
          volumes_.size() * sizeof(VolumeRec) + groups_.size() * sizeof(std::uint32_t);

@@ -64,26 +64,70 @@ VertexId ModelEditor::new_vertex(GroupId g, Vec3 p) {
   return VertexId(i);
 }
 
+std::uint32_t ModelEditor::take_edge_slot() {
+  std::uint32_t& head = m_.free_[Model::kEdge];
+  if (head != kInvalidIndex) {
+    const std::uint32_t i = head;
+    head = m_.ends_[2 * i].next_end;
+    return i;
+  }
+  assert(m_.ends_.size() / 2 + 1 < Model::kMaxEdges);  // spare pairs count too
+  m_.ends_.resize(m_.ends_.size() + 2);
+  m_.uses_.resize(m_.ends_.size(), kEmptyUse());
+  m_.radial_.resize(m_.ends_.size(), kInvalidIndex);
+  return static_cast<std::uint32_t>(m_.ends_.size() / 2 - 1);
+}
+
+std::uint32_t ModelEditor::take_overflow_slot() {
+  std::uint32_t& head = m_.free_[Model::kUse];
+  if (head == kInvalidIndex) {  // a new spare pair: two free overflow slots
+    const std::uint32_t p = take_edge_slot();
+    m_.ends_[2 * p] = {Model::kSpare, 2 * p + 1};
+    m_.ends_[2 * p + 1] = {Model::kSpare, kInvalidIndex};
+    head = 2 * p;
+  }
+  const std::uint32_t s = head;
+  head = m_.ends_[s].next_end;
+  return s;
+}
+
 EdgeId ModelEditor::new_edge(VertexId a, VertexId b) {
-  const std::uint32_t i = take_slot(
-      Model::kEdge, [&](std::uint32_t j) { return m_.first_use_[j]; },
-      [&] {
-        m_.ends_.resize(m_.ends_.size() + 2);
-        m_.first_use_.emplace_back();
-        return static_cast<std::uint32_t>(m_.first_use_.size() - 1);
-      });
+  ++m_.live_[Model::kEdge];
+  const std::uint32_t i = take_edge_slot();
   m_.ends_[2 * i] = {a.value, kInvalidIndex};
   m_.ends_[2 * i + 1] = {b.value, kInvalidIndex};
-  m_.first_use_[i] = kInvalidIndex;
+  m_.uses_[2 * i] = m_.uses_[2 * i + 1] = kEmptyUse();
+  radial(2 * i) = radial(2 * i + 1) = kInvalidIndex;
   link_end(a, {EdgeId(i), 0});
   link_end(b, {EdgeId(i), 1});
   return EdgeId(i);
 }
 
 EdgeUseId ModelEditor::new_use(EdgeId e, bool reversed, FaceId f) {
-  const std::uint32_t i = take_slot(m_.uses_, Model::kUse, &UseRec::next);
-  m_.uses_[i] = {f.value | (reversed ? kTagBit : 0u), i, e.value | kTagBit};
-  return EdgeUseId(i);
+  ++m_.live_[Model::kUse];
+  const EdgeUseId first = m_.first_use(e);
+  // In place if that slot is free (model.h), else the other slot, else overflow.
+  const std::uint32_t place = 2 * e.value + (reversed ? 1u : 0u);
+  std::uint32_t s = place;
+  std::uint32_t overflow = 0;
+  if (m_.uses_[s].face_dir != Model::kNoUse) s ^= 1u;
+  if (m_.uses_[s].face_dir != Model::kNoUse) {
+    s = take_overflow_slot();
+    m_.ends_[s] = {e.value | kTagBit, kInvalidIndex};
+    overflow = Model::kOverflowBit;
+  }
+  m_.uses_[s] = {f.value | overflow | (reversed ? kTagBit : 0u), s};
+  if (s != place && f.is_valid()) {
+    rec(f).sides |= Model::kUnplacedFace | (overflow ? Model::kOverflowFace : 0u);
+  }
+  radial(s) = s;
+  if (first.is_valid()) {  // after the first use
+    radial(s) = radial(first.value);
+    radial(first.value) = s;
+  } else if (s != 2 * e.value) {  // the edge's first use, while slot 2e stays empty
+    radial(2 * e.value) = s;
+  }
+  return EdgeUseId(s);
 }
 
 std::uint32_t ModelEditor::new_record(std::uint32_t first, std::uint32_t next) {
@@ -133,14 +177,24 @@ void ModelEditor::open(FaceId f) {
 void ModelEditor::close(FaceId f) {
   list_loops(f);
   const std::uint32_t head = rec(f).first & ~kTagBit;
+  std::uint32_t marks = 0;
   for (std::uint32_t r = head;; r = loop_rec(r).next) {
     const std::uint32_t first = loop_rec(r).first;
     if (first & kTagBit) {  // a point loop: its vertex names it by its final id
       const std::uint32_t code = r == head ? f.value : (r | Model::kInnerLoopBit);
       rec(VertexId(first & ~kTagBit)).first_end = code | kTagBit;
+    } else {
+      std::uint32_t u = first;
+      do {
+        marks |= mark_of(EdgeUseId(u));
+        u = m_.uses_[u].next;
+      } while (u != first);
     }
     if (loop_rec(r).next & kTagBit) break;
   }
+  // The mark, exact again for the face walks (model.h, kUnplacedFace).
+  std::uint32_t& sides = rec(f).sides;
+  sides = (sides & ~Model::kFaceMarks) | marks;
   // A face with one loop of edges keeps it in its own record.
   const LoopRec only = loop_rec(head);
   if ((only.next & kTagBit) && !(only.first & kTagBit)) {
@@ -228,7 +282,7 @@ LoopId ModelEditor::take_outer_loop(FaceId f) {
 
 FaceId ModelEditor::new_face(std::uint32_t sides) {
   const std::uint32_t i = take_slot(m_.faces_, Model::kFace, &FaceRec::first);
-  m_.faces_[i] = {kInvalidIndex, sides};
+  m_.faces_[i] = {kInvalidIndex, sides & ~Model::kFaceMarks};
   if (i < m_.face_surface_.size()) m_.face_surface_[i] = kInvalidIndex;
   return FaceId(i);
 }
@@ -294,16 +348,35 @@ void ModelEditor::free_vertex(VertexId v) {
 }
 
 void ModelEditor::free_edge(EdgeId e) {
+  assert(!m_.first_use(e).is_valid());
   unlink_end(m_.vertex_of(e, 0), {e, 0});
   unlink_end(m_.vertex_of(e, 1), {e, 1});
   end_rec({e, 0}).vertex = kDead;
-  push_free(m_.free_[Model::kEdge], e.value, m_.first_use_[e.value]);
+  end_rec({e, 1}).vertex = kDead;
+  m_.uses_[2 * e.value] = kEmptyUse();
+  radial(2 * e.value) = kInvalidIndex;
+  push_free(m_.free_[Model::kEdge], e.value, end_rec({e, 0}).next_end);
   --m_.live_[Model::kEdge];
 }
 
 void ModelEditor::free_use(EdgeUseId u) {
-  rec(u).face_dir = kDead;
-  push_free(m_.free_[Model::kUse], u.value, rec(u).next);
+  const std::uint32_t e = m_.edge_of(u).value;
+  // Out of the radial cycle: its predecessor skips it.
+  const std::uint32_t after = radial(u.value);
+  std::uint32_t p = u.value;
+  while (radial(p) != u.value) p = radial(p);
+  radial(p) = after;
+  const std::uint32_t rest = after == u.value ? kInvalidIndex : after;  // a use left, if any
+  if (rec(u).face_dir & Model::kOverflowBit) {
+    m_.ends_[u.value].vertex = Model::kSpare;
+    push_free(m_.free_[Model::kUse], u.value, m_.ends_[u.value].next_end);
+  }
+  rec(u) = kEmptyUse();
+  radial(u.value) = kInvalidIndex;
+  // An empty slot 2e names a use of the cycle, if one is left.
+  if (m_.uses_[2 * e].face_dir == Model::kNoUse && (u.value == 2 * e || radial(2 * e) == u.value)) {
+    radial(2 * e) = rest;
+  }
   --m_.live_[Model::kUse];
 }
 
@@ -383,26 +456,15 @@ void ModelEditor::move_end(EdgeEnd end, VertexId to) {
 }
 
 void ModelEditor::set_radial_cycle(EdgeId e, const std::vector<EdgeUseId>& uses) {
-  for (std::size_t i = 0; i + 1 < uses.size(); ++i) rec(uses[i]).radial = uses[i + 1].value;
-  if (!uses.empty()) rec(uses.back()).radial = e.value | kTagBit;
-  m_.first_use_[e.value] = uses.empty() ? kInvalidIndex : uses.front().value;
+  for (std::size_t i = 0; i < uses.size(); ++i) {
+    radial(uses[i].value) = uses[(i + 1) % uses.size()].value;
+  }
+  if (m_.uses_[2 * e.value].face_dir == Model::kNoUse) {
+    radial(2 * e.value) = uses.empty() ? kInvalidIndex : uses.front().value;
+  }
 }
 
-void ModelEditor::radial_insert(EdgeUseId u) {
-  const EdgeId e = m_.edge_of(u);  // u is alone in a cycle that names e
-  std::vector<EdgeUseId> cycle = ops::radial_uses(m_, e);
-  cycle.push_back(u);
-  if (cycle.size() >= 3) cycle = sort_radially(m_, e, std::move(cycle));
-  set_radial_cycle(e, cycle);
-}
-
-void ModelEditor::radial_remove(EdgeUseId u) {
-  const EdgeId e = m_.edge_of(u);
-  std::vector<EdgeUseId> cycle = ops::radial_uses(m_, e);
-  std::erase(cycle, u);
-  set_radial_cycle(e, cycle);
-  rec(u).radial = e.value | kTagBit;
-}
+void ModelEditor::radial_insert(EdgeUseId u) { radial_sort(m_.edge_of(u)); }
 
 void ModelEditor::radial_sort(EdgeId e) {
   std::vector<EdgeUseId> cycle = ops::radial_uses(m_, e);
@@ -410,10 +472,29 @@ void ModelEditor::radial_sort(EdgeId e) {
   set_radial_cycle(e, sort_radially(m_, e, std::move(cycle)));
 }
 
-void ModelEditor::set_use_edge(EdgeUseId u, EdgeId e, bool flip) {
-  assert(m_.is_radial_tail(u) && m_.first_use(m_.edge_of(u)) != u);
-  rec(u).radial = e.value | kTagBit;
-  if (flip) rec(u).face_dir ^= kTagBit;
+EdgeUseId ModelEditor::move_use(EdgeUseId u, EdgeId e, bool flip) {
+  const FaceId f = m_.face_of(u);
+  const bool reversed = m_.is_reversed(u) != flip;
+  const std::uint32_t next = rec(u).next;
+  std::uint32_t prev = u.value;
+  while (m_.uses_[prev].next != u.value) prev = m_.uses_[prev].next;
+  free_use(u);
+  const EdgeUseId w = new_use(e, reversed, f);
+  if (prev != u.value) {
+    m_.uses_[prev].next = w.value;
+    rec(w).next = next;
+  }
+  // The loop that starts at u starts at w: in the face's record or a Loop record.
+  FaceRec& fr = rec(f);
+  if (fr.first == u.value) {
+    fr.first = w.value;
+  } else if ((fr.first & kTagBit) && fr.first != kInvalidIndex) {
+    for (std::uint32_t r = fr.first & ~kTagBit;; r = loop_rec(r).next) {
+      if (loop_rec(r).first == u.value) loop_rec(r).first = w.value;
+      if (loop_rec(r).next & kTagBit) break;
+    }
+  }
+  return w;
 }
 
 void ModelEditor::append_loop(FaceId f, LoopId l) {
@@ -444,13 +525,14 @@ void ModelEditor::assign_face(LoopId l, FaceId f) {
   std::uint32_t u = first;
   do {
     UseRec& r = m_.uses_[u];
-    r.face_dir = f.value | (r.face_dir & kTagBit);
+    r.face_dir = f.value | (r.face_dir & ~Model::kFaceMask);
+    rec(f).sides |= mark_of(EdgeUseId(u));
     u = r.next;
   } while (u != first);
 }
 
 void ModelEditor::set_sides(FaceId f, VolumeId front, VolumeId back) {
-  rec(f).sides = intern_sides(front, back, m_.group_of(f));
+  rec(f).sides = intern_sides(front, back, m_.group_of(f)) | (rec(f).sides & Model::kFaceMarks);
 }
 
 }  // namespace cellforge

@@ -7,7 +7,8 @@
 //    its loops into Loop records so that loops can come and go. When the last
 //    editor goes out of scope every opened face that is left with one loop of
 //    edges keeps that loop in its own record again.
-// Radial cycles are kept closed with their tails by every call that edits them.
+// Radial cycles are kept closed, and an empty slot 2e naming its edge's first use,
+// by every call that edits them.
 #pragma once
 
 #include "cellforge/topo/model.h"
@@ -29,10 +30,12 @@ class ModelEditor {
   using SidesRec = Model::SidesRec;
   static constexpr std::uint32_t kTagBit = Model::kTagBit;
   static constexpr std::uint32_t kDead = Model::kDead;
+  static constexpr UseRec kEmptyUse() { return {Model::kNoUse, kInvalidIndex}; }
 
   VertexRec& rec(VertexId v) { return m_.vertices_[v.value]; }
   EndRec& end_rec(EdgeEnd end) { return m_.ends_[Model::encode_end(end)]; }
   UseRec& rec(EdgeUseId u) { return m_.uses_[u.value]; }
+  std::uint32_t& radial(std::uint32_t u) { return m_.radial_[u]; }
   FaceRec& rec(FaceId f) { return m_.faces_[f.value]; }
 
   // ---- creation (records come back initialised, not yet linked)
@@ -40,8 +43,9 @@ class ModelEditor {
   VertexId new_vertex(GroupId g, Vec3 p);
   void set_vertex_group(VertexId v, GroupId g);
   EdgeId new_edge(VertexId a, VertexId b);               // links both ends into the vertex cycles
-  // Not yet in a loop; alone in a radial cycle of its own that names e (so
-  // edge_of works) until radial_insert puts it into e's cycle.
+  // A use of e in one of e's slots (2e, 2e + 1, else an overflow slot). Not
+  // yet in a loop (its next is itself); in e's radial cycle right after e's
+  // first use, until radial_insert gives it its angular place.
   EdgeUseId new_use(EdgeId e, bool reversed, FaceId f);
   // A Loop record not yet in any face, for append_loop (operators only).
   LoopId new_point_loop(VertexId v);
@@ -52,8 +56,8 @@ class ModelEditor {
 
   // ---- deletion (the caller has unlinked the entity from everything)
   void free_vertex(VertexId v);
-  void free_edge(EdgeId e);  // unlinks both ends from the vertex cycles first
-  void free_use(EdgeUseId u);
+  void free_edge(EdgeId e);  // unlinks both ends from the vertex cycles first; e has no uses
+  void free_use(EdgeUseId u);  // takes u out of its radial cycle (the caller unlinked its loop)
   void free_loop(LoopId l);  // its uses are dead or moved; clears a point loop's mark
   void free_face(FaceId f);
   void free_volume(VolumeId c);
@@ -66,17 +70,17 @@ class ModelEditor {
   void move_end(EdgeEnd end, VertexId to);
 
   // ---- radial cycles
-  // Inserts u into its edge's radial cycle at its angular place.
+  // Gives u (in its edge's cycle since new_use) its angular place there.
   void radial_insert(EdgeUseId u);
-  // Takes u out of its edge's cycle; u is left alone, still naming the edge.
-  void radial_remove(EdgeUseId u);
   // Sorts the whole radial cycle of e by angle (after bulk changes).
   void radial_sort(EdgeId e);
-  // Makes `uses` (in this order) the radial cycle of e.
+  // Makes `uses` (in this order; all of e's uses) the radial cycle of e.
   void set_radial_cycle(EdgeId e, const std::vector<EdgeUseId>& uses);
-  // Moves a use that is alone (after radial_remove) to edge e, optionally
-  // flipping its direction; radial_insert then puts it into e's cycle.
-  void set_use_edge(EdgeUseId u, EdgeId e, bool flip = false);
+  // Moves u, a use in a closed loop, to edge e (a slot of e, so a new id, which
+  // it returns), optionally flipping its direction. Its loop and its face keep
+  // it in its place; e's cycle gets it after e's first use (radial_insert or
+  // radial_sort then orders it).
+  EdgeUseId move_use(EdgeUseId u, EdgeId e, bool flip = false);
 
   // ---- loops in bulk (faces never opened)
   // Gives f the loop that starts at `first` (its uses already linked in a cycle).
@@ -107,9 +111,18 @@ class ModelEditor {
  private:
   template <class LinkFn, class GrowFn>
   std::uint32_t take_slot(int kind, LinkFn link, GrowFn grow);
+  // An edge slot from the free list or a new one (with its two empty use slots).
+  std::uint32_t take_edge_slot();
+  // A free overflow use slot (a new spare pair when there is none).
+  std::uint32_t take_overflow_slot();
   template <class Rec>
   std::uint32_t take_slot(std::vector<Rec>& recs, int kind, std::uint32_t Rec::*link);
   bool is_open(FaceId f) const;
+  // The face marks (Model::kFaceMarks) that use u calls for.
+  std::uint32_t mark_of(EdgeUseId u) const {
+    return (m_.in_overflow_slot(u) ? Model::kOverflowFace : 0u) |
+           (m_.is_in_place(u) ? 0u : Model::kUnplacedFace);
+  }
   // The Loop record behind l (opening its face first).
   std::uint32_t record_of(LoopId l);
   LoopRec& loop_rec(std::uint32_t r) { return m_.loops_[r]; }

@@ -262,7 +262,6 @@ Status kill_face(Model& m, FaceId f, KillFaceOptions options) {
     for (EdgeUseId u : ops::loop_uses(m, l)) {
       edges.push_back(m.edge_of(u));
       verts.push_back(m.use_start(u));
-      ed.radial_remove(u);
       ed.free_use(u);
     }
     ed.free_loop(l);
@@ -323,7 +322,6 @@ Status glue_faces(Model& m, FaceId a, FaceId b) {
   const VolumeId front = m.back_volume(b);
   const LoopId lb = m.outer_loop(b);
   for (EdgeUseId u : ops::loop_uses(m, lb)) {
-    ed.radial_remove(u);
     ed.free_use(u);
   }
   ed.free_loop(lb);
@@ -393,11 +391,8 @@ Result<EdgeId> split_edge(Model& m, EdgeId e, const std::vector<EdgeUseId>& movi
   CF_CHECK(can_split_edge(m, e, moving));
   ModelEditor ed(m);
   const EdgeId e2 = ed.new_edge(m.start_of(e), m.end_of(e));
-  for (EdgeUseId u : moving) {
-    ed.radial_remove(u);
-    ed.set_use_edge(u, e2);
-    ed.radial_insert(u);
-  }
+  for (EdgeUseId u : moving) ed.move_use(u, e2);  // each takes a slot of e2
+  ed.radial_sort(e2);
   return e2;
 }
 
@@ -419,11 +414,8 @@ Status can_merge_edges(const Model& m, EdgeId keep, EdgeId dying) {
   if (flipped && !more.empty()) {
     Model trial = m;  // O(model): flipped merges are rare; check on a copy
     ModelEditor ed(trial);
-    for (EdgeUseId u : more) {
-      ed.radial_remove(u);
-      ed.set_use_edge(u, keep, /*flip=*/true);
-      ed.radial_insert(u);
-    }
+    for (EdgeUseId u : more) ed.move_use(u, keep, /*flip=*/true);
+    ed.radial_sort(keep);
     if (const EdgeUseId bad = ops::inconsistent_wedge(trial, ops::radial_uses(trial, keep));
         bad.is_valid()) {
       return precondition("merge_edges: merging " + dying.str() + " into " + keep.str() +
@@ -448,11 +440,8 @@ Status merge_edges(Model& m, EdgeId keep, EdgeId dying) {
   CF_CHECK(can_merge_edges(m, keep, dying));
   ModelEditor ed(m);
   const bool flipped = m.start_of(keep) != m.start_of(dying);
-  for (EdgeUseId u : ops::radial_uses(m, dying)) {
-    ed.radial_remove(u);
-    ed.set_use_edge(u, keep, flipped);
-    ed.radial_insert(u);
-  }
+  for (EdgeUseId u : ops::radial_uses(m, dying)) ed.move_use(u, keep, flipped);
+  ed.radial_sort(keep);
   ed.free_edge(dying);
   return Status::Ok();
 }

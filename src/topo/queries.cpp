@@ -10,15 +10,16 @@ namespace cellforge {
 
 namespace {
 
-// The radial cycle of e, from its first use to its tail.
+// The radial cycle of e, from its first use round to it.
 template <class Fn>
 void for_each_radial(const Model& m, EdgeId e, Fn fn) {
   const EdgeUseId first = m.first_use(e);
   if (!first.is_valid()) return;
-  for (EdgeUseId u = first;; u = m.radial_next(u)) {
+  EdgeUseId u = first;
+  do {
     fn(u);
-    if (m.is_radial_tail(u)) break;
-  }
+    u = m.radial_next(u);
+  } while (u != first);
 }
 
 }  // namespace

@@ -55,8 +55,11 @@ Snapshot snapshot(const Model& m) {
   r.vertices.reserve(m.num_vertices());
   for (VertexId v : m.vertices()) r.vertices.push_back({m.position(v), gkey[m.group_of(v).value]});
 
-  // Radial positions of every use, walking each edge's cycle from its first use.
+  // Radial positions of every use, walking each edge's cycle from its first use;
+  // below they are counted from the edge's use that comes first in the tables,
+  // so that the rows do not depend on which use holds which slot.
   std::vector<std::uint32_t> radial_ord(m.use_slots(), 0);
+  std::vector<std::uint32_t> cycle_length(m.edge_slots(), 0), radial_base(m.edge_slots(), kInvalidIndex);
   r.edges.reserve(m.num_edges());
   for (EdgeId e : m.edges()) {
     std::uint32_t n = 0;
@@ -67,6 +70,7 @@ Snapshot snapshot(const Model& m) {
         u = m.radial_next(u);
       } while (u != first);
     }
+    cycle_length[e.value] = n;
     r.edges.push_back({vkey[m.start_of(e).value], vkey[m.end_of(e).value]});
   }
   for (std::uint32_t s = 0; s < m.num_surfaces(); ++s) r.surfaces.push_back(m.surface(s));
@@ -91,8 +95,12 @@ Snapshot snapshot(const Model& m) {
         EdgeUseId u = first;
         std::uint32_t k = 0;
         do {
-          r.uses.push_back(
-              {loop_key, k++, ekey[m.edge_of(u).value], m.is_reversed(u), radial_ord[u.value]});
+          const EdgeId e = m.edge_of(u);
+          std::uint32_t& base = radial_base[e.value];
+          if (base == kInvalidIndex) base = radial_ord[u.value];
+          const std::uint32_t ord =
+              (radial_ord[u.value] + cycle_length[e.value] - base) % cycle_length[e.value];
+          r.uses.push_back({loop_key, k++, ekey[e.value], m.is_reversed(u), ord});
           u = m.loop_next(u);
         } while (u != first);
       }

@@ -1,7 +1,5 @@
 // Check "records": every stored reference names a live entity of the right kind
 // and the back-references that a record implies agree.
-#include <vector>
-
 #include "topo/validate_checks.h"
 
 namespace cellforge::checks {
@@ -33,32 +31,29 @@ void records(const Model& m, Violations& out) {
       fail(e.str() + " starts its radial cycle at " + u.str() + ", not one of its uses");
     }
   }
-  // A use does not name its edge: walking its radial cycle must reach the tail,
-  // which names a live edge. Checked first, as edge_of(use) takes that walk.
-  std::vector<char> ends(m.use_slots(), 0);
-  std::vector<EdgeUseId> path;
+  // A use names its edge by its slot: slot 2e or 2e + 1 of a live edge, or an
+  // overflow slot (of a spare pair, not an edge) whose end record names one.
   for (EdgeUseId u : m.edge_uses()) {
-    path.clear();
-    for (EdgeUseId x = u; !ends[x.value];) {
-      path.push_back(x);
-      if (m.is_radial_tail(x)) {
-        if (!m.is_live(m.edge_of(x))) {
-          fail(x.str() + " ends the radial cycle of a dead edge");
-          return;
-        }
-        break;
-      }
-      x = m.radial_next(x);
-      if (!m.is_live(x)) {
-        fail(path.back().str() + " links its radial cycle to a dead use");
-        return;
-      }
-      if (path.size() > m.num_edge_uses()) {
-        fail("the radial cycle through " + u.str() + " has no last use");
-        return;
-      }
+    const bool spare = !m.is_live(EdgeId(u.value / 2));
+    if (m.in_overflow_slot(u) != spare) {
+      fail(u.str() + (spare ? " sits in a slot of no edge" : " is marked as an overflow use"));
+      return;
     }
-    for (EdgeUseId x : path) ends[x.value] = 1;
+    const FaceId f = m.face_of(u);
+    if (m.is_live(f) && ((!m.is_in_place(u) && !m.may_hold_unplaced_uses(f)) ||
+                         (m.in_overflow_slot(u) && !m.may_hold_overflow_uses(f)))) {
+      fail(u.str() + " is not in slot 2 * edge + direction, but " + f.str() +
+           " is not marked as holding such a use");
+      return;
+    }
+    if (!m.is_live(m.edge_of(u))) {
+      fail(u.str() + " names dead edge " + m.edge_of(u).str());
+      return;
+    }
+    if (!m.is_live(m.radial_next(u))) {
+      fail(u.str() + " links its radial cycle to a dead use");
+      return;
+    }
   }
   for (EdgeUseId u : m.edge_uses()) {
     if (!m.is_live(m.face_of(u))) fail(u.str() + " names dead face " + m.face_of(u).str());

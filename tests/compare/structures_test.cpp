@@ -215,12 +215,37 @@ TEST(Cellforge, StorageMatchesTheDocumentedRecordSizes) {
   const Model m = build(testing::unit_cube());
   const StorageStats s = cellforge_storage(m);
   EXPECT_EQ(s.bytes, m.topology_bytes());
-  // Vertices 4 B, edges 20, uses 12, faces 8; no Loop records (every face is
-  // one loop); one run of vertex groups (8), one side row (12), one volume (8),
-  // one group (4).
-  EXPECT_EQ(s.bytes, 8u * 4 + 12 * 20 + 24 * 12 + 6 * 8 + 8 + 12 + 8 + 4);
+  // Vertices 4 B, edges 16 and two use slots of 12 each, faces 8; no Loop
+  // records (every face is one loop); one run of vertex groups (8), one side row
+  // (12), one volume (8), one group (4).
+  EXPECT_EQ(s.bytes, 8u * 4 + 12 * (16 + 2 * 12) + 6 * 8 + 8 + 12 + 8 + 4);
   EXPECT_EQ(s.references, s.bytes / 4);
   EXPECT_EQ(s.records, 8u + 1 + 12 + 24 + 6 + 1 + 1 + 1);
+  // The book: three quads on one edge. Its nine boundary edges leave one use
+  // slot each empty; the spine's third use takes an overflow slot of one spare
+  // pair (an edge slot that is no edge). 8 vertices, 10 edges + 1 spare pair,
+  // 3 faces; no volume.
+  const Model book = build(testing::book());
+  ASSERT_EQ(book.num_edges(), 10u);
+  ASSERT_EQ(book.edge_slots(), 11u);
+  ASSERT_EQ(book.num_edge_uses(), 12u);
+  std::size_t spare = 0, overflow = 0;
+  for (std::uint32_t i = 0; i < book.edge_slots(); ++i) spare += book.is_spare_pair(i) ? 1 : 0;
+  for (EdgeUseId u : book.edge_uses()) overflow += book.in_overflow_slot(u) ? 1 : 0;
+  EXPECT_EQ(spare, 1u);
+  EXPECT_EQ(overflow, 1u);
+  EXPECT_EQ(cellforge_storage(book).bytes, 8u * 4 + 11 * (16 + 2 * 12) + 3 * 8 + 8 + 12 + 4);
+  EXPECT_EQ(book.topology_bytes(), cellforge_storage(book).bytes);
+  // The radial edge does not count the spare pair as an edge: model, region,
+  // shell; 3 faces, 6 faceuses, 3 loops, 6 loopuses; 10 edges, 24 edgeuses, 24
+  // vertexuses, 8 vertices.
+  using R = RadialEdge;
+  const StorageStats re = R::from_model(book).storage();
+  EXPECT_EQ(re.records, 3u + 3 + 6 + 3 + 6 + 10 + 24 + 24 + 8);
+  EXPECT_EQ(re.bytes, sizeof(R::TopModel) + sizeof(R::Region) + sizeof(R::Shell) +
+                          3 * sizeof(R::Face) + 6 * sizeof(R::FaceUse) + 3 * sizeof(R::Loop) +
+                          6 * sizeof(R::LoopUse) + 10 * sizeof(R::Edge) + 24 * sizeof(R::EdgeUse) +
+                          24 * sizeof(R::VertexUse) + 8 * sizeof(R::Vertex));
   // A face with a hole lists its two loops in Loop records.
   const Model holed = build(testing::cube_with_through_hole());
   EXPECT_EQ(holed.num_loop_records(), 4u);

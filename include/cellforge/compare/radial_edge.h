@@ -180,6 +180,7 @@ class RadialEdge {
   std::vector<Face> faces_;
   std::vector<Loop> loops_;
   std::vector<Edge> edges_;
+  std::size_t spare_edges_ = 0;  // slots of edges_ for cellforge spare pairs (not counted)
   std::vector<Vertex> vertices_;
 };
 

@@ -108,6 +108,7 @@ class WingedEdge {
   // Arrays indexed by cellforge slot; a record's id is its position.
   std::vector<Vertex> vertices_;
   std::vector<Edge> edges_;
+  std::size_t spare_edges_ = 0;  // slots of edges_ for cellforge spare pairs (not counted)
   std::vector<Face> faces_;
   std::vector<Ring> rings_;
 };

@@ -3,10 +3,10 @@
 //
 // Entities and what each record holds (all fields are 32-bit indices):
 //   Vertex   first edge end of its vertex cycle                    (4 B)
-//   Edge     per end: vertex, next end around that vertex (8 B each);
-//            first use of its radial cycle (4 B)                   (20 B)
-//   EdgeUse  face + direction bit, next use in its loop,
-//            next use around its edge (radial cycle)               (12 B)
+//   Edge     per end: vertex, next end around that vertex (8 B each) (16 B)
+//   EdgeUse  face + direction bit, next use in its loop (8 B); next use
+//            around its edge (radial cycle) in an array of its own  (4 B)
+//            Every edge has two use slots, used or not: 40 B an edge.
 //   Face     first use of its loop, interned side record           (8 B)
 //   Loop     only for faces with holes or a point loop: first use
 //            (or the point's vertex), next loop of the face         (8 B)
@@ -21,9 +21,22 @@
 //   edge -> its uses: each edge use links to the next use around the same edge,
 //           in angular order (right-handed about the edge's start->end axis).
 //
-// A use does not name its edge: the last use of every radial cycle names the edge
-// instead of a next use (the cycle's "tail"; the edge names the first use). An
-// edge of a closed manifold has two uses, so edge_of(use) is one or two loads.
+// Use ids are slots that belong to edges: edge e owns use slots 2e and 2e+1,
+// the same numbers as its two end records. So a use names its edge by its id
+// (edge_of(u) is u/2, no load), an edge's first use is slot 2e, and an edge of a
+// closed manifold fills both. A third or later use of an edge takes an overflow
+// slot: a slot of an edge record kept for overflow (a "spare pair", not an edge),
+// whose end record at the same index names the use's edge. Such a use carries
+// kOverflowBit beside its face. A use is *in place* when it sits in slot
+// 2e + direction (a forward use in 2e, a reversed one in 2e + 1): its start
+// vertex is then the end record of its own index, ends_[u]. The two uses of an
+// edge of a consistently oriented manifold run opposite ways, so both are in
+// place. A face that may hold a use not in place is marked (kUnplacedFace), and
+// one that may hold a use in an overflow slot too (kOverflowFace): F->V walks an
+// unmarked face reading start vertex ends_[u], F->E and F->F a face without the
+// overflow mark reading edge u/2, without a test per use. When
+// slot 2e is empty while the edge still has uses, the empty slot's radial field
+// names one of them (the edge's first use).
 //
 // A face with one loop of edges keeps that loop in its own record (the face names
 // the loop's first use); only a face with holes, or whose loop is a single vertex,
@@ -40,15 +53,16 @@
 // Geometry lives beside the topology: vertex positions in their own array; faces
 // are planar polygons whose plane follows from their vertices.
 //
-// An edge's fields live in two arrays: the ends of all edges in one, indexed by
-// the encoded end (2*edge + end), so that the vertex cycle steps with one load
-// and no decoding and a use's start vertex is one load from its edge; the first
-// uses in another. A use's three fields stay in one record, which a loop walk
-// and a walk around an edge each read once per use (docs/topology.md says what
-// splitting them too cost).
+// Edge and use records live in arrays indexed alike: ends_[2e + end],
+// uses_[2e + k] and radial_[2e + k]. The vertex cycle steps with one load and
+// no decoding, a use's start vertex is one load from its id, and a loop walk
+// reads one 8-byte record per use, addressed by a scaled index
+// (docs/structure-comparison.md says what the 12-byte record cost).
 //
 // Deleted slots go on per-kind free lists threaded through the dead records, so
-// ids stay stable across edits and are reused by later creations. Accessors check
+// ids stay stable across edits and are reused by later creations. A use keeps
+// its id while it stays on its edge; moving it to another edge (split_edge,
+// merge_edges) gives it a slot of that edge, and so a new id. Accessors check
 // in debug builds (assert) that the handle names a live entity.
 #pragma once
 
@@ -151,11 +165,12 @@ class Model {
   bool is_live(VertexId v) const {
     return v.value < vertices_.size() && vertices_[v.value].first_end != kDead;
   }
+  // (A free edge slot and a spare pair both carry kTagBit in their first end.)
   bool is_live(EdgeId e) const {
-    return e.value < first_use_.size() && ends_[2 * e.value].vertex != kDead;
+    return e.value < edge_slots() && !(ends_[2 * e.value].vertex & kTagBit);
   }
   bool is_live(EdgeUseId u) const {
-    return u.value < uses_.size() && uses_[u.value].face_dir != kDead;
+    return u.value < uses_.size() && uses_[u.value].face_dir != kNoUse;
   }
   bool is_live(LoopId l) const;
   bool is_live(FaceId f) const { return f.value < faces_.size() && faces_[f.value].sides != kDead; }
@@ -218,20 +233,30 @@ class Model {
   }
   VertexId start_of(EdgeId e) const { return vertex_of(e, 0); }
   VertexId end_of(EdgeId e) const { return vertex_of(e, 1); }
-  // First use of e's radial cycle; invalid for a wire edge.
+  // First use of e's radial cycle: slot 2e when used, else the use the empty
+  // slot names; invalid for a wire edge.
   EdgeUseId first_use(EdgeId e) const {
     assert(is_live(e));
-    return EdgeUseId(first_use_[e.value]);
+    const std::uint32_t u = 2 * e.value;
+    return EdgeUseId(uses_[u].face_dir != kNoUse ? u : radial_[u]);
   }
   GroupId group_of(EdgeId e) const { return group_of(start_of(e)); }
   bool is_wire(EdgeId e) const { return !first_use(e).is_valid(); }
   std::size_t use_count(EdgeId e) const;  // number of uses in its radial cycle
 
   // ---- edge uses
-  // Walks u's radial cycle to its tail: one step at most on a manifold edge.
+  // From the use's id: u/2, or for an overflow slot the edge its end record names.
   EdgeId edge_of(EdgeUseId u) const {
     assert(is_live(u));
-    return EdgeId(radial_tail(uses_.data(), u.value));
+    return EdgeId(use_edge(uses_[u.value], ends_.data(), u.value));
+  }
+  // True when u sits in an overflow slot (its edge has two other uses in its
+  // own slots, or had when u was made).
+  bool in_overflow_slot(EdgeUseId u) const { return (uses_[u.value].face_dir & kOverflowBit) != 0; }
+  // True when u sits in slot 2 * edge + direction (model.h, top).
+  bool is_in_place(EdgeUseId u) const {
+    const std::uint32_t fd = uses_[u.value].face_dir;
+    return !(fd & kOverflowBit) && (u.value & 1u) == (fd >> 31);
   }
   // True when u runs from the edge's end vertex to its start vertex.
   bool is_reversed(EdgeUseId u) const { return (uses_[u.value].face_dir & kTagBit) != 0; }
@@ -239,7 +264,7 @@ class Model {
   VertexId use_end(EdgeUseId u) const { return vertex_of(edge_of(u), is_reversed(u) ? 0 : 1); }
   FaceId face_of(EdgeUseId u) const {
     assert(is_live(u));
-    return FaceId(uses_[u.value].face_dir & ~kTagBit);
+    return FaceId(uses_[u.value].face_dir & kFaceMask);
   }
   EdgeUseId loop_next(EdgeUseId u) const {
     assert(is_live(u));
@@ -248,11 +273,8 @@ class Model {
   EdgeUseId loop_prev(EdgeUseId u) const;  // walks the loop: O(loop length)
   EdgeUseId radial_next(EdgeUseId u) const {
     assert(is_live(u));
-    const std::uint32_t n = uses_[u.value].radial;
-    return (n & kTagBit) ? EdgeUseId(first_use_[n & ~kTagBit]) : EdgeUseId(n);
+    return EdgeUseId(radial_[u.value]);
   }
-  // True when u is the last use of its radial cycle (radial_next(u) is first_use).
-  bool is_radial_tail(EdgeUseId u) const { return (uses_[u.value].radial & kTagBit) != 0; }
   LoopId loop_of(EdgeUseId u) const;  // walks the face's loops: O(face size)
 
   // ---- loops
@@ -306,8 +328,14 @@ class Model {
   // The F->E and F->F walks; not for a model an operator is editing.
   template <class UseFn>
   void for_each_face_use(FaceId f, UseFn on_use) const {
-    for_each_loop_of(
-        f, [&](std::uint32_t first) { walk_loop(first, on_use); }, [](VertexId) {});
+    const FaceRec face = faces_[f.value];
+    if (face.sides & kOverflowFace) {
+      for_each_loop_of(
+          face, [&](std::uint32_t first) { walk_loop<true>(first, on_use); }, [](VertexId) {});
+    } else {
+      for_each_loop_of(
+          face, [&](std::uint32_t first) { walk_loop<false>(first, on_use); }, [](VertexId) {});
+    }
   }
   // Walks f's loops in order (outer first), calling on_vertex(VertexId) for every
   // use's start vertex, in loop order, and for a point loop's vertex: the F->V walk.
@@ -316,12 +344,24 @@ class Model {
   // an operator is editing (it relies on closed, continuous loops).
   template <class VertexFn>
   void for_each_face_vertex(FaceId f, VertexFn on_vertex) const {
-    for_each_loop_of(f, [&](std::uint32_t first) { walk_loop_vertices(first, on_vertex); },
-                     on_vertex);
+    const FaceRec face = faces_[f.value];
+    if (face.sides & kUnplacedFace) {
+      for_each_loop_of(
+          face, [&](std::uint32_t first) { walk_loop_vertices<true>(first, on_vertex); }, on_vertex);
+    } else {
+      for_each_loop_of(
+          face, [&](std::uint32_t first) { walk_loop_vertices<false>(first, on_vertex); }, on_vertex);
+    }
   }
-  VolumeId front_volume(FaceId f) const { return VolumeId(sides_[faces_[f.value].sides].front); }
-  VolumeId back_volume(FaceId f) const { return VolumeId(sides_[faces_[f.value].sides].back); }
-  GroupId group_of(FaceId f) const { return GroupId(sides_[faces_[f.value].sides].group); }
+  VolumeId front_volume(FaceId f) const { return VolumeId(side_row(f).front); }
+  VolumeId back_volume(FaceId f) const { return VolumeId(side_row(f).back); }
+  GroupId group_of(FaceId f) const { return GroupId(side_row(f).group); }
+  // False when every use of f is in place (model.h, top); true when one may not
+  // be (the mark is set with such a use and made exact when an operator closes
+  // the face).
+  bool may_hold_unplaced_uses(FaceId f) const { return (faces_[f.value].sides & kUnplacedFace) != 0; }
+  // False when no use of f sits in an overflow slot (marked likewise).
+  bool may_hold_overflow_uses(FaceId f) const { return (faces_[f.value].sides & kOverflowFace) != 0; }
   // The vertex cycle of loop l, in loop order (one vertex for a point loop).
   std::vector<VertexId> loop_vertices(LoopId l) const;
   std::vector<Vec3> loop_points(LoopId l) const;
@@ -356,16 +396,17 @@ class Model {
   std::size_t topology_bytes() const;
   std::size_t geometry_bytes() const { return positions_.size() * sizeof(Vec3); }
 
-  // Edge ids stay below 2^30 so that an encoded edge end never sets the tag bit;
-  // face ids and Loop records below 2^30 so that a loop id fits beside the tag
-  // (and a face id beside a use's direction bit).
+  // Edge ids (spare pairs included) stay below 2^30 so that an encoded edge end
+  // never sets the tag bit; face ids and Loop records below 2^30 - 1 so that a
+  // loop id fits beside the tag and a face id beside a use's direction and
+  // overflow bits, apart from the empty-slot mark.
   static constexpr std::uint32_t kMaxEdges = 1u << 30;
-  static constexpr std::uint32_t kMaxFaces = 1u << 30;
+  static constexpr std::uint32_t kMaxFaces = (1u << 30) - 1;
 
   // ---- raw record sizes, for the storage comparison
   static constexpr std::size_t kVertexRecordBytes = 4;
-  static constexpr std::size_t kEdgeRecordBytes = 20;
-  static constexpr std::size_t kUseRecordBytes = 12;
+  static constexpr std::size_t kEdgeRecordBytes = 16;  // plus its two use slots
+  static constexpr std::size_t kUseRecordBytes = 12;  // 8 in uses_, 4 in radial_
   static constexpr std::size_t kLoopRecordBytes = 8;
   static constexpr std::size_t kFaceRecordBytes = 8;
 
@@ -373,8 +414,14 @@ class Model {
   std::uint32_t vertex_slots() const { return static_cast<std::uint32_t>(vertices_.size()); }
   std::size_t vertex_group_runs() const { return vertex_groups_.size(); }  // 8 B each
   std::size_t free_vertex_slots() const { return free_vertices_.size(); }  // 4 B each
-  std::uint32_t edge_slots() const { return static_cast<std::uint32_t>(first_use_.size()); }
+  // Edge slots include spare pairs (overflow use slots); use slots are two per edge slot.
+  std::uint32_t edge_slots() const { return static_cast<std::uint32_t>(ends_.size() / 2); }
   std::uint32_t use_slots() const { return static_cast<std::uint32_t>(uses_.size()); }
+  // True when edge slot i is a spare pair (holds overflow use slots, not an edge).
+  bool is_spare_pair(std::uint32_t i) const {
+    const std::uint32_t v = ends_[2 * i].vertex;
+    return (v & kTagBit) && v != kDead;
+  }
   std::uint32_t loop_slots() const { return static_cast<std::uint32_t>(loops_.size()); }  // records
   std::uint32_t face_slots() const { return static_cast<std::uint32_t>(faces_.size()); }
 
@@ -383,6 +430,14 @@ class Model {
 
   static constexpr std::uint32_t kDead = 0xFFFFFFFEu;  // marks a free slot
   static constexpr std::uint32_t kTagBit = 0x80000000u;
+  // A use's face_dir: the face in the low 30 bits, kOverflowBit for a use in an
+  // overflow slot, kTagBit when reversed; kNoUse for an empty slot.
+  static constexpr std::uint32_t kOverflowBit = 0x40000000u;
+  static constexpr std::uint32_t kFaceMask = 0x3FFFFFFFu;
+  static constexpr std::uint32_t kNoUse = kFaceMask;
+  // The first end record of a spare pair's free slot (a used one holds
+  // kTagBit | edge).
+  static constexpr std::uint32_t kSpare = 0xFFFFFFFDu;
 
   static EdgeEnd decode_end(std::uint32_t code) {
     if (code & kTagBit) return {};  // invalid, or a vertex's point-loop tag
@@ -402,15 +457,20 @@ class Model {
     std::uint32_t first_vertex;  // the run holds vertex ids from here to the next run
     std::uint32_t group;
   };
-  // One end of an edge, at index 2*edge + end of ends_ (the encoded end).
+  // One end of an edge, at index 2*edge + end of ends_ (the encoded end). In a
+  // spare pair each record serves the overflow use slot of the same index.
   struct EndRec {
-    std::uint32_t vertex;    // kDead at an edge's end 0 when the edge is free
-    std::uint32_t next_end;  // encoded: the next edge end around the same vertex
+    // The end's vertex; kDead at end 0 of a free edge slot; in a spare pair
+    // kTagBit | the use's edge, or kSpare when the slot is free.
+    std::uint32_t vertex;
+    // Encoded: the next edge end around the same vertex; links the free list of
+    // edge slots (at end 0) and of overflow slots.
+    std::uint32_t next_end;
   };
+  // A use's loop fields; its radial link is in radial_ (same index).
   struct UseRec {
-    std::uint32_t face_dir;  // face | kTagBit when reversed; kDead when free (next links the list)
+    std::uint32_t face_dir;  // see kOverflowBit; kNoUse for an empty slot
     std::uint32_t next;      // next use of its loop
-    std::uint32_t radial;    // next use around its edge, or kTagBit|edge for the cycle's last
   };
   struct LoopRec {
     std::uint32_t first;  // use id, or kTagBit|vertex for a point loop; kDead when free
@@ -420,12 +480,19 @@ class Model {
     // The outer loop's first use when the face has that one loop of edges;
     // kTagBit|Loop record of its first loop otherwise; kInvalidIndex while empty.
     std::uint32_t first;
-    std::uint32_t sides;  // index into sides_; kDead when free (first links the list)
+    // Index into sides_, | kUnplacedFace when a use of the face may not be in
+    // place, | kOverflowFace too when one may sit in an overflow slot; kDead when
+    // free (first links the list).
+    std::uint32_t sides;
   };
+  static constexpr std::uint32_t kOverflowFace = 0x40000000u;
+  static constexpr std::uint32_t kUnplacedFace = 0x20000000u;
+  static constexpr std::uint32_t kFaceMarks = kOverflowFace | kUnplacedFace;
   struct SidesRec {
     std::uint32_t front, back, group;
     friend bool operator==(const SidesRec&, const SidesRec&) = default;
   };
+  const SidesRec& side_row(FaceId f) const { return sides_[faces_[f.value].sides & ~kFaceMarks]; }
   struct VolumeRec {
     std::uint32_t group;  // kDead when free
     std::uint32_t next_free;
@@ -442,9 +509,11 @@ class Model {
   std::vector<GroupRun> vertex_groups_;  // sorted by first_vertex
   std::vector<std::uint32_t> free_vertices_;
   std::vector<Vec3> positions_;
-  std::vector<EndRec> ends_;              // two per edge slot
-  std::vector<std::uint32_t> first_use_;  // per edge slot; links the free list
-  std::vector<UseRec> uses_;
+  std::vector<EndRec> ends_;  // two per edge slot
+  std::vector<UseRec> uses_;  // two per edge slot
+  // Per use slot: the next use around its edge (the cycle closes); in an empty
+  // slot 2e of an edge with uses, its first use; kInvalidIndex otherwise.
+  std::vector<std::uint32_t> radial_;
   std::vector<LoopRec> loops_;
   std::vector<FaceRec> faces_;
   std::vector<SidesRec> sides_;
@@ -463,28 +532,36 @@ class Model {
     return loops_[f & ~kTagBit].first;
   }
   // The uses of the loop of edges that starts at `first`, for for_each_face_use.
-  template <class UseFn>
+  // kAny: the face may hold uses in overflow slots (kOverflowFace); for a face
+  // that holds none every use's edge is u / 2, without a test.
+  template <bool kAny, class UseFn>
   void walk_loop(std::uint32_t first, UseFn& on_use) const {
     // The array's address is held here: the callback's stores could alias the
     // vector, which would otherwise be re-read for every use.
     const UseRec* uses = uses_.data();
+    const EndRec* ends = ends_.data();
     std::uint32_t u = first;
     do {
-      on_use(FaceUse{EdgeUseId(u), EdgeId(radial_tail(uses, u))});
-      u = uses[u].next;
+      const UseRec& rec = uses[u];
+      const std::uint32_t next = rec.next;  // read before the callback's stores
+      on_use(FaceUse{EdgeUseId(u), EdgeId(kAny ? use_edge_select(rec, ends, u) : u >> 1)});
+      u = next;
     } while (u != first);
   }
   // The start vertices of the loop of edges that starts at `first`, for
   // for_each_face_vertex: two per edge found, u's start and its end (the next
   // use's start), so a loop of n uses looks up ceil(n / 2) edges.
-  template <class VertexFn>
+  // kAny: the face may hold uses that are not in place (kUnplacedFace); for a
+  // face that holds none u's start is ends[u] and its end ends[u ^ 1], so the
+  // walk reads no use's face field.
+  template <bool kAny, class VertexFn>
   void walk_loop_vertices(std::uint32_t first, VertexFn& on_vertex) const {
     const UseRec* uses = uses_.data();
     const EndRec* ends = ends_.data();
     std::uint32_t u = first;
     for (;;) {
       const UseRec& rec = uses[u];
-      const std::uint32_t c = 2 * radial_tail(uses, u) + (rec.face_dir >> 31);
+      const std::uint32_t c = kAny ? 2 * use_edge_select(rec, ends, u) + (rec.face_dir >> 31) : u;
       on_vertex(VertexId(ends[c].vertex));
       const std::uint32_t n = rec.next;
       if (n == first) return;
@@ -497,8 +574,8 @@ class Model {
   // for a point loop. A face without holes has its loop's first use in its record;
   // a face with holes or a point loop lists its loops in Loop records.
   template <class LoopFn, class PointFn>
-  void for_each_loop_of(FaceId f, LoopFn&& on_loop, PointFn&& on_point) const {
-    const std::uint32_t first = faces_[f.value].first;
+  void for_each_loop_of(const FaceRec& face, LoopFn&& on_loop, PointFn&& on_point) const {
+    const std::uint32_t first = face.first;
     if (!(first & kTagBit)) {
       on_loop(first);
       return;
@@ -514,14 +591,19 @@ class Model {
       r = loop.next;
     }
   }
-  // The edge named by the tail of u's radial cycle. It takes the array so that a
-  // walk can keep its address in a register. (A branch-free first step was
-  // measured slower on small models: their branches are learned, and the extra
-  // load then always lies on the path.)
-  static std::uint32_t radial_tail(const UseRec* uses, std::uint32_t u) {
-    std::uint32_t c = uses[u].radial;
-    while (!(c & kTagBit)) c = uses[c].radial;
-    return c & ~kTagBit;
+  // The edge of the use in slot u, whose record is rec: u/2, or for an overflow
+  // slot the edge its end record names. It takes the array so that a walk can
+  // keep its address in a register.
+  static std::uint32_t use_edge(const UseRec& rec, const EndRec* ends, std::uint32_t u) {
+    return (rec.face_dir & kOverflowBit) ? ends[u].vertex & ~kTagBit : u >> 1;
+  }
+  // The same, computing both and selecting one (a conditional move): for the walks
+  // of marked faces, where a branch on the overflow bit would be mispredicted
+  // (the end record at index u is always there to read).
+  static std::uint32_t use_edge_select(const UseRec& rec, const EndRec* ends, std::uint32_t u) {
+    const std::uint32_t spare = ends[u].vertex & ~kTagBit;
+    const std::uint32_t own = u >> 1;
+    return (rec.face_dir & kOverflowBit) ? spare : own;
   }
   std::vector<std::uint32_t> face_surface_;  // per face slot, kInvalidIndex = plane
   std::uint32_t free_[kKinds] = {kInvalidIndex, kInvalidIndex, kInvalidIndex, kInvalidIndex,

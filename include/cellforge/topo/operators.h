@@ -155,11 +155,13 @@ Status can_unglue_face(const Model& m, FaceId f);
 Result<FaceId> unglue_face(Model& m, FaceId f);
 
 // split_edge: the uses listed move to a new edge with the same two vertices
-// (a non-manifold edge is separated into two coincident edges).
+// (a non-manifold edge is separated into two coincident edges). A use's id is a
+// slot of its edge, so the moved uses get new ids (the new edge's first use and
+// its radial cycle name them); the uses that stay keep theirs.
 Status can_split_edge(const Model& m, EdgeId e, const std::vector<EdgeUseId>& moving);
 Result<EdgeId> split_edge(Model& m, EdgeId e, const std::vector<EdgeUseId>& moving);
 // merge_edges: the inverse: `dying` (same two vertices as `keep`) is killed and its
-// uses join keep's radial cycle in angular order.
+// uses join keep's radial cycle in angular order, with new ids (slots of keep).
 Status can_merge_edges(const Model& m, EdgeId keep, EdgeId dying);
 Status merge_edges(Model& m, EdgeId keep, EdgeId dying);
 
