@@ -57,7 +57,7 @@ RadialEdge RadialEdge::from_model(const Model& m) {
   for (EdgeUseId u : m.edge_uses()) dense[u.value] = live_uses++;
   auto eu_of = [&](EdgeUseId u) { return &r.edgeuses_[2 * std::size_t{dense[u.value]}]; };
   const std::size_t use_eus = 2 * std::size_t{live_uses};
-  for (std::uint32_t i = 0; i < m.edge_slots(); ++i) r.spare_edges_ += m.is_spare_pair(i) ? 1 : 0;
+  r.spare_edges_ = m.spare_pairs();
 
   // Every array gets its final size first: records are linked by address.
   r.model_storage_.resize(1);

@@ -120,7 +120,7 @@ Result<WingedEdge> WingedEdge::from_model(const Model& m) {
   WingedEdge w;
   w.vertices_.resize(m.vertex_slots());
   w.edges_.resize(m.edge_slots());
-  for (std::uint32_t i = 0; i < m.edge_slots(); ++i) w.spare_edges_ += m.is_spare_pair(i) ? 1 : 0;
+  w.spare_edges_ = m.spare_pairs();
   w.faces_.resize(m.face_slots());
   std::size_t inner = 0;
   for (FaceId f : m.faces()) inner += m.inner_loop_count(f);

@@ -154,6 +154,12 @@ Vec3 Model::face_normal(FaceId f) const {
   return n;
 }
 
+std::size_t Model::spare_pairs() const {
+  std::size_t n = 0;
+  for (std::uint32_t i = 0; i < edge_slots(); ++i) n += is_spare_pair(i) ? 1 : 0;
+  return n;
+}
+
 std::size_t Model::topology_bytes() const {
   static_assert(sizeof(VertexRec) == kVertexRecordBytes);
   static_assert(2 * sizeof(EndRec) == kEdgeRecordBytes);

@@ -107,8 +107,7 @@ EdgeUseId ModelEditor::new_use(EdgeId e, bool reversed, FaceId f) {
   ++m_.live_[Model::kUse];
   const EdgeUseId first = m_.first_use(e);
   // In place if that slot is free (model.h), else the other slot, else overflow.
-  const std::uint32_t place = 2 * e.value + (reversed ? 1u : 0u);
-  std::uint32_t s = place;
+  std::uint32_t s = 2 * e.value + (reversed ? 1u : 0u);
   std::uint32_t overflow = 0;
   if (m_.uses_[s].face_dir != Model::kNoUse) s ^= 1u;
   if (m_.uses_[s].face_dir != Model::kNoUse) {
@@ -117,9 +116,7 @@ EdgeUseId ModelEditor::new_use(EdgeId e, bool reversed, FaceId f) {
     overflow = Model::kOverflowBit;
   }
   m_.uses_[s] = {f.value | overflow | (reversed ? kTagBit : 0u), s};
-  if (s != place && f.is_valid()) {
-    rec(f).sides |= Model::kUnplacedFace | (overflow ? Model::kOverflowFace : 0u);
-  }
+  if (f.is_valid()) rec(f).sides |= mark_of(EdgeUseId(s));
   radial(s) = s;
   if (first.is_valid()) {  // after the first use
     radial(s) = radial(first.value);

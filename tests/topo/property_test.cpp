@@ -321,8 +321,9 @@ class RandomEdits {
 
 // The queries' face walks against the step-by-step accessors: for every face,
 // for_each_face_vertex must list each loop's vertices (loop_vertices, through
-// use_start) and for_each_face_use each use with its edge, loops in order. Random edits make the loops the walks must get right: odd and
-// even lengths, spurs, holes, point loops and non-manifold edges.
+// use_start) and for_each_face_use each use with its edge, loops in order.
+// Random edits make the loops the walks must get right: odd and even lengths,
+// spurs, holes, point loops and non-manifold edges.
 std::string face_walk_mismatch(const Model& m) {
   for (FaceId f : m.faces()) {
     std::vector<VertexId> want;

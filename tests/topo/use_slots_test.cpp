@@ -18,12 +18,6 @@ namespace {
 
 using namespace testing;
 
-std::size_t spare_pairs(const Model& m) {
-  std::size_t n = 0;
-  for (std::uint32_t i = 0; i < m.edge_slots(); ++i) n += m.is_spare_pair(i) ? 1 : 0;
-  return n;
-}
-
 std::multiset<std::uint32_t> faces_at(const Model& m, EdgeId e) {
   std::multiset<std::uint32_t> out;
   EdgeUseId u = m.first_use(e);
@@ -38,7 +32,7 @@ TEST(UseSlots, AClosedManifoldFillsBothSlotsOfEveryEdge) {
   const Model m = build(unit_cube());
   EXPECT_EQ(m.use_slots(), 2 * m.edge_slots());
   EXPECT_EQ(m.num_edge_uses(), m.use_slots());
-  EXPECT_EQ(spare_pairs(m), 0u);
+  EXPECT_EQ(m.spare_pairs(), 0u);
   for (EdgeUseId u : m.edge_uses()) {
     EXPECT_FALSE(m.in_overflow_slot(u));
     EXPECT_EQ(m.edge_of(u).value, u.value / 2);

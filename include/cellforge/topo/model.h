@@ -422,6 +422,7 @@ class Model {
     const std::uint32_t v = ends_[2 * i].vertex;
     return (v & kTagBit) && v != kDead;
   }
+  std::size_t spare_pairs() const;  // how many edge slots are spare pairs (a scan)
   std::uint32_t loop_slots() const { return static_cast<std::uint32_t>(loops_.size()); }  // records
   std::uint32_t face_slots() const { return static_cast<std::uint32_t>(faces_.size()); }
 
@@ -544,7 +545,7 @@ class Model {
     do {
       const UseRec& rec = uses[u];
       const std::uint32_t next = rec.next;  // read before the callback's stores
-      on_use(FaceUse{EdgeUseId(u), EdgeId(kAny ? use_edge_select(rec, ends, u) : u >> 1)});
+      on_use(FaceUse{EdgeUseId(u), EdgeId(kAny ? use_edge(rec, ends, u) : u >> 1)});
       u = next;
     } while (u != first);
   }
@@ -561,7 +562,7 @@ class Model {
     std::uint32_t u = first;
     for (;;) {
       const UseRec& rec = uses[u];
-      const std::uint32_t c = kAny ? 2 * use_edge_select(rec, ends, u) + (rec.face_dir >> 31) : u;
+      const std::uint32_t c = kAny ? 2 * use_edge(rec, ends, u) + (rec.face_dir >> 31) : u;
       on_vertex(VertexId(ends[c].vertex));
       const std::uint32_t n = rec.next;
       if (n == first) return;
@@ -592,15 +593,11 @@ class Model {
     }
   }
   // The edge of the use in slot u, whose record is rec: u/2, or for an overflow
-  // slot the edge its end record names. It takes the array so that a walk can
-  // keep its address in a register.
+  // slot the edge its end record names. It computes both and selects one (a
+  // conditional move; the end record at index u is always there to read): in the
+  // walks of marked faces a branch on the overflow bit was mispredicted. It takes
+  // the array so that a walk can keep its address in a register.
   static std::uint32_t use_edge(const UseRec& rec, const EndRec* ends, std::uint32_t u) {
-    return (rec.face_dir & kOverflowBit) ? ends[u].vertex & ~kTagBit : u >> 1;
-  }
-  // The same, computing both and selecting one (a conditional move): for the walks
-  // of marked faces, where a branch on the overflow bit would be mispredicted
-  // (the end record at index u is always there to read).
-  static std::uint32_t use_edge_select(const UseRec& rec, const EndRec* ends, std::uint32_t u) {
     const std::uint32_t spare = ends[u].vertex & ~kTagBit;
     const std::uint32_t own = u >> 1;
     return (rec.face_dir & kOverflowBit) ? spare : own;
