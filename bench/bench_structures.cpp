@@ -10,8 +10,9 @@
 // structure keeps its best: a slow spell of the shared machine then hits every
 // structure alike instead of one of them. The ratio to radial edge is the median,
 // over the rounds, of the ratio of the two trials taken back to back.
-// Every structure's answers are deduplicated the same way (compare/dedupe.h is a
-// copy of the method in topo/queries.cpp).
+// Every structure deduplicates its answers with the same function (topo/dedupe.h);
+// cellforge skips it for the F->E and F->V answers of a face that its marks say
+// repeats no element (model.h, kRepeatFace), which Weiler's face record cannot say.
 #include <algorithm>
 #include <chrono>
 #include <cmath>

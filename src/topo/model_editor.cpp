@@ -116,7 +116,10 @@ EdgeUseId ModelEditor::new_use(EdgeId e, bool reversed, FaceId f) {
     overflow = Model::kOverflowBit;
   }
   m_.uses_[s] = {f.value | overflow | (reversed ? kTagBit : 0u), s};
-  if (f.is_valid()) rec(f).sides |= mark_of(EdgeUseId(s));
+  if (f.is_valid()) {
+    rec(f).sides |= mark_of(EdgeUseId(s));
+    touch(f);
+  }
   radial(s) = s;
   if (first.is_valid()) {  // after the first use
     radial(s) = radial(first.value);
@@ -171,27 +174,59 @@ void ModelEditor::open(FaceId f) {
   list_loops(f);
 }
 
+namespace {
+
+// True when `ids` holds a value twice (a long list is sorted).
+bool has_repeat(std::vector<std::uint32_t>& ids) {
+  if (ids.size() <= 16) {
+    for (std::size_t i = 1; i < ids.size(); ++i) {
+      for (std::size_t j = 0; j < i; ++j) {
+        if (ids[i] == ids[j]) return true;
+      }
+    }
+    return false;
+  }
+  std::sort(ids.begin(), ids.end());
+  return std::adjacent_find(ids.begin(), ids.end()) != ids.end();
+}
+
+}  // namespace
+
+std::uint32_t ModelEditor::exact_marks(FaceId f) {
+  std::uint32_t marks = 0;
+  seen_edges_.clear();
+  seen_vertices_.clear();
+  m_.for_each_loop_of(
+      rec(f),
+      [&](std::uint32_t first) {
+        std::uint32_t u = first;
+        do {
+          marks |= mark_of(EdgeUseId(u));
+          seen_edges_.push_back(m_.edge_of(EdgeUseId(u)).value);
+          seen_vertices_.push_back(m_.use_start(EdgeUseId(u)).value);
+          u = m_.uses_[u].next;
+        } while (u != first);
+      },
+      [&](VertexId v) { seen_vertices_.push_back(v.value); });
+  if (has_repeat(seen_edges_) || has_repeat(seen_vertices_)) marks |= Model::kRepeatFace;
+  return marks;
+}
+
 void ModelEditor::close(FaceId f) {
   list_loops(f);
   const std::uint32_t head = rec(f).first & ~kTagBit;
-  std::uint32_t marks = 0;
   for (std::uint32_t r = head;; r = loop_rec(r).next) {
     const std::uint32_t first = loop_rec(r).first;
     if (first & kTagBit) {  // a point loop: its vertex names it by its final id
       const std::uint32_t code = r == head ? f.value : (r | Model::kInnerLoopBit);
       rec(VertexId(first & ~kTagBit)).first_end = code | kTagBit;
-    } else {
-      std::uint32_t u = first;
-      do {
-        marks |= mark_of(EdgeUseId(u));
-        u = m_.uses_[u].next;
-      } while (u != first);
     }
     if (loop_rec(r).next & kTagBit) break;
   }
-  // The mark, exact again for the face walks (model.h, kUnplacedFace).
+  // The marks, exact again for the face walks (model.h, kUnplacedFace); a face
+  // still listed in touched_faces_ keeps kTouchedFace.
   std::uint32_t& sides = rec(f).sides;
-  sides = (sides & ~Model::kFaceMarks) | marks;
+  sides = (sides & ~(Model::kFaceMarks & ~Model::kTouchedFace)) | exact_marks(f);
   // A face with one loop of edges keeps it in its own record.
   const LoopRec only = loop_rec(head);
   if ((only.next & kTagBit) && !(only.first & kTagBit)) {
@@ -212,6 +247,17 @@ ModelEditor::~ModelEditor() {
     for (std::size_t j = 0; j < i; ++j) seen = seen || faces[j] == faces[i];
     if (!seen && m_.is_live(f) && rec(f).first != kInvalidIndex) close(f);
   }
+  // Every face the edit changed gets exact marks (a face freed meanwhile, or
+  // freed and made again, is skipped or done twice).
+  faces.clear();
+  faces.swap(m_.touched_faces_);
+  for (std::uint32_t i : faces) {
+    const FaceId f(i);
+    if (!m_.is_live(f)) continue;
+    std::uint32_t& sides = rec(f).sides;
+    sides &= ~Model::kFaceMarks;
+    if (rec(f).first != kInvalidIndex) sides |= exact_marks(f);
+  }
 }
 
 LoopId ModelEditor::append_record(FaceId f, std::uint32_t r) {
@@ -228,6 +274,7 @@ LoopId ModelEditor::append_record(FaceId f, std::uint32_t r) {
 }
 
 LoopId ModelEditor::add_loop(FaceId f, EdgeUseId first) {
+  touch(f);
   if (rec(f).first == kInvalidIndex) {  // the face's only loop, in its own record
     set_face_first(f, first.value);
     return LoopId(f.value);
@@ -236,6 +283,7 @@ LoopId ModelEditor::add_loop(FaceId f, EdgeUseId first) {
 }
 
 LoopId ModelEditor::add_point_loop(FaceId f, VertexId v) {
+  touch(f);
   const LoopId l = append_record(f, new_record(v.value | kTagBit, kInvalidIndex));
   assert(!m_.first_end(v).edge.is_valid());
   rec(v).first_end = l.value | kTagBit;
@@ -295,6 +343,7 @@ std::uint32_t ModelEditor::intern_sides(VolumeId front, VolumeId back, GroupId g
   for (std::uint32_t i = 0; i < m_.sides_.size(); ++i) {
     if (m_.sides_[i] == want) return i;
   }
+  assert(m_.sides_.size() < Model::kMaxSideRows);  // beside the face marks
   m_.sides_.push_back(want);
   return static_cast<std::uint32_t>(m_.sides_.size() - 1);
 }
@@ -364,6 +413,7 @@ void ModelEditor::free_use(EdgeUseId u) {
   while (radial(p) != u.value) p = radial(p);
   radial(p) = after;
   const std::uint32_t rest = after == u.value ? kInvalidIndex : after;  // a use left, if any
+  if (const FaceId f = m_.face_of(u); m_.is_live(f)) touch(f);
   if (rec(u).face_dir & Model::kOverflowBit) {
     m_.ends_[u.value].vertex = Model::kSpare;
     push_free(m_.free_[Model::kUse], u.value, m_.ends_[u.value].next_end);
@@ -447,6 +497,14 @@ void ModelEditor::unlink_end(VertexId v, EdgeEnd end) {
 }
 
 void ModelEditor::move_end(EdgeEnd end, VertexId to) {
+  // The faces along the edge may now meet `to` twice.
+  if (const EdgeUseId first = m_.first_use(end.edge); first.is_valid()) {
+    std::uint32_t u = first.value;
+    do {
+      touch(m_.face_of(EdgeUseId(u)));
+      u = radial(u);
+    } while (u != first.value);
+  }
   unlink_end(VertexId(end_rec(end).vertex), end);
   end_rec(end).vertex = to.value;
   link_end(to, end);
@@ -520,6 +578,7 @@ void ModelEditor::assign_face(LoopId l, FaceId f) {
   const std::uint32_t first = loop_rec(record_of(l)).first;
   if (first & kTagBit) return;
   std::uint32_t u = first;
+  touch(f);
   do {
     UseRec& r = m_.uses_[u];
     r.face_dir = f.value | (r.face_dir & ~Model::kFaceMask);

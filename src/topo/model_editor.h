@@ -135,6 +135,17 @@ class ModelEditor {
   // Moves f's single loop into a Loop record.
   void list_loops(FaceId f);
   void close(FaceId f);
+  // An edit changed f's loops or their uses: f may now repeat an element, and is
+  // listed so that its marks are made exact when the last editor goes out of scope.
+  void touch(FaceId f) {
+    std::uint32_t& sides = rec(f).sides;
+    if (!(sides & Model::kTouchedFace)) m_.touched_faces_.push_back(f.value);
+    sides |= Model::kRepeatFace | Model::kTouchedFace;
+  }
+  // The marks f calls for, exactly: kUnplacedFace and kOverflowFace from its
+  // uses' slots, kRepeatFace when its loops name an edge or a vertex twice.
+  std::uint32_t exact_marks(FaceId f);
+  std::vector<std::uint32_t> seen_edges_, seen_vertices_;  // exact_marks' lists
   Model& m_;
 };
 

@@ -70,16 +70,20 @@ void faces_of(const Model& m, EdgeId e, std::vector<FaceId>& out) {
   dedupe_stable(out);
 }
 
+// A face that is not marked as repeating an element gives each vertex and each
+// edge once: its answer needs no dedupe (model.h, kRepeatFace).
 void vertices_of(const Model& m, FaceId f, std::vector<VertexId>& out) {
   out.clear();
+  const bool repeats = m.may_repeat_elements(f);
   m.for_each_face_vertex(f, [&](VertexId v) { out.push_back(v); });
-  dedupe_stable(out);
+  if (repeats) dedupe_stable(out);
 }
 
 void edges_of(const Model& m, FaceId f, std::vector<EdgeId>& out) {
   out.clear();
+  const bool repeats = m.may_repeat_elements(f);
   m.for_each_face_use(f, [&](const Model::FaceUse& x) { out.push_back(x.edge); });
-  dedupe_stable(out);
+  if (repeats) dedupe_stable(out);
 }
 
 void faces_of(const Model& m, FaceId f, std::vector<FaceId>& out) {

@@ -12,6 +12,7 @@ std::vector<Violation> validate(const Model& m) {
   checks::radial_cycles(m, out);
   checks::loops(m, out);
   if (!out.empty()) return out;
+  checks::face_marks(m, out);
   checks::wedges(m, out);
   checks::euler(m, out);
   return out;

@@ -17,6 +17,9 @@ void records(const Model& m, Violations& out);
 void vertex_cycles(const Model& m, Violations& out);
 void radial_cycles(const Model& m, Violations& out);
 void loops(const Model& m, Violations& out);
+// validate_records.cpp, after the loops passed: each face mark is set where the
+// face's loops need it, and outside an edit only there.
+void face_marks(const Model& m, Violations& out);
 // validate_wedges.cpp: around each edge, the two face sides facing each wedge
 // between radially consecutive faces name the same volume (this is also what makes
 // the faces of a solid consistently oriented).

@@ -1,5 +1,8 @@
 // Check "records": every stored reference names a live entity of the right kind
 // and the back-references that a record implies agree.
+#include <algorithm>
+#include <cstdint>
+
 #include "topo/validate_checks.h"
 
 namespace cellforge::checks {
@@ -91,6 +94,63 @@ void records(const Model& m, Violations& out) {
   for (VolumeId c : m.volumes()) {
     if (!m.is_live(m.group_of(c))) fail(c.str() + " names a dead group");
     if (!bounded[c.value]) fail(c.str() + " is bounded by no face");
+  }
+}
+
+// A value that `ids` holds twice, or nullptr (a long list gets sorted).
+const std::uint32_t* repeated(std::vector<std::uint32_t>& ids) {
+  if (ids.size() <= 16) {
+    for (std::size_t i = 1; i < ids.size(); ++i) {
+      for (std::size_t j = 0; j < i; ++j) {
+        if (ids[i] == ids[j]) return &ids[i];
+      }
+    }
+    return nullptr;
+  }
+  std::sort(ids.begin(), ids.end());
+  const auto it = std::adjacent_find(ids.begin(), ids.end());
+  return it == ids.end() ? nullptr : &*it;
+}
+
+void face_marks(const Model& m, Violations& out) {
+  auto fail = [&](std::string msg) { out.push_back({"marks", std::move(msg)}); };
+  std::vector<std::uint32_t> edges, vertices;
+  for (FaceId f : m.faces()) {
+    edges.clear();
+    vertices.clear();
+    bool unplaced = false, overflow = false;
+    for (LoopId l = m.outer_loop(f); l.is_valid(); l = m.next_loop(l)) {
+      if (m.is_point_loop(l)) {
+        vertices.push_back(m.point_loop_vertex(l).value);
+        continue;
+      }
+      const EdgeUseId first = m.loop_first(l);
+      EdgeUseId u = first;
+      do {
+        edges.push_back(m.edge_of(u).value);
+        vertices.push_back(m.use_start(u).value);
+        unplaced = unplaced || !m.is_in_place(u);
+        overflow = overflow || m.in_overflow_slot(u);
+        u = m.loop_next(u);
+      } while (u != first);
+    }
+    const std::uint32_t* edge = repeated(edges);
+    const std::uint32_t* vertex = repeated(vertices);
+    if ((edge || vertex) && !m.may_repeat_elements(f)) {
+      fail(f.str() + " names " + (edge ? EdgeId(*edge).str() : VertexId(*vertex).str()) +
+           " twice but is not marked as repeating an element");
+    }
+    if (m.being_edited()) continue;  // marks may be set where not needed
+    if (!edge && !vertex && m.may_repeat_elements(f)) {
+      fail(f.str() + " is marked as repeating an element but names each edge and vertex once");
+    }
+    if (unplaced != m.may_hold_unplaced_uses(f) || overflow != m.may_hold_overflow_uses(f)) {
+      auto yes = [](bool x) { return std::string(x ? "yes" : "no"); };
+      fail(f.str() + "'s marks are not exact: marked as holding uses out of place " +
+           yes(m.may_hold_unplaced_uses(f)) + ", in overflow slots " +
+           yes(m.may_hold_overflow_uses(f)) + "; holds them " + yes(unplaced) + ", " +
+           yes(overflow));
+    }
   }
 }
 

@@ -1,7 +1,7 @@
 // dedupe_stable: removes repeated elements from a query answer, keeping first
 // occurrences in order: a quadratic scan for small answers (no allocation), a sort
-// for large ones. The 9 queries use it, and so do the comparison baselines, so that
-// every structure pays the same for it.
+// for large ones. The 9 queries use it (F->E and F->V only for a face marked as
+// repeating an element, model.h), and so do the comparison baselines.
 #pragma once
 
 #include <algorithm>

@@ -34,9 +34,14 @@
 // place. A face that may hold a use not in place is marked (kUnplacedFace), and
 // one that may hold a use in an overflow slot too (kOverflowFace): F->V walks an
 // unmarked face reading start vertex ends_[u], F->E and F->F a face without the
-// overflow mark reading edge u/2, without a test per use. When
-// slot 2e is empty while the edge still has uses, the empty slot's radial field
-// names one of them (the edge's first use).
+// overflow mark reading edge u/2, without a test per use. A third mark
+// (kRepeatFace) says that a face's loops may name an edge or a vertex twice (a
+// slit, a dangling edge, loops that touch): the F->E and F->V answers of a face
+// without it need no deduplication. An edit sets kRepeatFace on every face it
+// changes; when the last editor goes out of scope the three marks of those faces
+// are made exact (ModelEditor), so outside an edit each mark is set exactly when
+// its face needs it. When slot 2e is empty while the edge still has uses, the
+// empty slot's radial field names one of them (the edge's first use).
 //
 // A face with one loop of edges keeps that loop in its own record (the face names
 // the loop's first use); only a face with holes, or whose loop is a single vertex,
@@ -362,6 +367,11 @@ class Model {
   bool may_hold_unplaced_uses(FaceId f) const { return (faces_[f.value].sides & kUnplacedFace) != 0; }
   // False when no use of f sits in an overflow slot (marked likewise).
   bool may_hold_overflow_uses(FaceId f) const { return (faces_[f.value].sides & kOverflowFace) != 0; }
+  // False when f's loops name no edge twice and no vertex twice (counting point
+  // loops), so that its F->E and F->V walks give each answer once.
+  bool may_repeat_elements(FaceId f) const { return (faces_[f.value].sides & kRepeatFace) != 0; }
+  // True while a ModelEditor is alive: face marks may then be set where not needed.
+  bool being_edited() const { return edit_depth_ != 0; }
   // The vertex cycle of loop l, in loop order (one vertex for a point loop).
   std::vector<VertexId> loop_vertices(LoopId l) const;
   std::vector<Vec3> loop_points(LoopId l) const;
@@ -481,14 +491,20 @@ class Model {
     // The outer loop's first use when the face has that one loop of edges;
     // kTagBit|Loop record of its first loop otherwise; kInvalidIndex while empty.
     std::uint32_t first;
-    // Index into sides_, | kUnplacedFace when a use of the face may not be in
-    // place, | kOverflowFace too when one may sit in an overflow slot; kDead when
-    // free (first links the list).
+    // Index into sides_ (below kMaxSideRows), | kUnplacedFace when a use of the
+    // face may not be in place, | kOverflowFace too when one may sit in an
+    // overflow slot, | kRepeatFace when its loops may name an edge or a vertex
+    // twice, | kTouchedFace while an edit lists it; kDead when free (first links
+    // the list).
     std::uint32_t sides;
   };
   static constexpr std::uint32_t kOverflowFace = 0x40000000u;
   static constexpr std::uint32_t kUnplacedFace = 0x20000000u;
-  static constexpr std::uint32_t kFaceMarks = kOverflowFace | kUnplacedFace;
+  static constexpr std::uint32_t kRepeatFace = 0x10000000u;
+  // Set while the face is listed in touched_faces_ (during an edit only).
+  static constexpr std::uint32_t kTouchedFace = 0x08000000u;
+  static constexpr std::uint32_t kFaceMarks = kOverflowFace | kUnplacedFace | kRepeatFace | kTouchedFace;
+  static constexpr std::uint32_t kMaxSideRows = kTouchedFace;
   struct SidesRec {
     std::uint32_t front, back, group;
     friend bool operator==(const SidesRec&, const SidesRec&) = default;
@@ -523,6 +539,9 @@ class Model {
   std::vector<Surface> surfaces_;
   std::size_t listed_faces_ = 0;       // live faces whose loops are in Loop records
   std::vector<std::uint32_t> open_faces_;  // faces an operator is editing (ModelEditor)
+  // Faces an edit has changed (kTouchedFace), whose marks are made exact when the
+  // last editor goes out of scope.
+  std::vector<std::uint32_t> touched_faces_;
   int edit_depth_ = 0;
 
   // The raw start of loop l: a use id, kTagBit|vertex (point loop), or kInvalidIndex.
