@@ -126,7 +126,11 @@ Result<BuildResult> build_mesh(Model& m, const MeshInput& in) {
     groups.emplace_back(i, j);
     i = j;
   }
-  if (groups.size() >= Model::kMaxEdges) {
+  // Edge slots: the edges, and spare pairs for the third and later uses of an edge
+  // (counted as one pair each, an upper bound).
+  std::size_t overflow = 0;
+  for (const auto& [first, last] : groups) overflow += last - first > 2 ? last - first - 2 : 0;
+  if (m.edge_slots() + groups.size() + overflow >= Model::kMaxEdges) {
     return Error{ErrorCode::kInvalidInput, "too many edges: " + std::to_string(groups.size())};
   }
   std::vector<EdgeId> edge_of_group(groups.size());

@@ -58,7 +58,7 @@ Status can_mev(const Model& m, LoopId l, VertexId v) {
   if (!ops::on_loop(m, l, v)) {
     return precondition("mev: vertex " + v.str() + " is not on loop " + l.str());
   }
-  if (m.num_edges() + 1 >= Model::kMaxEdges) return precondition("mev: too many edges");
+  if (!ops::room_for_edges(m, 1)) return precondition("mev: too many edges");
   return Status::Ok();
 }
 
@@ -150,7 +150,7 @@ Status can_mef(const Model& m, LoopId l, VertexId v1, VertexId v2) {
       return precondition("mef: vertex " + v.str() + " is not on loop " + l.str());
     }
   }
-  if (m.num_edges() + 1 >= Model::kMaxEdges) return precondition("mef: too many edges");
+  if (!ops::room_for_edges(m, 1)) return precondition("mef: too many edges");
   if (m.face_slots() + 1 >= Model::kMaxFaces) return precondition("mef: too many faces");
   return Status::Ok();
 }
@@ -314,7 +314,7 @@ Status can_mekr(const Model& m, LoopId l1, VertexId v1, LoopId l2, VertexId v2) 
   if (!ops::on_loop(m, l2, v2)) {
     return precondition("mekr: vertex " + v2.str() + " is not on loop " + l2.str());
   }
-  if (m.num_edges() + 1 >= Model::kMaxEdges) return precondition("mekr: too many edges");
+  if (!ops::room_for_edges(m, 1)) return precondition("mekr: too many edges");
   return Status::Ok();
 }
 
@@ -401,7 +401,7 @@ Result<FaceId> mfkrh(Model& m, LoopId l) {
 
 Status can_semv(const Model& m, EdgeId e) {
   CF_CHECK(require_live(m, e, "semv: edge"));
-  if (m.num_edges() + 1 >= Model::kMaxEdges) return precondition("semv: too many edges");
+  if (!ops::room_for_edges(m, 1, m.use_count(e))) return precondition("semv: too many edges");
   return Status::Ok();
 }
 

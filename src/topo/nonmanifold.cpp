@@ -163,7 +163,7 @@ Status can_make_wire_edge(const Model& m, VertexId a, VertexId b) {
   }
   CF_CHECK(check_can_take_edges(m, a, "make_wire_edge"));
   CF_CHECK(check_can_take_edges(m, b, "make_wire_edge"));
-  if (m.num_edges() + 1 >= Model::kMaxEdges) return precondition("make_wire_edge: too many edges");
+  if (!ops::room_for_edges(m, 1)) return precondition("make_wire_edge: too many edges");
   return Status::Ok();
 }
 
@@ -210,7 +210,7 @@ Status can_make_face(const Model& m, const FaceSpec& spec) {
       CF_CHECK(check_can_take_edges(m, loop[k], "make_face"));
     }
   }
-  if (m.num_edges() + uses >= Model::kMaxEdges) return precondition("make_face: too many edges");
+  if (!ops::room_for_edges(m, uses, uses)) return precondition("make_face: too many edges");
   if (m.face_slots() + 1 >= Model::kMaxFaces) return precondition("make_face: too many faces");
   return Status::Ok();
 }
@@ -383,7 +383,7 @@ Status can_split_edge(const Model& m, EdgeId e, const std::vector<EdgeUseId>& mo
                           " would face different volumes across one wedge at " + e.str());
     }
   }
-  if (m.num_edges() + 1 >= Model::kMaxEdges) return precondition("split_edge: too many edges");
+  if (!ops::room_for_edges(m, 1, moving.size())) return precondition("split_edge: too many edges");
   return Status::Ok();
 }
 

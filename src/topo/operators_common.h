@@ -2,6 +2,7 @@
 // small loop walks the operators need.
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,13 @@ Status require_live(const Model& m, IdT id, const char* role) {
                  std::string(role) + " " + id.str() + " is not a live entity"};
   }
   return Status::Ok();
+}
+
+// True when `edges` new edges and `uses` new uses of existing edges fit: edge
+// slots, spare pairs for overflow uses included, stay below Model::kMaxEdges even
+// if every such use takes a spare pair of its own (a free slot counts as taken).
+inline bool room_for_edges(const Model& m, std::size_t edges, std::size_t uses = 0) {
+  return m.edge_slots() + edges + uses < Model::kMaxEdges;
 }
 
 // First use of loop l (in loop order) that starts / ends at v; invalid if none.

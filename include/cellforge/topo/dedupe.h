@@ -13,6 +13,10 @@ namespace cellforge {
 
 template <class T>
 void dedupe_stable(std::vector<T>& v) {
+  if (v.size() <= 2) {  // most answers around an edge: no scan
+    if (v.size() == 2 && v[0] == v[1]) v.pop_back();
+    return;
+  }
   std::size_t n = 0;
   if (v.size() <= 32) {
     for (std::size_t i = 0; i < v.size(); ++i) {
