@@ -11,6 +11,7 @@
 #include "cellforge/compare/radial_edge.h"
 #include "cellforge/compare/winged_edge.h"
 #include "cellforge/topo/examples.h"
+#include "cellforge/topo/operators.h"
 #include "cellforge/topo/queries.h"
 #include "support/checks.h"
 #include "support/fixtures.h"
@@ -110,6 +111,26 @@ TEST(Structures, ModelsBuiltByEulerOperatorsAgreeToo) {
   auto w = WingedEdge::from_model(box);
   ASSERT_OK(w);
   expect_same_answers(box, *w, "winged edge on the Euler box with hole");
+}
+
+// Faces whose loops name an element twice, where cellforge's F->E and F->V
+// answers are deduplicated (its other faces skip that): a strut into the cube's
+// top face, which the top loop runs along both ways, and a sheet whose loop
+// touches itself at a vertex.
+TEST(Structures, FacesThatRepeatAnElementAgreeToo) {
+  Model strut = build(testing::unit_cube());
+  const FaceId top = testing::face_at(strut, {0.5, 0.5, 1});
+  ASSERT_OK(mev(strut, strut.outer_loop(top), vertex_at(strut, {1, 1, 1}), {0.5, 0.5, 1}));
+  EXPECT_VALID(strut);
+  ASSERT_TRUE(strut.may_repeat_elements(top));
+  expect_same_answers(strut, RadialEdge::from_model(strut), "radial edge on a cube with a strut");
+
+  MeshInput in;
+  testing::add_face(in, {{{0, 0, 0}, {1, 1, 0}, {2, 0, 0}, {2, 2, 0}, {1, 1, 0}, {0, 2, 0}}});
+  const Model pinched = build(in);
+  EXPECT_VALID(pinched);
+  ASSERT_TRUE(pinched.may_repeat_elements(*pinched.faces().begin()));
+  expect_same_answers(pinched, RadialEdge::from_model(pinched), "radial edge on a pinched sheet");
 }
 
 // Weiler's invariants, walked from the top of the hierarchy.
