@@ -30,6 +30,7 @@ class ModelEditor {
   using SidesRec = Model::SidesRec;
   static constexpr std::uint32_t kTagBit = Model::kTagBit;
   static constexpr std::uint32_t kDead = Model::kDead;
+  static constexpr std::uint32_t kRepeatFace = Model::kRepeatFace;
   static constexpr UseRec kEmptyUse() { return {Model::kNoUse, kInvalidIndex}; }
 
   VertexRec& rec(VertexId v) { return m_.vertices_[v.value]; }

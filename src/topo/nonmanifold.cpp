@@ -336,6 +336,9 @@ Status can_unglue_face(const Model& m, FaceId f) {
   if (!m.front_volume(f).is_valid() || !m.back_volume(f).is_valid()) {
     return precondition("unglue_face: face " + f.str() + " does not have volumes on both sides");
   }
+  std::size_t uses = 0;  // each gets a twin on its edge
+  for (LoopId l = m.outer_loop(f); l.is_valid(); l = m.next_loop(l)) uses += m.loop_length(l);
+  if (!ops::room_for_edges(m, 0, uses)) return precondition("unglue_face: too many edges");
   return Status::Ok();
 }
 
@@ -411,6 +414,7 @@ Status can_merge_edges(const Model& m, EdgeId keep, EdgeId dying) {
   // stand-in with its direction bit as it will be after the merge.)
   std::vector<EdgeUseId> all = ops::radial_uses(m, keep);
   const std::vector<EdgeUseId> more = ops::radial_uses(m, dying);
+  if (!ops::room_for_edges(m, 0, more.size())) return precondition("merge_edges: too many edges");
   if (flipped && !more.empty()) {
     Model trial = m;  // O(model): flipped merges are rare; check on a copy
     ModelEditor ed(trial);

@@ -183,63 +183,68 @@ Result<Model> restore(const Snapshot& r) {
   }
 
   Model m;
-  ModelEditor ed(m);
-  std::vector<GroupId> groups;
-  for (const auto& g : r.groups) groups.push_back(ed.new_group(g.name));
-  for (const auto& p : r.parameters) m.set_attribute(groups[p.group], p.name, p.value);
-  std::vector<VolumeId> cells;
-  for (std::uint32_t g : r.cells) cells.push_back(ed.new_volume(groups[g]));
-  std::vector<VertexId> vertices;
-  vertices.reserve(nv);
-  for (const auto& v : r.vertices) vertices.push_back(ed.new_vertex(groups[v.group], v.p));
-  std::vector<EdgeId> edges;
-  edges.reserve(ne);
-  for (const auto& e : r.edges) edges.push_back(ed.new_edge(vertices[e.start], vertices[e.end]));
-  for (const Surface& s : r.surfaces) m.add_surface(s);
-  std::vector<FaceId> faces;
-  faces.reserve(nf);
-  auto cell = [&](std::int64_t c) { return c == kNone ? VolumeId() : cells[c]; };
-  for (const auto& f : r.faces) {
-    const FaceId face = ed.new_face(ed.intern_sides(cell(f.front), cell(f.back), groups[f.group]));
-    if (f.surface != kNone) m.set_surface(face, static_cast<std::uint32_t>(f.surface));
-    faces.push_back(face);
-  }
-  std::vector<EdgeUseId> uses(r.uses.size());
-  std::size_t next_use = 0;
-  for (std::size_t i = 0; i < nl; ++i) {
-    const auto& l = r.loops[i];
-    if (l.point_vertex != kNone) {
-      ed.add_point_loop(faces[l.face], vertices[l.point_vertex]);
-    } else {
-      EdgeUseId first, prev;
-      for (; next_use < r.uses.size() && r.uses[next_use].loop == i; ++next_use) {
-        const auto& ur = r.uses[next_use];
-        const EdgeUseId u = ed.new_use(edges[ur.edge], ur.reversed, faces[l.face]);
-        uses[next_use] = u;
-        if (prev.is_valid()) {
-          ed.set_next(prev, u);
-        } else {
-          first = u;
-        }
-        prev = u;
-      }
-      ed.set_next(prev, first);
-      ed.add_loop(faces[l.face], first);
+  {  // the editor ends (making the face marks exact) before m is checked and returned
+    ModelEditor ed(m);
+    std::vector<GroupId> groups;
+    for (const auto& g : r.groups) groups.push_back(ed.new_group(g.name));
+    for (const auto& p : r.parameters) m.set_attribute(groups[p.group], p.name, p.value);
+    std::vector<VolumeId> cells;
+    for (std::uint32_t g : r.cells) cells.push_back(ed.new_volume(groups[g]));
+    std::vector<VertexId> vertices;
+    vertices.reserve(nv);
+    for (const auto& v : r.vertices) vertices.push_back(ed.new_vertex(groups[v.group], v.p));
+    std::vector<EdgeId> edges;
+    edges.reserve(ne);
+    for (const auto& e : r.edges) edges.push_back(ed.new_edge(vertices[e.start], vertices[e.end]));
+    for (const Surface& s : r.surfaces) m.add_surface(s);
+    std::vector<FaceId> faces;
+    faces.reserve(nf);
+    auto cell = [&](std::int64_t c) { return c == kNone ? VolumeId() : cells[c]; };
+    for (const auto& f : r.faces) {
+      const FaceId face =
+          ed.new_face(ed.intern_sides(cell(f.front), cell(f.back), groups[f.group]));
+      if (f.surface != kNone) m.set_surface(face, static_cast<std::uint32_t>(f.surface));
+      faces.push_back(face);
     }
-  }
-  // Radial cycles in stored order.
-  std::vector<std::uint32_t> by_edge(r.uses.size());
-  std::iota(by_edge.begin(), by_edge.end(), 0u);
-  std::sort(by_edge.begin(), by_edge.end(), [&](std::uint32_t a, std::uint32_t b) {
-    const auto &x = r.uses[a], &y = r.uses[b];
-    return x.edge != y.edge ? x.edge < y.edge : x.radial_ord < y.radial_ord;
-  });
-  std::vector<EdgeUseId> cycle;
-  for (std::size_t i = 0; i < by_edge.size();) {
-    const std::uint32_t e = r.uses[by_edge[i]].edge;
-    cycle.clear();
-    for (; i < by_edge.size() && r.uses[by_edge[i]].edge == e; ++i) cycle.push_back(uses[by_edge[i]]);
-    ed.set_radial_cycle(edges[e], cycle);
+    std::vector<EdgeUseId> uses(r.uses.size());
+    std::size_t next_use = 0;
+    for (std::size_t i = 0; i < nl; ++i) {
+      const auto& l = r.loops[i];
+      if (l.point_vertex != kNone) {
+        ed.add_point_loop(faces[l.face], vertices[l.point_vertex]);
+      } else {
+        EdgeUseId first, prev;
+        for (; next_use < r.uses.size() && r.uses[next_use].loop == i; ++next_use) {
+          const auto& ur = r.uses[next_use];
+          const EdgeUseId u = ed.new_use(edges[ur.edge], ur.reversed, faces[l.face]);
+          uses[next_use] = u;
+          if (prev.is_valid()) {
+            ed.set_next(prev, u);
+          } else {
+            first = u;
+          }
+          prev = u;
+        }
+        ed.set_next(prev, first);
+        ed.add_loop(faces[l.face], first);
+      }
+    }
+    // Radial cycles in stored order.
+    std::vector<std::uint32_t> by_edge(r.uses.size());
+    std::iota(by_edge.begin(), by_edge.end(), 0u);
+    std::sort(by_edge.begin(), by_edge.end(), [&](std::uint32_t a, std::uint32_t b) {
+      const auto &x = r.uses[a], &y = r.uses[b];
+      return x.edge != y.edge ? x.edge < y.edge : x.radial_ord < y.radial_ord;
+    });
+    std::vector<EdgeUseId> cycle;
+    for (std::size_t i = 0; i < by_edge.size();) {
+      const std::uint32_t e = r.uses[by_edge[i]].edge;
+      cycle.clear();
+      for (; i < by_edge.size() && r.uses[by_edge[i]].edge == e; ++i) {
+        cycle.push_back(uses[by_edge[i]]);
+      }
+      ed.set_radial_cycle(edges[e], cycle);
+    }
   }
 
   if (auto violations = validate(m); !violations.empty()) {

@@ -9,7 +9,10 @@
 
 #include "cellforge/topo/operators.h"
 #include "cellforge/topo/queries.h"
+#include "cellforge/topo/snapshot.h"
+#include "cellforge/topo/validate.h"
 #include "support/checks.h"
+#include "topo/model_editor.h"
 #include "support/fixtures.h"
 
 namespace cellforge {
@@ -105,8 +108,8 @@ TEST(FaceMarks, ADanglingEdgeInAFaceIsMarkedUntilItIsKilled) {
   EXPECT_FALSE(m.may_repeat_elements(f));
 }
 
-// Inside an edit the marks may be set where not needed (the validator allows
-// that only then); when the editor goes out of scope they are exact.
+// An edit sets the repeat mark on every face it changes; when the editor goes out
+// of scope the marks are exact again (semv and jekv leave no face marked).
 TEST(FaceMarks, AreExactWhenTheEditEnds) {
   Model m = build(unit_cube());
   const FaceId f = face_at(m, {0.5, 0.5, 1});
@@ -122,6 +125,61 @@ TEST(FaceMarks, AreExactWhenTheEditEnds) {
   ASSERT_OK(jekv(m, split->edge, split->vertex));
   EXPECT_VALID(m);
   EXPECT_FALSE(m.may_repeat_elements(f));
+}
+
+// A model rebuilt from its tables (snapshots, the database, JSON) comes back with
+// no edit left open and with exact marks: the same ones as the original.
+TEST(FaceMarks, ARestoredModelHasExactMarksAndNoEditOpen) {
+  Model m = build(unit_cube());
+  const FaceId top = face_at(m, {0.5, 0.5, 1});
+  ASSERT_OK(mev(m, m.outer_loop(top), vertex_at(m, {1, 1, 1}), {0.5, 0.5, 1}));
+  MeshInput pinched;
+  add_face(pinched, {{{5, 0, 0}, {6, 1, 0}, {7, 0, 0}, {7, 2, 0}, {6, 1, 0}, {5, 2, 0}}});
+  ASSERT_OK(build_mesh(m, pinched));
+  auto back = restore(snapshot(m));
+  ASSERT_OK(back);
+  EXPECT_FALSE(back->being_edited());
+  EXPECT_VALID(*back);  // outside an edit the validator checks the marks are exact
+  std::size_t repeating = 0;
+  for (FaceId f : back->faces()) repeating += back->may_repeat_elements(f) ? 1 : 0;
+  EXPECT_EQ(repeating, 2u);  // the cube's top face (the strut) and the pinched sheet
+  // A later edit on the restored model makes the marks it touches exact again.
+  const VertexId tip = vertex_at(*back, {0.5, 0.5, 1});
+  std::vector<FaceId> fs;
+  faces_of(*back, tip, fs);
+  ASSERT_EQ(fs.size(), 1u);
+  const FaceId again = fs[0];
+  ASSERT_TRUE(back->may_repeat_elements(again));
+  std::vector<EdgeId> es;
+  edges_of(*back, tip, es);
+  ASSERT_EQ(es.size(), 1u);
+  ASSERT_OK(kev(*back, es[0], tip));
+  EXPECT_FALSE(back->being_edited());
+  EXPECT_VALID(*back);
+  EXPECT_FALSE(back->may_repeat_elements(again));
+}
+
+// The validator's side: a face that repeats a vertex without the mark is an
+// error, and so, outside an edit, is the mark on a face that repeats nothing.
+// (The marks are flipped behind the editor's back: no call of it would.)
+TEST(FaceMarks, TheValidatorCatchesAMissingOrNeedlessMark) {
+  MeshInput in;
+  add_face(in, {{{0, 0, 0}, {1, 1, 0}, {2, 0, 0}, {2, 2, 0}, {1, 1, 0}, {0, 2, 0}}});
+  add_face(in, {{{5, 0, 0}, {6, 0, 0}, {6, 1, 0}, {5, 1, 0}}});
+  Model m = build(in);
+  const FaceId pinched = face_at(m, {1, 1, 0});
+  const FaceId square = face_at(m, {5.5, 0.5, 0});
+  ASSERT_TRUE(m.may_repeat_elements(pinched));
+  ASSERT_FALSE(m.may_repeat_elements(square));
+  for (FaceId f : {pinched, square}) {
+    Model bad = m;
+    {
+      ModelEditor ed(bad);
+      ed.rec(f).sides ^= ModelEditor::kRepeatFace;
+    }
+    const std::string found = to_string(validate(bad));
+    EXPECT_NE(found.find("[marks] " + f.str()), std::string::npos) << found;
+  }
 }
 
 }  // namespace
