@@ -501,7 +501,7 @@ void ModelEditor::move_end(EdgeEnd end, VertexId to) {
   if (const EdgeUseId first = m_.first_use(end.edge); first.is_valid()) {
     std::uint32_t u = first.value;
     do {
-      touch(m_.face_of(EdgeUseId(u)));
+      if (const FaceId f = m_.face_of(EdgeUseId(u)); m_.is_live(f)) touch(f);
       u = radial(u);
     } while (u != first.value);
   }
