@@ -6,6 +6,7 @@
 #include <cassert>
 #include <iterator>
 
+#include "cellforge/topo/dedupe.h"
 #include "topo/operators_common.h"
 
 namespace cellforge {
@@ -172,25 +173,8 @@ void ModelEditor::open(FaceId f) {
   if (is_open(f)) return;
   m_.open_faces_.push_back(f.value);
   list_loops(f);
+  touch(f);  // its marks are made exact when the edit ends
 }
-
-namespace {
-
-// True when `ids` holds a value twice (a long list is sorted).
-bool has_repeat(std::vector<std::uint32_t>& ids) {
-  if (ids.size() <= 16) {
-    for (std::size_t i = 1; i < ids.size(); ++i) {
-      for (std::size_t j = 0; j < i; ++j) {
-        if (ids[i] == ids[j]) return true;
-      }
-    }
-    return false;
-  }
-  std::sort(ids.begin(), ids.end());
-  return std::adjacent_find(ids.begin(), ids.end()) != ids.end();
-}
-
-}  // namespace
 
 std::uint32_t ModelEditor::exact_marks(FaceId f) {
   std::uint32_t marks = 0;
@@ -208,7 +192,7 @@ std::uint32_t ModelEditor::exact_marks(FaceId f) {
         } while (u != first);
       },
       [&](VertexId v) { seen_vertices_.push_back(v.value); });
-  if (has_repeat(seen_edges_) || has_repeat(seen_vertices_)) marks |= Model::kRepeatFace;
+  if (find_repeat(seen_edges_) || find_repeat(seen_vertices_)) marks |= Model::kRepeatFace;
   return marks;
 }
 
@@ -223,10 +207,6 @@ void ModelEditor::close(FaceId f) {
     }
     if (loop_rec(r).next & kTagBit) break;
   }
-  // The marks, exact again for the face walks (model.h, kUnplacedFace); a face
-  // still listed in touched_faces_ keeps kTouchedFace.
-  std::uint32_t& sides = rec(f).sides;
-  sides = (sides & ~(Model::kFaceMarks & ~Model::kTouchedFace)) | exact_marks(f);
   // A face with one loop of edges keeps it in its own record.
   const LoopRec only = loop_rec(head);
   if ((only.next & kTagBit) && !(only.first & kTagBit)) {
@@ -247,8 +227,8 @@ ModelEditor::~ModelEditor() {
     for (std::size_t j = 0; j < i; ++j) seen = seen || faces[j] == faces[i];
     if (!seen && m_.is_live(f) && rec(f).first != kInvalidIndex) close(f);
   }
-  // Every face the edit changed gets exact marks (a face freed meanwhile, or
-  // freed and made again, is skipped or done twice).
+  // Every face the edit changed or opened gets exact marks (a face freed
+  // meanwhile, or freed and made again, is skipped or done twice).
   faces.clear();
   faces.swap(m_.touched_faces_);
   for (std::uint32_t i : faces) {

@@ -1,8 +1,8 @@
 // Check "records": every stored reference names a live entity of the right kind
 // and the back-references that a record implies agree.
-#include <algorithm>
 #include <cstdint>
 
+#include "cellforge/topo/dedupe.h"
 #include "topo/validate_checks.h"
 
 namespace cellforge::checks {
@@ -97,21 +97,6 @@ void records(const Model& m, Violations& out) {
   }
 }
 
-// A value that `ids` holds twice, or nullptr (a long list gets sorted).
-const std::uint32_t* repeated(std::vector<std::uint32_t>& ids) {
-  if (ids.size() <= 16) {
-    for (std::size_t i = 1; i < ids.size(); ++i) {
-      for (std::size_t j = 0; j < i; ++j) {
-        if (ids[i] == ids[j]) return &ids[i];
-      }
-    }
-    return nullptr;
-  }
-  std::sort(ids.begin(), ids.end());
-  const auto it = std::adjacent_find(ids.begin(), ids.end());
-  return it == ids.end() ? nullptr : &*it;
-}
-
 void face_marks(const Model& m, Violations& out) {
   auto fail = [&](std::string msg) { out.push_back({"marks", std::move(msg)}); };
   std::vector<std::uint32_t> edges, vertices;
@@ -134,8 +119,8 @@ void face_marks(const Model& m, Violations& out) {
         u = m.loop_next(u);
       } while (u != first);
     }
-    const std::uint32_t* edge = repeated(edges);
-    const std::uint32_t* vertex = repeated(vertices);
+    const std::uint32_t* edge = find_repeat(edges);
+    const std::uint32_t* vertex = find_repeat(vertices);
     if ((edge || vertex) && !m.may_repeat_elements(f)) {
       fail(f.str() + " names " + (edge ? EdgeId(*edge).str() : VertexId(*vertex).str()) +
            " twice but is not marked as repeating an element");

@@ -40,4 +40,22 @@ void dedupe_stable(std::vector<T>& v) {
   v.resize(n);
 }
 
+// A value that `v` holds twice, or nullptr: a quadratic scan for up to 16
+// elements, a sort (which reorders v) for more. The face marks use it (a face's
+// edges and vertices, model.h).
+template <class T>
+const T* find_repeat(std::vector<T>& v) {
+  if (v.size() <= 16) {
+    for (std::size_t i = 1; i < v.size(); ++i) {
+      for (std::size_t j = 0; j < i; ++j) {
+        if (v[i] == v[j]) return &v[i];
+      }
+    }
+    return nullptr;
+  }
+  std::sort(v.begin(), v.end());
+  const auto it = std::adjacent_find(v.begin(), v.end());
+  return it == v.end() ? nullptr : &*it;
+}
+
 }  // namespace cellforge
