@@ -1,0 +1,99 @@
+// Regularized Boolean operations on solids: one exact arrangement of every operand,
+// then a selection by a Boolean expression (DESIGN.md, "Boolean operations").
+//
+//   Expr e = Expr::difference({Expr::operand(0), Expr::operand(1)});
+//   Result<BooleanResult> r = evaluate({&a, &b}, e);
+//
+// An operand is a whole model: the union of the 3-cells of all its groups, bounded by
+// the faces that have a cell on one side only (faces between two of its cells are
+// inside it). Operands may be non-manifold (cubes sharing an edge, cells sharing a
+// face) and may intersect themselves: membership is the winding number > 0 of the
+// operand's outward faces, so a self-intersecting but consistently oriented operand
+// is resolved, not refused.
+//
+// Every decision is an exact predicate on the input doubles: intersection points are
+// implicit (a segment meeting a plane, two lines of a plane meeting) and are rounded
+// to doubles once, when the result is built. Faces keep the input plane they lie on
+// (FaceSource::plane), and which operand and input face they came from.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "cellforge/result.h"
+#include "cellforge/topo/model.h"
+
+namespace cellforge::boolean {
+
+enum class Op { kUnion, kIntersection, kDifference };
+
+// A Boolean expression over operands 0..n-1. Union and intersection take any number
+// of children; difference is the first child minus all the others.
+struct Expr {
+  enum class Kind { kOperand, kUnion, kIntersection, kDifference };
+  Kind kind = Kind::kOperand;
+  int operand = 0;  // for kOperand
+  std::vector<Expr> children;
+
+  static Expr of(int i) { return Expr{Kind::kOperand, i, {}}; }
+  static Expr op(Op o, std::vector<Expr> children);
+  // The expression `o` applied to operands 0..n-1 in order.
+  static Expr over(Op o, int n);
+  // Whether a point inside exactly the operands marked in `inside` is in the result.
+  bool contains(const std::vector<bool>& inside) const;
+  // The largest operand index named, or -1.
+  int max_operand() const;
+};
+
+struct Options {
+  int threads = 1;  // reserved: the stages run on one thread today
+};
+
+// Where a result face came from.
+struct FaceSource {
+  int operand = -1;             // the operand whose face it lies on
+  std::uint32_t face = 0;       // that face's id in the operand's model
+  bool reversed = false;        // true when the result face points against it
+  std::array<Vec3, 3> plane{};  // three input points spanning the plane it lies on
+};
+
+struct StageTimes {
+  double soup = 0, intersect = 0, split = 0, classify = 0, output = 0, build = 0;  // seconds
+};
+
+struct Report {
+  std::size_t input_triangles = 0;
+  std::size_t candidate_pairs = 0;      // bounding-box overlaps tested exactly
+  std::size_t intersecting_pairs = 0;   // pairs that cut each other or overlap
+  std::size_t touched_triangles = 0;    // input triangles split by something
+  std::size_t pieces = 0;               // faces of the arrangement
+  std::size_t rays = 0;                 // classification rays cast
+  std::size_t implicit_points = 0;      // points made by intersection
+  std::size_t exact_fallbacks = 0;      // predicates the double filter could not decide
+  std::size_t rounding_self_intersections = 0;  // pairs of result triangles that cross
+                                                // after rounding (checked exactly)
+  StageTimes seconds;
+};
+
+struct BooleanResult {
+  Model model;                      // one group, one cell per connected solid
+  std::vector<FaceSource> sources;  // by result FaceId value
+  Report report;
+};
+
+// Evaluates `expr` on the operands. An error names an operand that holds no solid,
+// an expression naming an operand that does not exist, or a result the builder
+// refused (with its message).
+Result<BooleanResult> evaluate(std::span<const Model* const> operands, const Expr& expr,
+                               const Options& options = {});
+
+// The operation over all operands in order: union of all, intersection of all, or
+// the first minus the others.
+Result<BooleanResult> apply(Op op, std::span<const Model* const> operands,
+                            const Options& options = {});
+
+std::string to_string(Op op);
+
+}  // namespace cellforge::boolean

@@ -1,0 +1,766 @@
+// Stages 1 and 2 of the Boolean (arrangement.h): exact evaluation of implicit points,
+// the pair tests, clusters of coplanar overlapping triangles, and the cutting of each
+// cluster into convex pieces.
+//
+// Cutting. A cluster starts as its triangle (or, with several triangles, as their
+// bounding box in (u, v)); every segment that must become an edge (the cluster's
+// triangle edges, and the traces of the triangles that cross it) cuts each convex
+// piece whose interior it meets along its whole line through that piece. So pieces
+// stay convex and every vertex is the meeting of two lines; the extra edges this
+// makes where a segment stops inside a piece separate pieces with the same
+// classification and go again in the merge. Points found on a line are recorded with
+// the line's global key, so that edges lying on one 3D line get every vertex on it
+// (no T-junctions) when the result is built.
+#include "boolean/arrangement.h"
+
+#include <algorithm>
+#include <cassert>
+#include <numeric>
+
+#include "cellforge/geom/predicates.h"
+
+namespace cellforge::boolean {
+
+namespace {
+
+template <class T>
+using V3 = std::array<T, 3>;
+
+template <class T>
+V3<T> vec(Vec3 p) {
+  return {T(p.x), T(p.y), T(p.z)};
+}
+template <class T>
+V3<T> sub(const V3<T>& a, const V3<T>& b) {
+  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+}
+template <class T>
+V3<T> cross(const V3<T>& a, const V3<T>& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+template <class T>
+T dot(const V3<T>& a, const V3<T>& b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+struct PlaneT {
+  Vec3 a, b, c;
+};
+
+template <class T>
+V3<T> normal_of(const PlaneT& p) {
+  return cross(sub(vec<T>(p.b), vec<T>(p.a)), sub(vec<T>(p.c), vec<T>(p.a)));
+}
+
+class UnionFind {
+ public:
+  explicit UnionFind(std::size_t n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), 0u); }
+  std::uint32_t find(std::uint32_t x) {
+    while (parent_[x] != x) x = parent_[x] = parent_[parent_[x]];
+    return x;
+  }
+  void join(std::uint32_t a, std::uint32_t b) {
+    a = find(a);
+    b = find(b);
+    if (a != b) parent_[std::max(a, b)] = std::min(a, b);
+  }
+
+ private:
+  std::vector<std::uint32_t> parent_;
+};
+
+constexpr std::uint64_t kEdgeTag = 1ull << 63;
+
+std::uint64_t ordered(std::uint32_t a, std::uint32_t b) {
+  return (static_cast<std::uint64_t>(std::min(a, b)) << 32) | std::max(a, b);
+}
+
+int dominant_axis(Vec3 n) {
+  const double x = std::abs(n.x), y = std::abs(n.y), z = std::abs(n.z);
+  return x >= y && x >= z ? 0 : (y >= z ? 1 : 2);
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------- evaluation
+
+namespace {
+
+template <class T>
+H3<T> lift(const Arrangement& A, const Cluster& c, const H2<T>& h) {
+  const Tri& r = A.tris[c.ref];
+  const PlaneT pl{A.pos[r.v[0]], A.pos[r.v[1]], A.pos[r.v[2]]};
+  const V3<T> n = normal_of<T>(pl);
+  const T d = dot(n, vec<T>(pl.a));
+  const int k = c.k, i = (k + 1) % 3, j = (k + 2) % 3;
+  H3<T> out;
+  out.c[i] = h.u * n[k];
+  out.c[j] = h.v * n[k];
+  out.c[k] = d * h.w - n[i] * h.u - n[j] * h.v;
+  out.c[3] = h.w * n[k];
+  return out;
+}
+
+template <class T>
+std::array<T, 3> line_coeffs(const Arrangement& A, const Cluster& c, const Line& l) {
+  const int k = c.k, i = (k + 1) % 3, j = (k + 2) % 3;
+  switch (l.kind) {
+    case LineKind::kThrough: {
+      const Vec3 p = A.pos[l.a], q = A.pos[l.b];
+      return {T(p[j]) - T(q[j]), T(q[i]) - T(p[i]), T(p[i]) * T(q[j]) - T(p[j]) * T(q[i])};
+    }
+    case LineKind::kTrace: {
+      const Tri& r = A.tris[c.ref];
+      const PlaneT pc{A.pos[r.v[0]], A.pos[r.v[1]], A.pos[r.v[2]]};
+      const Tri& o = A.tris[l.a];
+      const PlaneT po{A.pos[o.v[0]], A.pos[o.v[1]], A.pos[o.v[2]]};
+      const V3<T> n = normal_of<T>(pc), m = normal_of<T>(po);
+      const T d = dot(n, vec<T>(pc.a)), e = dot(m, vec<T>(po.a));
+      return {m[i] * n[k] - m[k] * n[i], m[j] * n[k] - m[k] * n[j], m[k] * d - e * n[k]};
+    }
+    case LineKind::kAxisU:
+      return {T(1.0), T(0.0), T(-l.c)};
+    case LineKind::kAxisV:
+      return {T(0.0), T(1.0), T(-l.c)};
+  }
+  return {T(0.0), T(0.0), T(0.0)};
+}
+
+template <class T>
+H2<T> cross2(const std::array<T, 3>& a, const std::array<T, 3>& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+
+template <class T>
+H3<T> compute3(const Arrangement& A, const PointDef& d) {
+  switch (d.kind) {
+    case PointKind::kVertex: {
+      const Vec3 p = A.pos[d.a];
+      return {{T(p.x), T(p.y), T(p.z), T(1.0)}};
+    }
+    case PointKind::kLpi: {
+      const Tri& t = A.tris[d.c];
+      const PlaneT pl{A.pos[t.v[0]], A.pos[t.v[1]], A.pos[t.v[2]]};
+      const V3<T> n = normal_of<T>(pl), a = vec<T>(pl.a);
+      const V3<T> p = vec<T>(A.pos[d.a]), q = vec<T>(A.pos[d.b]);
+      const T dp = dot(n, sub(p, a)), dq = dot(n, sub(q, a));
+      const T w = dp - dq;
+      H3<T> out;
+      for (int i = 0; i < 3; ++i) out.c[i] = p[i] * w + (q[i] - p[i]) * dp;
+      out.c[3] = w;
+      return out;
+    }
+    case PointKind::kCross: {
+      const Cluster& c = A.clusters[d.a];
+      const H2<T> h = cross2(line_coeffs<T>(A, c, c.lines[d.b]), line_coeffs<T>(A, c, c.lines[d.c]));
+      return lift(A, c, h);
+    }
+  }
+  return {};
+}
+
+}  // namespace
+
+template <class T>
+std::array<T, 3> Arrangement::coeffs(const Cluster& c, const Line& l) const {
+  if constexpr (std::is_same_v<T, Fp>) {
+    return {l.A, l.B, l.C};
+  } else {
+    return line_coeffs<T>(*this, c, l);
+  }
+}
+
+template <class T>
+H3<T> Arrangement::point3(std::uint32_t p) const {
+  if (p < pos.size()) {
+    const Vec3 v = pos[p];
+    return {{T(v.x), T(v.y), T(v.z), T(1.0)}};
+  }
+  if constexpr (std::is_same_v<T, Fp>) {
+    return h3f[p - pos.size()];
+  } else {
+    return compute3<T>(*this, points[p - pos.size()]);
+  }
+}
+
+template <class T>
+H2<T> Arrangement::point2(const Cluster& c, std::uint32_t p) const {
+  const int k = c.k, i = (k + 1) % 3, j = (k + 2) % 3;
+  if (p >= pos.size()) {
+    const PointDef& d = points[p - pos.size()];
+    if (d.kind == PointKind::kCross && &clusters[d.a] == &c) {
+      if constexpr (std::is_same_v<T, Fp>) {
+        return h2f[p - pos.size()];
+      } else {
+        return cross2(coeffs<T>(c, c.lines[d.b]), coeffs<T>(c, c.lines[d.c]));
+      }
+    }
+  }
+  const H3<T> h = point3<T>(p);
+  return {h.c[i], h.c[j], h.c[3]};
+}
+
+template <class T>
+H3<T> Arrangement::rep3(const RepPoint& r) const {
+  const Cluster& c = clusters[r.cluster];
+  const H2<T> a = point2<T>(c, r.p[0]), b = point2<T>(c, r.p[1]), d = point2<T>(c, r.p[2]);
+  const T bd = b.w * d.w, ad = a.w * d.w, ab = a.w * b.w;
+  const H2<T> sum{a.u * bd + b.u * ad + d.u * ab, a.v * bd + b.v * ad + d.v * ab,
+                  T(3.0) * a.w * bd};
+  return lift(*this, c, sum);
+}
+
+template H3<Fp> Arrangement::rep3<Fp>(const RepPoint&) const;
+template H3<Expansion> Arrangement::rep3<Expansion>(const RepPoint&) const;
+template H3<Fp> Arrangement::point3<Fp>(std::uint32_t) const;
+template H3<Expansion> Arrangement::point3<Expansion>(std::uint32_t) const;
+
+// ---------------------------------------------------------------- predicates
+
+int Arrangement::w3_sign(std::uint32_t p) const {
+  if (p < pos.size()) return 1;
+  return decide([&]<class T>() { return point3<T>(p).c[3]; });
+}
+
+int Arrangement::w2_sign(const Cluster& c, std::uint32_t p) const {
+  if (p < pos.size()) return 1;
+  return decide([&]<class T>() { return point2<T>(c, p).w; });
+}
+
+int Arrangement::side(const Cluster& c, const Line& l, std::uint32_t p) const {
+  const int s = decide([&]<class T>() {
+    const auto L = coeffs<T>(c, l);
+    const H2<T> h = point2<T>(c, p);
+    return L[0] * h.u + L[1] * h.v + L[2] * h.w;
+  });
+  return s * w2_sign(c, p);
+}
+
+int Arrangement::along(const Cluster& c, const Line& l, std::uint32_t p, std::uint32_t q) const {
+  if (p == q) return 0;
+  const int sb = decide([&]<class T>() { return coeffs<T>(c, l)[1]; });
+  const bool use_u = sb != 0;
+  const int dir =
+      use_u ? sb : -decide([&]<class T>() { return coeffs<T>(c, l)[0]; });
+  const int s = decide([&]<class T>() {
+    const H2<T> a = point2<T>(c, p), b = point2<T>(c, q);
+    return use_u ? a.u * b.w - b.u * a.w : a.v * b.w - b.v * a.w;
+  });
+  return s * w2_sign(c, p) * w2_sign(c, q) * dir;
+}
+
+int Arrangement::orient2(const Cluster& c, std::uint32_t p, std::uint32_t q,
+                         std::uint32_t r) const {
+  const int s = decide([&]<class T>() {
+    const H2<T> a = point2<T>(c, p), b = point2<T>(c, q), d = point2<T>(c, r);
+    return a.u * (b.v * d.w - b.w * d.v) - a.v * (b.u * d.w - b.w * d.u) +
+           a.w * (b.u * d.v - b.v * d.u);
+  });
+  return s * w2_sign(c, p) * w2_sign(c, q) * w2_sign(c, r);
+}
+
+int Arrangement::compare3(std::uint32_t p, std::uint32_t q, int axis) const {
+  if (p == q) return 0;
+  if (p < pos.size() && q < pos.size()) {
+    const double a = pos[p][axis], b = pos[q][axis];
+    return a < b ? -1 : (a > b ? 1 : 0);
+  }
+  const int s = decide([&]<class T>() {
+    const H3<T> a = point3<T>(p), b = point3<T>(q);
+    return a.c[axis] * b.c[3] - b.c[axis] * a.c[3];
+  });
+  return s * w3_sign(p) * w3_sign(q);
+}
+
+bool Arrangement::equal3(std::uint32_t p, std::uint32_t q) const {
+  for (int axis = 0; axis < 3; ++axis)
+    if (compare3(p, q, axis) != 0) return false;
+  return true;
+}
+
+bool Arrangement::collinear3(std::uint32_t a, std::uint32_t b, std::uint32_t c) const {
+  for (int k = 0; k < 3; ++k) {
+    const int i = (k + 1) % 3, j = (k + 2) % 3;
+    const int s = decide([&]<class T>() {
+      const H3<T> p = point3<T>(a), q = point3<T>(b), r = point3<T>(c);
+      return p.c[i] * (q.c[j] * r.c[3] - q.c[3] * r.c[j]) -
+             p.c[j] * (q.c[i] * r.c[3] - q.c[3] * r.c[i]) +
+             p.c[3] * (q.c[i] * r.c[j] - q.c[j] * r.c[i]);
+    });
+    if (s != 0) return false;
+  }
+  return true;
+}
+
+int Arrangement::plane_side(std::uint32_t t, std::uint32_t p) const {
+  const Tri& tri = tris[t];
+  if (p < pos.size()) return orient3d(pos[tri.v[0]], pos[tri.v[1]], pos[tri.v[2]], pos[p]);
+  const int s = decide([&]<class T>() {
+    const PlaneT pl{pos[tri.v[0]], pos[tri.v[1]], pos[tri.v[2]]};
+    const V3<T> n = normal_of<T>(pl), a = vec<T>(pl.a);
+    const H3<T> h = point3<T>(p);
+    return n[0] * (h.c[0] - a[0] * h.c[3]) + n[1] * (h.c[1] - a[1] * h.c[3]) +
+           n[2] * (h.c[2] - a[2] * h.c[3]);
+  });
+  return s * w3_sign(p);
+}
+
+namespace {
+
+// x = X / W with a bound on its error; infinite when W's sign is uncertain.
+double quotient(Fp x, Fp w, double& err) {
+  if (!(std::abs(w.v) > w.e)) {
+    err = 1e300;
+    return 0;
+  }
+  const double q = x.v / w.v;
+  err = ((x.e + std::abs(q) * w.e) / (std::abs(w.v) - w.e) + std::abs(q) * 4 * kUnit) * 1.01;
+  return q;
+}
+
+}  // namespace
+
+Vec3 Arrangement::approx3(std::uint32_t p, double* err) const {
+  if (p < pos.size()) {
+    if (err) *err = 0;
+    return pos[p];
+  }
+  const H3<Fp>& h = h3f[p - pos.size()];
+  double e[3];
+  const Vec3 r{quotient(h.c[0], h.c[3], e[0]), quotient(h.c[1], h.c[3], e[1]),
+               quotient(h.c[2], h.c[3], e[2])};
+  if (err) *err = std::max({e[0], e[1], e[2]});
+  return r;
+}
+
+void Arrangement::approx2(const Cluster& c, std::uint32_t p, double& u, double& v,
+                          double& err) const {
+  const H2<Fp> h = point2<Fp>(c, p);
+  double eu, ev;
+  u = quotient(h.u, h.w, eu);
+  v = quotient(h.v, h.w, ev);
+  err = std::max(eu, ev);
+}
+
+// ---------------------------------------------------------------- keys
+
+std::uint32_t Arrangement::fresh_key() {
+  key_parent.push_back(static_cast<std::uint32_t>(key_parent.size()));
+  return key_parent.back();
+}
+
+std::uint32_t Arrangement::edge_key(std::uint32_t p, std::uint32_t q) {
+  auto [it, fresh] = key_ids.try_emplace(kEdgeTag | ordered(p, q), 0);
+  if (fresh) it->second = fresh_key();
+  return it->second;
+}
+
+std::uint32_t Arrangement::find_edge_key(std::uint32_t p, std::uint32_t q) const {
+  auto it = key_ids.find(kEdgeTag | ordered(p, q));
+  return it == key_ids.end() ? kInvalidIndex : it->second;
+}
+
+std::uint32_t Arrangement::pair_key(std::uint32_t c1, std::uint32_t c2) {
+  auto [it, fresh] = key_ids.try_emplace(ordered(c1, c2), 0);
+  if (fresh) it->second = fresh_key();
+  return it->second;
+}
+
+std::uint32_t Arrangement::line_root(std::uint32_t k) {
+  while (key_parent[k] != k) k = key_parent[k] = key_parent[key_parent[k]];
+  return k;
+}
+
+void Arrangement::line_union(std::uint32_t a, std::uint32_t b) {
+  a = line_root(a);
+  b = line_root(b);
+  if (a != b) key_parent[std::max(a, b)] = std::min(a, b);
+}
+
+// ---------------------------------------------------------------- construction
+
+Arrangement::Arrangement(std::vector<Vec3> positions, std::vector<Tri> triangles,
+                         std::vector<SoupFace> soup_faces, std::uint32_t n_operands)
+    : pos(std::move(positions)),
+      tris(std::move(triangles)),
+      faces(std::move(soup_faces)),
+      operands(n_operands) {
+  tri_boxes.resize(tris.size());
+  for (std::size_t t = 0; t < tris.size(); ++t)
+    for (std::uint32_t v : tris[t].v) tri_boxes[t].add(pos[v]);
+  bvh = Bvh(tri_boxes);
+}
+
+std::uint32_t Arrangement::new_point(PointDef def, const Cluster* home) {
+  const auto id = static_cast<std::uint32_t>(pos.size() + points.size());
+  points.push_back(def);
+  h3f.push_back(compute3<Fp>(*this, def));
+  if (home) {
+    h2f.push_back(cross2(coeffs<Fp>(*home, home->lines[def.b]), coeffs<Fp>(*home, home->lines[def.c])));
+  } else {
+    h2f.push_back({});
+  }
+  return id;
+}
+
+namespace {
+
+}  // namespace
+
+std::uint32_t Arrangement::lpi_point(std::uint32_t p, std::uint32_t q, std::uint32_t cluster) {
+  if (p > q) std::swap(p, q);
+  // Keyed by the segment, then by the plane's cluster: few planes meet one segment.
+  auto& list = lpi_ids_[ordered(p, q)];
+  for (auto [c, id] : list)
+    if (c == cluster) return id;
+  const std::uint32_t id = new_point({PointKind::kLpi, p, q, clusters[cluster].ref}, nullptr);
+  list.push_back({cluster, id});
+  return id;
+}
+
+std::uint32_t Arrangement::add_line(Cluster& c, Line l) {
+  const auto co = line_coeffs<Fp>(*this, c, l);
+  l.A = co[0];
+  l.B = co[1];
+  l.C = co[2];
+  c.lines.push_back(std::move(l));
+  return static_cast<std::uint32_t>(c.lines.size() - 1);
+}
+
+// ---------------------------------------------------------------- stage 1
+
+namespace {
+
+// Vertices of triangle b on the plane of a (o[k] == 0) that lie strictly inside an
+// edge of a: the point must become a vertex of that edge.
+template <class Record>
+void vertices_on_edges(const Arrangement& A, const Tri& a, const Tri& b, const int o[3],
+                       Record record) {
+  for (int k = 0; k < 3; ++k) {
+    if (o[k] != 0) continue;
+    const std::uint32_t v = b.v[k];
+    const Vec3 pv = A.pos[v];
+    for (int e = 0; e < 3; ++e) {
+      const std::uint32_t p = a.v[e], q = a.v[(e + 1) % 3];
+      if (v == p || v == q) continue;
+      const Vec3 pp = A.pos[p], pq = A.pos[q];
+      if (!collinear3d(pp, pq, pv)) continue;
+      if (compare_along(pp, pq, pp, pv) > 0 && compare_along(pp, pq, pv, pq) > 0) record(p, q, v);
+    }
+  }
+}
+
+// Coplanar triangles whose interiors overlap (no edge line of either separates them).
+bool coplanar_overlap(const Arrangement& A, const Tri& a, const Tri& b, int k) {
+  const Tri* t[2] = {&a, &b};
+  for (int s = 0; s < 2; ++s) {
+    const Tri& x = *t[s];
+    const Tri& y = *t[1 - s];
+    const int o = orient2d_projected(A.pos[x.v[0]], A.pos[x.v[1]], A.pos[x.v[2]], k);
+    for (int e = 0; e < 3; ++e) {
+      const Vec3 p = A.pos[x.v[e]], q = A.pos[x.v[(e + 1) % 3]];
+      bool separated = true;
+      for (std::uint32_t v : y.v)
+        if (orient2d_projected(p, q, A.pos[v], k) * o > 0) separated = false;
+      if (separated) return false;
+    }
+  }
+  return true;
+}
+
+}  // namespace
+
+void Arrangement::intersect() {
+  std::vector<std::array<std::uint32_t, 2>> crossing;
+  UnionFind coplanar(tris.size());
+  auto record = [&](std::uint32_t p, std::uint32_t q, std::uint32_t v) {
+    edge_points.push_back({edge_key(p, q), v});
+  };
+  bvh.pairs([&](std::uint32_t i, std::uint32_t j) {
+    ++pairs_tested;
+    const Tri& a = tris[i];
+    const Tri& b = tris[j];
+    const Vec3 a0 = pos[a.v[0]], a1 = pos[a.v[1]], a2 = pos[a.v[2]];
+    int ob[3], pos_b = 0, neg_b = 0;
+    for (int k = 0; k < 3; ++k) {
+      ob[k] = orient3d(a0, a1, a2, pos[b.v[k]]);
+      pos_b += ob[k] > 0;
+      neg_b += ob[k] < 0;
+    }
+    if (pos_b == 3 || neg_b == 3) return;
+    if (pos_b == 0 && neg_b == 0) {
+      int oa[3] = {0, 0, 0};
+      vertices_on_edges(*this, a, b, ob, record);
+      vertices_on_edges(*this, b, a, oa, record);
+      const int k = dominant_axis(cross(a1 - a0, a2 - a0));
+      if (coplanar_overlap(*this, a, b, k)) {
+        coplanar.join(i, j);
+        ++pairs_hit;
+      }
+      return;
+    }
+    const Vec3 b0 = pos[b.v[0]], b1 = pos[b.v[1]], b2 = pos[b.v[2]];
+    int oa[3], pos_a = 0, neg_a = 0;
+    for (int k = 0; k < 3; ++k) {
+      oa[k] = orient3d(b0, b1, b2, pos[a.v[k]]);
+      pos_a += oa[k] > 0;
+      neg_a += oa[k] < 0;
+    }
+    if (pos_a == 3 || neg_a == 3) return;
+    vertices_on_edges(*this, a, b, ob, record);
+    vertices_on_edges(*this, b, a, oa, record);
+    if (pos_b == 0 || neg_b == 0 || pos_a == 0 || neg_a == 0) return;  // touching only
+    crossing.push_back({i, j});
+    ++pairs_hit;
+  });
+
+  // Clusters: components of the coplanar-overlap relation, numbered by their
+  // smallest triangle.
+  cluster_of.assign(tris.size(), kInvalidIndex);
+  for (std::uint32_t t = 0; t < tris.size(); ++t) {
+    const std::uint32_t r = coplanar.find(t);
+    if (cluster_of[r] == kInvalidIndex) {
+      cluster_of[r] = static_cast<std::uint32_t>(clusters.size());
+      clusters.emplace_back();
+    }
+    cluster_of[t] = cluster_of[r];
+    clusters[cluster_of[t]].tris.push_back(t);
+  }
+  for (Cluster& c : clusters) {
+    c.ref = c.tris[0];
+    const Tri& r = tris[c.ref];
+    const Vec3 p0 = pos[r.v[0]], p1 = pos[r.v[1]], p2 = pos[r.v[2]];
+    c.k = dominant_axis(cross(p1 - p0, p2 - p0));
+    c.nk_sign = orient2d_projected(p0, p1, p2, c.k);
+    if (c.nk_sign == 0) {  // the rounded normal misled: take an axis that is exact
+      for (int k = 0; k < 3 && c.nk_sign == 0; ++k) {
+        c.k = k;
+        c.nk_sign = orient2d_projected(p0, p1, p2, k);
+      }
+    }
+    for (std::uint32_t t : c.tris) {
+      const Tri& x = tris[t];
+      c.tri_sign.push_back(orient2d_projected(pos[x.v[0]], pos[x.v[1]], pos[x.v[2]], c.k) *
+                           c.nk_sign);
+    }
+    c.touched = c.tris.size() > 1;
+  }
+
+  // Each crossing pair cuts both clusters along the other's trace.
+  for (auto [i, j] : crossing) {
+    add_pair(i, j);
+    add_pair(j, i);
+  }
+}
+
+// Triangle b crosses the plane of triangle t: the constraint on t's cluster.
+void Arrangement::add_pair(std::uint32_t t, std::uint32_t b) {
+  const std::uint32_t ct = cluster_of[t], cb = cluster_of[b];
+  const Tri& a = tris[t];
+  const Tri& o = tris[b];
+  int s[3];
+  for (int k = 0; k < 3; ++k)
+    s[k] = orient3d(pos[a.v[0]], pos[a.v[1]], pos[a.v[2]], pos[o.v[k]]);
+  std::uint32_t ends[3];
+  int n = 0;
+  for (int k = 0; k < 3; ++k) {
+    const int k1 = (k + 1) % 3;
+    if (s[k] == 0) ends[n++] = o.v[k];
+    if (s[k] * s[k1] < 0) ends[n++] = lpi_point(o.v[k], o.v[k1], ct);
+  }
+  assert(n == 2);
+  if (n < 2) return;
+  clusters[ct].constraints.push_back({cb, b, ends[0], ends[1]});
+  clusters[ct].touched = true;
+}
+
+// ---------------------------------------------------------------- stage 2
+
+void Arrangement::split() {
+  for (std::uint32_t ci = 0; ci < clusters.size(); ++ci)
+    if (clusters[ci].touched) split_cluster(ci);
+}
+
+void Arrangement::piece_box(const Cluster& c, Piece& p) const {
+  p.box2 = Box();
+  for (std::uint32_t q : p.pts) {
+    double u, v, e;
+    approx2(c, q, u, v, e);
+    p.box2.add(Vec3{u - e, v - e, 0});
+    p.box2.add(Vec3{u + e, v + e, 0});
+  }
+}
+
+void Arrangement::split_cluster(std::uint32_t ci) {
+  Cluster& c = clusters[ci];
+  const int k = c.k, i = (k + 1) % 3, j = (k + 2) % 3;
+  std::unordered_map<std::uint64_t, std::uint32_t> crossings;  // line pair -> point
+  std::unordered_map<std::uint32_t, std::uint32_t> through;    // edge key -> line
+  auto through_line = [&](std::uint32_t p, std::uint32_t q) {
+    const std::uint32_t key = edge_key(p, q);
+    auto [it, fresh] = through.try_emplace(key, 0);
+    if (fresh) {
+      Line l = Line::make(LineKind::kThrough, p, q);
+      l.key = key;
+      it->second = add_line(c, std::move(l));
+    }
+    return it->second;
+  };
+
+  struct Segment {
+    std::uint32_t line, p, q;
+  };
+  std::vector<Segment> segments;
+  if (c.tris.size() == 1) {
+    const Tri& t = tris[c.tris[0]];
+    std::array<std::uint32_t, 3> v = t.v;
+    if (orient2d_projected(pos[v[0]], pos[v[1]], pos[v[2]], k) < 0) std::swap(v[1], v[2]);
+    Piece p;
+    for (int e = 0; e < 3; ++e) {
+      const std::uint32_t l = through_line(v[e], v[(e + 1) % 3]);
+      c.lines[l].points.push_back(v[e]);
+      c.lines[l].points.push_back(v[(e + 1) % 3]);
+      p.pts.push_back(v[e]);
+      p.lines.push_back(l);
+    }
+    c.pieces.push_back(std::move(p));
+  } else {
+    double lo[2] = {1e308, 1e308}, hi[2] = {-1e308, -1e308};
+    for (std::uint32_t t : c.tris) {
+      for (std::uint32_t v : tris[t].v) {
+        lo[0] = std::min(lo[0], pos[v][i]);
+        hi[0] = std::max(hi[0], pos[v][i]);
+        lo[1] = std::min(lo[1], pos[v][j]);
+        hi[1] = std::max(hi[1], pos[v][j]);
+      }
+    }
+    // The box, counterclockwise: sides v = lo, u = hi, v = hi, u = lo.
+    const std::uint32_t sides[4] = {
+        add_line(c, Line::make(LineKind::kAxisV, 0, 0, lo[1])), add_line(c, Line::make(LineKind::kAxisU, 0, 0, hi[0])),
+        add_line(c, Line::make(LineKind::kAxisV, 0, 0, hi[1])), add_line(c, Line::make(LineKind::kAxisU, 0, 0, lo[0]))};
+    for (std::uint32_t l : sides) c.lines[l].key = fresh_key();
+    Piece p;
+    for (int e = 0; e < 4; ++e) {
+      const std::uint32_t a = sides[(e + 3) % 4], b = sides[e];
+      const std::uint32_t corner = new_point({PointKind::kCross, ci, a, b}, &c);
+      crossings[ordered(a, b)] = corner;
+      c.lines[a].points.push_back(corner);
+      c.lines[b].points.push_back(corner);
+      p.pts.push_back(corner);
+      p.lines.push_back(b);
+    }
+    c.pieces.push_back(std::move(p));
+    for (std::uint32_t t : c.tris)
+      for (int e = 0; e < 3; ++e) {
+        const std::uint32_t a = tris[t].v[e], b = tris[t].v[(e + 1) % 3];
+        segments.push_back({through_line(a, b), a, b});
+      }
+  }
+  std::unordered_map<std::uint32_t, std::uint32_t> traces;  // other cluster -> line
+  for (const Constraint& k2 : c.constraints) {
+    auto [it, fresh] = traces.try_emplace(k2.other_cluster, 0);
+    if (fresh) {
+      Line l = Line::make(LineKind::kTrace, k2.other_tri);
+      l.key = pair_key(ci, k2.other_cluster);
+      it->second = add_line(c, std::move(l));
+    }
+    if (k2.p != k2.q && !equal3(k2.p, k2.q)) segments.push_back({it->second, k2.p, k2.q});
+  }
+  piece_box(c, c.pieces[0]);
+
+  std::vector<Piece> made;
+  for (const Segment& s : segments) {
+    Box sb;
+    for (std::uint32_t q : {s.p, s.q}) {
+      double u, v, e;
+      approx2(c, q, u, v, e);
+      sb.add(Vec3{u - e, v - e, 0});
+      sb.add(Vec3{u + e, v + e, 0});
+    }
+    const std::size_t n = c.pieces.size();
+    for (std::size_t pi = 0; pi < n; ++pi) {
+      const Box& pb = c.pieces[pi].box2;
+      if (pb.lo.x > sb.hi.x || sb.lo.x > pb.hi.x || pb.lo.y > sb.hi.y || sb.lo.y > pb.hi.y)
+        continue;
+      made.clear();
+      if (!split_piece(c, ci, pi, s.line, s.p, s.q, made, crossings)) continue;
+      c.pieces[pi] = std::move(made[0]);
+      piece_box(c, c.pieces[pi]);
+      c.pieces.push_back(std::move(made[1]));
+      piece_box(c, c.pieces.back());
+    }
+  }
+}
+
+bool Arrangement::split_piece(Cluster& c, std::uint32_t ci, std::size_t pi, std::uint32_t li,
+                              std::uint32_t s0, std::uint32_t s1, std::vector<Piece>& out,
+                              std::unordered_map<std::uint64_t, std::uint32_t>& crossings) {
+  const Piece& P = c.pieces[pi];
+  const std::size_t n = P.pts.size();
+  std::vector<int> sides(n);
+  bool pos_side = false, neg_side = false;
+  for (std::size_t q = 0; q < n; ++q) {
+    sides[q] = side(c, c.lines[li], P.pts[q]);
+    pos_side |= sides[q] > 0;
+    neg_side |= sides[q] < 0;
+  }
+  if (!pos_side || !neg_side) {
+    for (std::size_t q = 0; q < n; ++q) {
+      if (sides[q] != 0) continue;
+      c.lines[li].points.push_back(P.pts[q]);
+      if (sides[(q + 1) % n] == 0) line_union(c.lines[li].key, c.lines[P.lines[q]].key);
+    }
+    return false;
+  }
+  // The sequence with the crossing points put in, each with its side.
+  struct Corner {
+    std::uint32_t pt, line;
+    int side;
+  };
+  std::vector<Corner> seq;
+  std::uint32_t chord[2];
+  int nc = 0;
+  for (std::size_t q = 0; q < n; ++q) {
+    seq.push_back({P.pts[q], P.lines[q], sides[q]});
+    if (sides[q] == 0) chord[nc++ & 1] = P.pts[q];
+    const int next = sides[(q + 1) % n];
+    if (sides[q] * next < 0) {
+      const std::uint32_t m = P.lines[q];
+      auto [it, fresh] = crossings.try_emplace(ordered(li, m), 0);
+      if (fresh) {
+        it->second = new_point({PointKind::kCross, ci, std::min(li, m), std::max(li, m)}, &c);
+        c.lines[li].points.push_back(it->second);
+        c.lines[m].points.push_back(it->second);
+      }
+      seq.push_back({it->second, m, 0});
+      chord[nc++ & 1] = it->second;
+    }
+  }
+  assert(nc == 2);
+  // Cut only where the segment overlaps the chord with positive length.
+  const Line& L = c.lines[li];
+  std::uint32_t a = chord[0], b = chord[1], lo = s0, hi = s1;
+  if (along(c, L, a, b) > 0) std::swap(a, b);
+  if (along(c, L, lo, hi) > 0) std::swap(lo, hi);
+  if (!(along(c, L, a, hi) < 0 && along(c, L, lo, b) < 0)) return false;
+
+  for (std::size_t q = 0; q < n; ++q)
+    if (sides[q] == 0) c.lines[li].points.push_back(P.pts[q]);
+  out.resize(2);
+  const std::size_t m = seq.size();
+  for (std::size_t q = 0; q < m; ++q) {
+    const Corner& k = seq[q];
+    const Corner& next = seq[(q + 1) % m];
+    if (k.side >= 0) {
+      out[0].pts.push_back(k.pt);
+      out[0].lines.push_back(next.side >= 0 ? k.line : li);
+    }
+    if (k.side <= 0) {
+      out[1].pts.push_back(k.pt);
+      out[1].lines.push_back(next.side <= 0 ? k.line : li);
+    }
+  }
+  return true;
+}
+
+}  // namespace cellforge::boolean

@@ -1,0 +1,200 @@
+// The arrangement of all operands' triangles (stages 1 and 2 of DESIGN.md's
+// Boolean) and the exact predicates on its points.
+//
+// Notation. Input vertices are explicit points (doubles). Triangles that are
+// coplanar and overlap with positive area form one *cluster*, cut as one planar
+// arrangement so that coincident pieces of different operands are one piece. A
+// cluster works in 2D: the coordinates (u, v) are the axes (k+1, k+2) mod 3, k the
+// dominant axis of its reference triangle's normal n, so a polygon counterclockwise
+// in (u, v) turns counterclockwise about n when n_k > 0. Lines of a cluster are
+// A u + B v + C = 0: through two input vertices (an edge), the trace of another
+// triangle's plane, or an axis-parallel side of the cluster's bounding box.
+//
+// Points are homogeneous, (X, Y, Z, W) in 3D and (U, V, W) in a cluster:
+//   vertex  an input vertex                                       (x, y, z, 1)
+//   lpi     segment pq meets the plane of a triangle:  with dp = n.(p - a),
+//           dq = n.(q - a):  P = p (dp - dq) + (q - p) dp,  W = dp - dq
+//   cross   two lines of a cluster meet: (U, V, W) = (A1,B1,C1) x (A2,B2,C2),
+//           lifted onto the cluster's plane n.P = n.a by P_k = (n.a W - n_u U - n_v V)/n_k
+// Every predicate is a sign of a polynomial in these, evaluated on Fp and, only when
+// that cannot decide, on Expansion (filtered.h). Nothing is ever rounded until the
+// result is built.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+
+#include "boolean/bvh.h"
+#include "boolean/filtered.h"
+#include "cellforge/geom/vec.h"
+#include "cellforge/ids.h"
+
+namespace cellforge::boolean {
+
+template <class T>
+struct H3 {
+  T c[4];  // X, Y, Z, W
+};
+template <class T>
+struct H2 {
+  T u, v, w;
+};
+
+struct Tri {
+  std::array<std::uint32_t, 3> v;  // input vertices, counterclockwise seen from outside
+  std::uint32_t operand = 0;
+  std::uint32_t face = 0;  // the operand model's face it triangulates
+  std::uint32_t input_face = 0;  // index into Soup::faces
+};
+
+// An operand face as it was: its loops of input vertices, and whether the Boolean
+// sees it reversed (a face with its cell in front).
+struct SoupFace {
+  std::uint32_t operand = 0, face = 0;
+  std::vector<std::vector<std::uint32_t>> loops;
+  std::vector<std::uint32_t> tris;
+  bool flipped = false;  // the model's face points into its cell: reversed here
+};
+
+enum class LineKind : std::uint8_t { kThrough, kTrace, kAxisU, kAxisV };
+struct Line {
+  LineKind kind = LineKind::kThrough;
+  std::uint32_t a = 0, b = 0;  // kThrough: vertices a, b; kTrace: triangle a
+  double c = 0;                // kAxisU: u = c; kAxisV: v = c
+  Fp A, B, C;                  // the coefficients, filtered
+  std::uint32_t key = 0;       // global line key (Arrangement::line_key)
+  std::vector<std::uint32_t> points;  // points found on it
+
+  static Line make(LineKind kind, std::uint32_t a, std::uint32_t b = 0, double c = 0) {
+    Line l;
+    l.kind = kind;
+    l.a = a;
+    l.b = b;
+    l.c = c;
+    return l;
+  }
+};
+
+enum class PointKind : std::uint8_t { kVertex, kLpi, kCross };
+struct PointDef {
+  PointKind kind = PointKind::kVertex;
+  std::uint32_t a = 0, b = 0, c = 0;  // vertex a | lpi p=a q=b plane of triangle c |
+                                      // cross: cluster a, lines b, c
+};
+
+struct Piece {
+  std::vector<std::uint32_t> pts;    // counterclockwise in the cluster's (u, v)
+  std::vector<std::uint32_t> lines;  // lines[i] carries the edge pts[i] -> pts[i+1]
+  Box box2;                          // (u, v) bounds, z unused
+};
+
+struct Constraint {
+  std::uint32_t other_cluster;  // the trace of that cluster's plane
+  std::uint32_t other_tri;
+  std::uint32_t p, q;  // where the other triangle meets this plane
+};
+
+struct Cluster {
+  std::vector<std::uint32_t> tris;
+  std::vector<int> tri_sign;  // +1 when the triangle's normal agrees with the reference
+  std::uint32_t ref = 0;      // reference triangle (its plane)
+  int k = 2;                  // dominant axis of the reference normal
+  int nk_sign = 1;            // sign of the reference normal's component k
+  std::vector<Constraint> constraints;
+  std::vector<Line> lines;
+  std::vector<Piece> pieces;
+  bool touched = false;  // cut by anything, or several triangles
+};
+
+// A point strictly inside a piece: the centroid of three of its vertices that do
+// not lie on one line.
+struct RepPoint {
+  std::uint32_t cluster;
+  std::array<std::uint32_t, 3> p;
+};
+
+class Arrangement {
+ public:
+  Arrangement(std::vector<Vec3> positions, std::vector<Tri> tris, std::vector<SoupFace> faces,
+              std::uint32_t operands);
+
+  // Stage 1: candidate pairs, exact tests, clusters and their constraints.
+  void intersect();
+  // Stage 2: each cluster cut into convex pieces.
+  void split();
+
+  // ---- data
+  std::vector<Vec3> pos;
+  std::vector<Tri> tris;
+  std::vector<SoupFace> faces;
+  std::uint32_t operands = 0;
+  std::vector<Box> tri_boxes;
+  Bvh bvh;
+  std::vector<std::uint32_t> cluster_of;  // by triangle
+  std::vector<Cluster> clusters;
+  std::vector<PointDef> points;  // ids below pos.size() are the input vertices
+  std::vector<H3<Fp>> h3f;       // by point id - pos.size()
+  std::vector<H2<Fp>> h2f;       // home-cluster coordinates of cross points (else unused)
+  // Points found on input edges by the pair tests (vertex on an edge).
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> edge_points;  // (line key, point)
+
+  // Global line keys: an input edge {p, q}, a pair of clusters {c1, c2} (the line
+  // where their planes meet), or a fresh key for a bounding-box side. Keys of lines
+  // found to coincide are joined (line_union).
+  std::uint32_t edge_key(std::uint32_t p, std::uint32_t q);
+  std::uint32_t pair_key(std::uint32_t c1, std::uint32_t c2);
+  std::uint32_t fresh_key();
+  std::uint32_t line_root(std::uint32_t key);
+  void line_union(std::uint32_t a, std::uint32_t b);
+  std::uint32_t find_edge_key(std::uint32_t p, std::uint32_t q) const;  // kInvalid if none
+  std::unordered_map<std::uint64_t, std::uint32_t> key_ids;
+  std::vector<std::uint32_t> key_parent;
+
+  std::size_t pairs_tested = 0, pairs_hit = 0;
+  mutable std::size_t fallbacks = 0;
+
+  // ---- exact evaluation
+  template <class T>
+  H3<T> point3(std::uint32_t p) const;
+  template <class T>
+  H2<T> point2(const Cluster& c, std::uint32_t p) const;
+  template <class T>
+  std::array<T, 3> coeffs(const Cluster& c, const Line& l) const;
+  template <class T>
+  H3<T> rep3(const RepPoint& r) const;
+
+  // ---- predicates
+  int w3_sign(std::uint32_t p) const;                   // sign of W in 3D
+  int w2_sign(const Cluster& c, std::uint32_t p) const;  // sign of W in the cluster
+  int side(const Cluster& c, const Line& l, std::uint32_t p) const;
+  // Order of p and q along l (direction (B, -A)): -1 when p comes first.
+  int along(const Cluster& c, const Line& l, std::uint32_t p, std::uint32_t q) const;
+  int orient2(const Cluster& c, std::uint32_t p, std::uint32_t q, std::uint32_t r) const;
+  // sign(coordinate axis of p - coordinate axis of q)
+  int compare3(std::uint32_t p, std::uint32_t q, int axis) const;
+  bool equal3(std::uint32_t p, std::uint32_t q) const;
+  bool collinear3(std::uint32_t a, std::uint32_t b, std::uint32_t c) const;
+  // Side of point p of the plane of input triangle t: sign n_t . (p - t0).
+  int plane_side(std::uint32_t t, std::uint32_t p) const;
+
+  // Approximate position (for boxes and output): value and error per coordinate.
+  Vec3 approx3(std::uint32_t p, double* err = nullptr) const;
+  void approx2(const Cluster& c, std::uint32_t p, double& u, double& v, double& err) const;
+
+ private:
+  std::uint32_t new_point(PointDef def, const Cluster* home);
+  std::uint32_t lpi_point(std::uint32_t p, std::uint32_t q, std::uint32_t cluster);
+  std::uint32_t add_line(Cluster& c, Line l);
+  void add_pair(std::uint32_t t, std::uint32_t b);
+  void split_cluster(std::uint32_t ci);
+  bool split_piece(Cluster& c, std::uint32_t ci, std::size_t pi, std::uint32_t li,
+                   std::uint32_t s0, std::uint32_t s1, std::vector<Piece>& out,
+                   std::unordered_map<std::uint64_t, std::uint32_t>& crossings);
+  void piece_box(const Cluster& c, Piece& p) const;
+
+  // segment {p, q} -> (cluster, point) for each plane it was cut by
+  std::unordered_map<std::uint64_t, std::vector<std::pair<std::uint32_t, std::uint32_t>>> lpi_ids_;
+};
+
+}  // namespace cellforge::boolean

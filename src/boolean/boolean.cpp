@@ -1,0 +1,265 @@
+// The Boolean's driver (boolean.h): the operands' outward faces as triangles over
+// one table of exact vertices, then the stages of arrangement.cpp, classify.cpp and
+// output.cpp, and the exact check of the rounded result.
+#include "cellforge/boolean/boolean.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <unordered_map>
+
+#include "boolean/stages.h"
+#include "cellforge/geom/predicates.h"
+#include "cellforge/io/triangulate.h"
+
+namespace cellforge::boolean {
+
+// ---------------------------------------------------------------- expressions
+
+Expr Expr::op(Op o, std::vector<Expr> children) {
+  const Kind k = o == Op::kUnion ? Kind::kUnion
+                                 : (o == Op::kIntersection ? Kind::kIntersection : Kind::kDifference);
+  return Expr{k, 0, std::move(children)};
+}
+
+Expr Expr::over(Op o, int n) {
+  std::vector<Expr> c;
+  for (int i = 0; i < n; ++i) c.push_back(of(i));
+  return op(o, std::move(c));
+}
+
+bool Expr::contains(const std::vector<bool>& inside) const {
+  switch (kind) {
+    case Kind::kOperand:
+      return operand >= 0 && static_cast<std::size_t>(operand) < inside.size() && inside[operand];
+    case Kind::kUnion:
+      for (const Expr& c : children)
+        if (c.contains(inside)) return true;
+      return false;
+    case Kind::kIntersection:
+      for (const Expr& c : children)
+        if (!c.contains(inside)) return false;
+      return !children.empty();
+    case Kind::kDifference:
+      if (children.empty() || !children[0].contains(inside)) return false;
+      for (std::size_t i = 1; i < children.size(); ++i)
+        if (children[i].contains(inside)) return false;
+      return true;
+  }
+  return false;
+}
+
+int Expr::max_operand() const {
+  int m = kind == Kind::kOperand ? operand : -1;
+  for (const Expr& c : children) m = std::max(m, c.max_operand());
+  return m;
+}
+
+std::string to_string(Op op) {
+  switch (op) {
+    case Op::kUnion:
+      return "union";
+    case Op::kIntersection:
+      return "intersection";
+    case Op::kDifference:
+      return "difference";
+  }
+  return "?";
+}
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
+
+struct VecHash {
+  std::size_t operator()(const Vec3& v) const {
+    std::uint64_t h = 0;
+    for (double d : {v.x, v.y, v.z}) {
+      std::uint64_t bits;
+      std::memcpy(&bits, &d, sizeof bits);
+      h = (h ^ bits) * 0x9E3779B97F4A7C15ull;
+      h ^= h >> 31;
+    }
+    return static_cast<std::size_t>(h);
+  }
+};
+
+// The operands' faces that bound a cell on one side, as outward triangles.
+Result<Arrangement> make_soup(std::span<const Model* const> operands) {
+  std::vector<Vec3> pos;
+  std::unordered_map<Vec3, std::uint32_t, VecHash> ids;
+  std::vector<Tri> tris;
+  std::vector<SoupFace> faces;
+  for (std::uint32_t k = 0; k < operands.size(); ++k) {
+    const Model& m = *operands[k];
+    std::unordered_map<std::uint32_t, std::uint32_t> vmap;
+    auto vid = [&](VertexId v) {
+      auto [it, fresh] = vmap.try_emplace(v.value, 0);
+      if (fresh) {
+        Vec3 p = m.position(v);
+        p = {p.x + 0.0, p.y + 0.0, p.z + 0.0};  // -0.0 and 0.0 are one point
+        auto [jt, nu] = ids.try_emplace(p, static_cast<std::uint32_t>(pos.size()));
+        if (nu) pos.push_back(p);
+        it->second = jt->second;
+      }
+      return it->second;
+    };
+    const std::size_t before = tris.size();
+    for (FaceId f : m.faces()) {
+      const bool front = m.front_volume(f).is_valid(), back = m.back_volume(f).is_valid();
+      if (front == back) continue;  // a sheet, or a face between two of its cells
+      SoupFace sf;
+      sf.operand = k;
+      sf.face = f.value;
+      sf.flipped = front;
+      for (LoopId l = m.outer_loop(f); l.is_valid(); l = m.next_loop(l)) {
+        if (m.is_point_loop(l)) continue;
+        std::vector<std::uint32_t> loop;
+        for (VertexId v : m.loop_vertices(l)) loop.push_back(vid(v));
+        if (front) std::reverse(loop.begin(), loop.end());
+        sf.loops.push_back(std::move(loop));
+      }
+      const auto sfi = static_cast<std::uint32_t>(faces.size());
+      for (const auto& t : io::triangulate_face(m, f)) {
+        Tri tri{{vid(t[0]), vid(t[1]), vid(t[2])}, k, f.value, sfi};
+        if (front) std::swap(tri.v[1], tri.v[2]);
+        if (collinear3d(pos[tri.v[0]], pos[tri.v[1]], pos[tri.v[2]])) continue;
+        sf.tris.push_back(static_cast<std::uint32_t>(tris.size()));
+        tris.push_back(tri);
+      }
+      faces.push_back(std::move(sf));
+    }
+    if (tris.size() == before)
+      return Error{ErrorCode::kInvalidInput,
+                   "boolean: operand " + std::to_string(k) + " holds no solid (no face bounds a cell)"};
+  }
+  return Arrangement(std::move(pos), std::move(tris), std::move(faces),
+                     static_cast<std::uint32_t>(operands.size()));
+}
+
+// ---------------------------------------------------------------- the rounding check
+
+bool segment_meets_triangle(Vec3 p, Vec3 q, const Vec3 t[3]) {
+  const int sp = orient3d(t[0], t[1], t[2], p), sq = orient3d(t[0], t[1], t[2], q);
+  if (sp * sq > 0) return false;
+  if (sp == 0 && sq == 0) return false;  // in the plane: left to the coplanar test
+  const int o1 = orient3d(p, q, t[0], t[1]), o2 = orient3d(p, q, t[1], t[2]),
+            o3 = orient3d(p, q, t[2], t[0]);
+  return (o1 >= 0 && o2 >= 0 && o3 >= 0) || (o1 <= 0 && o2 <= 0 && o3 <= 0);
+}
+
+bool segments_meet2(Vec3 a, Vec3 b, Vec3 c, Vec3 d, int k) {
+  const int o1 = orient2d_projected(a, b, c, k), o2 = orient2d_projected(a, b, d, k);
+  const int o3 = orient2d_projected(c, d, a, k), o4 = orient2d_projected(c, d, b, k);
+  return o1 * o2 <= 0 && o3 * o4 <= 0 && !(o1 == 0 && o2 == 0 && o3 == 0 && o4 == 0);
+}
+
+bool inside2(Vec3 p, const Vec3 t[3], int k) {
+  const int o = orient2d_projected(t[0], t[1], t[2], k);
+  for (int e = 0; e < 3; ++e)
+    if (orient2d_projected(t[e], t[(e + 1) % 3], p, k) * o < 0) return false;
+  return true;
+}
+
+// Triangles without a common vertex that meet anywhere, exactly.
+bool triangles_meet(const Vec3 a[3], const Vec3 b[3]) {
+  int pa = 0, na = 0, pb = 0, nb = 0;
+  for (int k = 0; k < 3; ++k) {
+    const int s = orient3d(a[0], a[1], a[2], b[k]);
+    pb += s > 0;
+    nb += s < 0;
+    const int t = orient3d(b[0], b[1], b[2], a[k]);
+    pa += t > 0;
+    na += t < 0;
+  }
+  if (pb == 3 || nb == 3 || pa == 3 || na == 3) return false;
+  if (pb == 0 && nb == 0) {
+    const Vec3 n = cross(a[1] - a[0], a[2] - a[0]);
+    const int k = std::abs(n.x) >= std::abs(n.y) && std::abs(n.x) >= std::abs(n.z)
+                      ? 0
+                      : (std::abs(n.y) >= std::abs(n.z) ? 1 : 2);
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j)
+        if (segments_meet2(a[i], a[(i + 1) % 3], b[j], b[(j + 1) % 3], k)) return true;
+    return inside2(a[0], b, k) || inside2(b[0], a, k);
+  }
+  for (int i = 0; i < 3; ++i)
+    if (segment_meets_triangle(a[i], a[(i + 1) % 3], b) || segment_meets_triangle(b[i], b[(i + 1) % 3], a))
+      return true;
+  return false;
+}
+
+std::size_t rounding_crossings(const Model& m) {
+  std::vector<std::array<VertexId, 3>> tris;
+  for (FaceId f : m.faces())
+    for (const auto& t : io::triangulate_face(m, f)) tris.push_back(t);
+  std::vector<Box> boxes(tris.size());
+  for (std::size_t i = 0; i < tris.size(); ++i)
+    for (VertexId v : tris[i]) boxes[i].add(m.position(v));
+  std::size_t count = 0;
+  Bvh(boxes).pairs([&](std::uint32_t i, std::uint32_t j) {
+    for (VertexId u : tris[i])
+      for (VertexId v : tris[j])
+        if (u == v) return;  // neighbours: what they share is theirs
+    const Vec3 a[3] = {m.position(tris[i][0]), m.position(tris[i][1]), m.position(tris[i][2])};
+    const Vec3 b[3] = {m.position(tris[j][0]), m.position(tris[j][1]), m.position(tris[j][2])};
+    if (triangles_meet(a, b)) ++count;
+  });
+  return count;
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------- evaluate
+
+Result<BooleanResult> evaluate(std::span<const Model* const> operands, const Expr& expr,
+                               const Options& options) {
+  (void)options;
+  if (operands.empty()) return Error{ErrorCode::kInvalidInput, "boolean: no operands"};
+  if (expr.max_operand() >= static_cast<int>(operands.size()))
+    return Error{ErrorCode::kInvalidInput, "boolean: the expression names operand " +
+                                               std::to_string(expr.max_operand()) + " of " +
+                                               std::to_string(operands.size())};
+  Report report;
+  auto t = Clock::now();
+  auto soup = make_soup(operands);
+  if (!soup) return soup.error();
+  Arrangement& a = *soup;
+  report.input_triangles = a.tris.size();
+  report.seconds.soup = seconds_since(t);
+
+  t = Clock::now();
+  a.intersect();
+  report.candidate_pairs = a.pairs_tested;
+  report.intersecting_pairs = a.pairs_hit;
+  report.seconds.intersect = seconds_since(t);
+
+  t = Clock::now();
+  a.split();
+  report.seconds.split = seconds_since(t);
+
+  t = Clock::now();
+  std::vector<OutPoly> polys = classify_and_select(a, expr, report);
+  report.seconds.classify = seconds_since(t);
+  report.implicit_points = a.points.size();
+
+  t = Clock::now();
+  auto result = build_result(a, std::move(polys), report);
+  report.seconds.output = seconds_since(t);
+  if (!result) return result.error();
+
+  t = Clock::now();
+  report.rounding_self_intersections = rounding_crossings(result->model);
+  report.seconds.build = seconds_since(t);
+  result->report = report;
+  return result;
+}
+
+Result<BooleanResult> apply(Op op, std::span<const Model* const> operands, const Options& options) {
+  return evaluate(operands, Expr::over(op, static_cast<int>(operands.size())), options);
+}
+
+}  // namespace cellforge::boolean

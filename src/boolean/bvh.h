@@ -1,0 +1,140 @@
+// A bounding-volume hierarchy over axis-aligned boxes: median splits on the longest
+// axis, leaves of up to four boxes. Boxes of triangles with double vertices are
+// exact, so the pairs and the ray candidates it reports are a superset of the ones
+// that can meet; the exact tests come after.
+#pragma once
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <numeric>
+#include <vector>
+
+#include "cellforge/geom/vec.h"
+
+namespace cellforge::boolean {
+
+struct Box {
+  Vec3 lo{1e308, 1e308, 1e308}, hi{-1e308, -1e308, -1e308};
+  void add(Vec3 p) {
+    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+  }
+  void add(const Box& b) {
+    add(b.lo);
+    add(b.hi);
+  }
+  bool overlaps(const Box& b) const {
+    return lo.x <= b.hi.x && b.lo.x <= hi.x && lo.y <= b.hi.y && b.lo.y <= hi.y &&
+           lo.z <= b.hi.z && b.lo.z <= hi.z;
+  }
+};
+
+class Bvh {
+ public:
+  Bvh() = default;
+  explicit Bvh(std::vector<Box> boxes) : boxes_(std::move(boxes)) {
+    order_.resize(boxes_.size());
+    std::iota(order_.begin(), order_.end(), 0u);
+    if (!boxes_.empty()) build(0, static_cast<std::uint32_t>(order_.size()));
+  }
+
+  // Calls f(i, j) once for every pair i < j of overlapping boxes.
+  template <class F>
+  void pairs(F&& f) const {
+    if (!nodes_.empty()) self(0, f);
+  }
+  // Calls f(i) for every box that `accept` lets through (accept tests a Box).
+  template <class Accept, class F>
+  void query(Accept&& accept, F&& f) const {
+    if (nodes_.empty()) return;
+    std::uint32_t stack[128];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+      const Node& n = nodes_[stack[--top]];
+      if (!accept(n.box)) continue;
+      if (n.leaf) {
+        for (std::uint32_t k = n.begin; k < n.end; ++k)
+          if (accept(boxes_[order_[k]])) f(order_[k]);
+      } else {
+        stack[top++] = n.left;
+        stack[top++] = n.right;
+      }
+    }
+  }
+
+ private:
+  struct Node {
+    Box box;
+    std::uint32_t begin = 0, end = 0, left = 0, right = 0;
+    bool leaf = true;
+  };
+
+  std::uint32_t build(std::uint32_t begin, std::uint32_t end) {
+    const auto id = static_cast<std::uint32_t>(nodes_.size());
+    nodes_.push_back({});
+    Box box, centres;
+    for (std::uint32_t k = begin; k < end; ++k) {
+      const Box& b = boxes_[order_[k]];
+      box.add(b);
+      centres.add((b.lo + b.hi) * 0.5);
+    }
+    nodes_[id].box = box;
+    nodes_[id].begin = begin;
+    nodes_[id].end = end;
+    if (end - begin <= 4) return id;
+    const Vec3 ext = centres.hi - centres.lo;
+    const int axis = ext.x >= ext.y && ext.x >= ext.z ? 0 : (ext.y >= ext.z ? 1 : 2);
+    const std::uint32_t mid = begin + (end - begin) / 2;
+    std::nth_element(order_.begin() + begin, order_.begin() + mid, order_.begin() + end,
+                     [&](std::uint32_t a, std::uint32_t b) {
+                       return boxes_[a].lo[axis] + boxes_[a].hi[axis] <
+                              boxes_[b].lo[axis] + boxes_[b].hi[axis];
+                     });
+    const std::uint32_t left = build(begin, mid);
+    const std::uint32_t right = build(mid, end);
+    nodes_[id].leaf = false;
+    nodes_[id].left = left;
+    nodes_[id].right = right;
+    return id;
+  }
+
+  template <class F>
+  void self(std::uint32_t a, F& f) const {
+    const Node& n = nodes_[a];
+    if (n.leaf) {
+      for (std::uint32_t i = n.begin; i < n.end; ++i)
+        for (std::uint32_t j = i + 1; j < n.end; ++j) emit(order_[i], order_[j], f);
+      return;
+    }
+    self(n.left, f);
+    self(n.right, f);
+    cross(n.left, n.right, f);
+  }
+  template <class F>
+  void cross(std::uint32_t a, std::uint32_t b, F& f) const {
+    const Node& na = nodes_[a];
+    const Node& nb = nodes_[b];
+    if (!na.box.overlaps(nb.box)) return;
+    if (na.leaf && nb.leaf) {
+      for (std::uint32_t i = na.begin; i < na.end; ++i)
+        for (std::uint32_t j = nb.begin; j < nb.end; ++j) emit(order_[i], order_[j], f);
+    } else if (nb.leaf || (!na.leaf && na.end - na.begin >= nb.end - nb.begin)) {
+      cross(na.left, b, f);
+      cross(na.right, b, f);
+    } else {
+      cross(a, nb.left, f);
+      cross(a, nb.right, f);
+    }
+  }
+  template <class F>
+  void emit(std::uint32_t i, std::uint32_t j, F& f) const {
+    if (boxes_[i].overlaps(boxes_[j])) f(std::min(i, j), std::max(i, j));
+  }
+
+  std::vector<Box> boxes_;
+  std::vector<std::uint32_t> order_;
+  std::vector<Node> nodes_;
+};
+
+}  // namespace cellforge::boolean

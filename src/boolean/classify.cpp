@@ -1,0 +1,316 @@
+// Stages 3 and 4: classification by winding numbers and selection (stages.h).
+//
+// A piece is classified at a point strictly inside it (the centroid of three of its
+// corners), on both sides: front = x + d n and back = x - d n for an infinitesimal d,
+// n the normal of its cluster's reference triangle. The winding number of operand k
+// at a point is the sum, over k's outward triangles crossed by the ray from it along
+// +x, of the sign of the triangle's normal x-component (+1 where the ray leaves).
+// Every test is exact; a ray through an edge, a vertex or a coplanar triangle is
+// decided by symbolic perturbation: first by d (the side the point is shifted to),
+// then by a shift (0, e, e^2) of the ray in (y, z) with e infinitesimal, so that
+// each crossing of a closed surface is counted exactly once.
+//
+// Triangles that nothing cuts are classified a patch at a time: the triangles of one
+// operand joined across manifold edges, consistently oriented, that touch nothing.
+#include <algorithm>
+
+#include "boolean/stages.h"
+#include "cellforge/geom/predicates.h"
+
+namespace cellforge::boolean {
+
+namespace {
+
+template <class T>
+using V3 = std::array<T, 3>;
+
+template <class T>
+V3<T> normal_t(const Arrangement& a, const Tri& t) {
+  const Vec3 p = a.pos[t.v[0]], q = a.pos[t.v[1]], r = a.pos[t.v[2]];
+  const V3<T> u{T(q.x) - T(p.x), T(q.y) - T(p.y), T(q.z) - T(p.z)};
+  const V3<T> v{T(r.x) - T(p.x), T(r.y) - T(p.y), T(r.z) - T(p.z)};
+  return {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+}
+
+int sgn(double x) { return x > 0 ? 1 : (x < 0 ? -1 : 0); }
+
+struct Windings {
+  std::vector<int> front, back;
+};
+
+class RayCaster {
+ public:
+  explicit RayCaster(const Arrangement& a) : a_(a) {}
+
+  void cast(const RepPoint& r, Windings& w) const {
+    ++rays;
+    w.front.assign(a_.operands, 0);
+    w.back.assign(a_.operands, 0);
+    const H3<Fp> h = a_.rep3<Fp>(r);
+    double e[3], x[3];
+    for (int i = 0; i < 3; ++i) {
+      if (!(std::abs(h.c[3].v) > h.c[3].e)) {
+        x[i] = 0;
+        e[i] = 1e300;
+      } else {
+        x[i] = h.c[i].v / h.c[3].v;
+        e[i] = ((h.c[i].e + std::abs(x[i]) * h.c[3].e) / (std::abs(h.c[3].v) - h.c[3].e) +
+                std::abs(x[i]) * 4 * kUnit) * 1.01;
+      }
+    }
+    const int ws = decide([&]<class T>() { return a_.rep3<T>(r).c[3]; });
+    const Tri& ref = a_.tris[a_.clusters[r.cluster].ref];
+    auto accept = [&](const Box& b) {
+      return b.hi.x >= x[0] - e[0] && b.lo.y <= x[1] + e[1] && b.hi.y >= x[1] - e[1] &&
+             b.lo.z <= x[2] + e[2] && b.hi.z >= x[2] - e[2];
+    };
+    a_.bvh.query(accept, [&](std::uint32_t t) { contribute(r, ws, ref, t, w); });
+  }
+
+  mutable std::size_t rays = 0;
+
+ private:
+  void contribute(const RepPoint& r, int ws, const Tri& ref, std::uint32_t ti, Windings& w) const {
+    const Tri& t = a_.tris[ti];
+    const Vec3 p[3] = {a_.pos[t.v[0]], a_.pos[t.v[1]], a_.pos[t.v[2]]};
+    const int mx = orient2d_projected(p[0], p[1], p[2], 0);
+    if (mx == 0) return;  // parallel to the ray
+    bool in_front = true, in_back = true;
+    for (int k = 0; k < 3; ++k) {
+      const Vec3 s = p[k], q = p[(k + 1) % 3];
+      const int o = ws * decide([&]<class T>() {
+                      const H3<T> x = a_.rep3<T>(r);
+                      return (T(q.y) - T(s.y)) * (x.c[2] - T(s.z) * x.c[3]) -
+                             (T(q.z) - T(s.z)) * (x.c[1] - T(s.y) * x.c[3]);
+                    });
+      if (o != 0) {
+        if (o != mx) return;
+        continue;
+      }
+      const int d = decide([&]<class T>() {
+        const V3<T> n = normal_t<T>(a_, ref);
+        return (T(q.y) - T(s.y)) * n[2] - (T(q.z) - T(s.z)) * n[1];
+      });
+      const int eps = s.z != q.z ? sgn(s.z - q.z) : sgn(q.y - s.y);
+      in_front &= (d != 0 ? d : eps) == mx;
+      in_back &= (d != 0 ? -d : eps) == mx;
+    }
+    if (!in_front && !in_back) return;
+    const int s = ws * decide([&]<class T>() {
+                    const V3<T> n = normal_t<T>(a_, t);
+                    const H3<T> x = a_.rep3<T>(r);
+                    return n[0] * (x.c[0] - T(p[0].x) * x.c[3]) + n[1] * (x.c[1] - T(p[0].y) * x.c[3]) +
+                           n[2] * (x.c[2] - T(p[0].z) * x.c[3]);
+                  });
+    int sf = s, sb = s;
+    if (s == 0) {
+      const int d = decide([&]<class T>() {
+        const V3<T> n = normal_t<T>(a_, t), m = normal_t<T>(a_, ref);
+        return n[0] * m[0] + n[1] * m[1] + n[2] * m[2];
+      });
+      if (d != 0) {
+        sf = d;
+        sb = -d;
+      } else {
+        const int my = orient2d_projected(p[0], p[1], p[2], 1);
+        sf = sb = my != 0 ? my : orient2d_projected(p[0], p[1], p[2], 2);
+      }
+    }
+    if (in_front && sf == -mx) w.front[t.operand] += mx;
+    if (in_back && sb == -mx) w.back[t.operand] += mx;
+  }
+
+  const Arrangement& a_;
+};
+
+// +1: keep with the reference normal outward; -1: keep reversed; 0: drop.
+int select(const Expr& expr, const Windings& w, std::vector<bool>& in_front,
+           std::vector<bool>& in_back) {
+  for (std::size_t k = 0; k < w.front.size(); ++k) {
+    in_front[k] = w.front[k] > 0;
+    in_back[k] = w.back[k] > 0;
+  }
+  const bool f = expr.contains(in_front), b = expr.contains(in_back);
+  if (f == b) return 0;
+  return b ? 1 : -1;
+}
+
+// Reverses a loop and its edge keys (keys[i] belongs to the edge pts[i] -> pts[i+1]).
+void reverse_loop(std::vector<std::uint32_t>& pts, std::vector<std::uint32_t>& keys) {
+  const std::size_t n = pts.size();
+  std::vector<std::uint32_t> k2(n);
+  for (std::size_t j = 0; j < n; ++j) k2[j] = keys[(2 * n - 2 - j) % n];
+  std::reverse(pts.begin(), pts.end());
+  keys = std::move(k2);
+}
+
+// A point strictly inside a convex piece: three corners not on one line.
+RepPoint rep_of(const Arrangement& a, std::uint32_t ci, const Piece& p) {
+  const Cluster& c = a.clusters[ci];
+  for (std::size_t i = 1; i + 1 < p.pts.size(); ++i)
+    if (a.orient2(c, p.pts[0], p.pts[i], p.pts[i + 1]) != 0) return {ci, {p.pts[0], p.pts[i], p.pts[i + 1]}};
+  return {ci, {p.pts[0], p.pts[1], p.pts[2]}};
+}
+
+// Whether the point r (strictly inside a piece) is inside input triangle t of r's
+// cluster; the piece never straddles t's edges.
+bool covers(const Arrangement& a, std::uint32_t t, const RepPoint& r) {
+  const Cluster& c = a.clusters[r.cluster];
+  const int k = c.k, i = (k + 1) % 3, j = (k + 2) % 3;
+  const Tri& tri = a.tris[t];
+  const int o = orient2d_projected(a.pos[tri.v[0]], a.pos[tri.v[1]], a.pos[tri.v[2]], k);
+  const int ws = decide([&]<class T>() { return a.rep3<T>(r).c[3]; });
+  for (int e = 0; e < 3; ++e) {
+    const Vec3 s = a.pos[tri.v[e]], q = a.pos[tri.v[(e + 1) % 3]];
+    const int side = ws * decide([&]<class T>() {
+                       const H3<T> x = a.rep3<T>(r);
+                       return (T(q[i]) - T(s[i])) * (x.c[j] - T(s[j]) * x.c[3]) -
+                              (T(q[j]) - T(s[j])) * (x.c[i] - T(s[i]) * x.c[3]);
+                     });
+    if (side * o <= 0) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+std::vector<OutPoly> classify_and_select(const Arrangement& a, const Expr& expr, Report& report) {
+  RayCaster rays(a);
+  Windings w;
+  std::vector<bool> in_front(a.operands), in_back(a.operands);
+  std::vector<OutPoly> out;
+
+  // Pieces of the clusters something cuts.
+  for (std::uint32_t ci = 0; ci < a.clusters.size(); ++ci) {
+    const Cluster& c = a.clusters[ci];
+    if (!c.touched) continue;
+    report.touched_triangles += c.tris.size();
+    for (const Piece& p : c.pieces) {
+      const RepPoint r = rep_of(a, ci, p);
+      std::uint32_t source = kInvalidIndex;
+      int source_sign = 0;
+      if (c.tris.size() == 1) {
+        source = c.tris[0];
+        source_sign = c.tri_sign[0];
+      } else {
+        for (std::size_t k = 0; k < c.tris.size(); ++k) {
+          if (!covers(a, c.tris[k], r)) continue;
+          if (source == kInvalidIndex || (source_sign < 0 && c.tri_sign[k] > 0)) {
+            source = c.tris[k];
+            source_sign = c.tri_sign[k];
+          }
+        }
+        if (source == kInvalidIndex) continue;  // outside every triangle of the cluster
+      }
+      ++report.pieces;
+      rays.cast(r, w);
+      const int keep = select(expr, w, in_front, in_back);
+      if (keep == 0) continue;
+      OutPoly poly;
+      poly.cluster = ci;
+      poly.normal_sign = keep;
+      poly.tri = source;
+      std::vector<std::uint32_t> pts = p.pts, keys(p.lines.size());
+      for (std::size_t k = 0; k < p.lines.size(); ++k) keys[k] = c.lines[p.lines[k]].key;
+      if (c.nk_sign * keep < 0) reverse_loop(pts, keys);
+      poly.loops.push_back(std::move(pts));
+      poly.keys.push_back(std::move(keys));
+      out.push_back(std::move(poly));
+    }
+  }
+
+  // Untouched triangles, a patch at a time.
+  struct HalfEdge {
+    std::uint64_t key;
+    std::uint32_t tri;
+    bool forward;
+  };
+  std::vector<HalfEdge> halves;
+  halves.reserve(a.tris.size() * 3);
+  for (std::uint32_t t = 0; t < a.tris.size(); ++t) {
+    for (int e = 0; e < 3; ++e) {
+      const std::uint32_t p = a.tris[t].v[e], q = a.tris[t].v[(e + 1) % 3];
+      halves.push_back({(static_cast<std::uint64_t>(std::min(p, q)) << 32) | std::max(p, q), t, p < q});
+    }
+  }
+  std::sort(halves.begin(), halves.end(),
+            [](const HalfEdge& x, const HalfEdge& y) { return x.key < y.key || (x.key == y.key && x.tri < y.tri); });
+  std::vector<std::uint32_t> parent(a.tris.size());
+  for (std::uint32_t t = 0; t < parent.size(); ++t) parent[t] = t;
+  auto find = [&](std::uint32_t x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  };
+  auto untouched = [&](std::uint32_t t) { return !a.clusters[a.cluster_of[t]].touched; };
+  for (std::size_t i = 0; i < halves.size();) {
+    std::size_t j = i;
+    while (j < halves.size() && halves[j].key == halves[i].key) ++j;
+    if (j - i == 2) {
+      const HalfEdge &x = halves[i], &y = halves[i + 1];
+      if (untouched(x.tri) && untouched(y.tri) && x.forward != y.forward &&
+          a.tris[x.tri].operand == a.tris[y.tri].operand) {
+        const std::uint32_t rx = find(x.tri), ry = find(y.tri);
+        if (rx != ry) parent[std::max(rx, ry)] = std::min(rx, ry);
+      }
+    }
+    i = j;
+  }
+  std::vector<int> patch_keep(a.tris.size(), 2);
+  std::vector<int> tri_keep(a.tris.size(), 0);
+  for (std::uint32_t t = 0; t < a.tris.size(); ++t) {
+    if (!untouched(t)) continue;
+    const std::uint32_t root = find(t);
+    if (patch_keep[root] == 2) {
+      const Tri& rt = a.tris[root];
+      rays.cast({a.cluster_of[root], {rt.v[0], rt.v[1], rt.v[2]}}, w);
+      patch_keep[root] = select(expr, w, in_front, in_back);
+    }
+    tri_keep[t] = patch_keep[root];
+  }
+  auto edge_keys = [&](const std::vector<std::uint32_t>& loop) {
+    std::vector<std::uint32_t> keys(loop.size());
+    for (std::size_t k = 0; k < loop.size(); ++k)
+      keys[k] = a.find_edge_key(loop[k], loop[(k + 1) % loop.size()]);
+    return keys;
+  };
+  for (const SoupFace& f : a.faces) {
+    bool whole = !f.tris.empty();
+    for (std::uint32_t t : f.tris)
+      whole &= untouched(t) && tri_keep[t] != 0 && tri_keep[t] == tri_keep[f.tris[0]];
+    if (whole) {
+      const int keep = tri_keep[f.tris[0]];
+      OutPoly poly;
+      poly.tri = f.tris[0];
+      poly.normal_sign = keep;
+      const Tri& t0 = a.tris[f.tris[0]];
+      bool planar = true;
+      for (const auto& loop : f.loops)
+        for (std::uint32_t v : loop)
+          planar &= orient3d(a.pos[t0.v[0]], a.pos[t0.v[1]], a.pos[t0.v[2]], a.pos[v]) == 0;
+      if (planar) poly.cluster = a.cluster_of[f.tris[0]];
+      for (std::vector<std::uint32_t> loop : f.loops) {
+        if (keep < 0) std::reverse(loop.begin(), loop.end());
+        poly.keys.push_back(edge_keys(loop));
+        poly.loops.push_back(std::move(loop));
+      }
+      out.push_back(std::move(poly));
+      continue;
+    }
+    for (std::uint32_t t : f.tris) {
+      if (!untouched(t) || tri_keep[t] == 0) continue;
+      OutPoly poly;
+      poly.tri = t;
+      poly.cluster = a.cluster_of[t];
+      poly.normal_sign = tri_keep[t];
+      std::vector<std::uint32_t> loop(a.tris[t].v.begin(), a.tris[t].v.end());
+      if (tri_keep[t] < 0) std::reverse(loop.begin(), loop.end());
+      poly.keys.push_back(edge_keys(loop));
+      poly.loops.push_back(std::move(loop));
+      out.push_back(std::move(poly));
+    }
+  }
+  report.rays = rays.rays;
+  return out;
+}
+
+}  // namespace cellforge::boolean

@@ -1,0 +1,474 @@
+// Stages 5 and 6: merging and stitching (stages.h).
+//
+// 1. Points equal in exact arithmetic become one vertex: candidates are found in a
+//    hash grid over the points' filtered positions (cells wider than twice any
+//    error bound), then compared exactly.
+// 2. Every edge gets every vertex of the line it lies on strictly between its ends:
+//    a line's points are all those any cluster recorded on a line with its global
+//    key (arrangement.h), sorted along the line exactly.
+// 3. Faces on one plane with one orientation that share an edge no third face uses
+//    merge; their boundary is traced, and the loop through the lexicographically
+//    largest vertex is the outer one. A vertex with two neighbours on one line goes.
+// 4. Coordinates are rounded, face-connected shells found, and each shell of positive
+//    volume bounds a cell; a shell of negative volume is a cavity of the smallest
+//    cell whose box holds it.
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numeric>
+#include <unordered_map>
+
+#include "boolean/stages.h"
+#include "cellforge/geom/predicates.h"
+#include "cellforge/topo/builder.h"
+
+namespace cellforge::boolean {
+
+namespace {
+
+class UnionFind {
+ public:
+  explicit UnionFind(std::size_t n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), 0u); }
+  std::uint32_t find(std::uint32_t x) {
+    while (parent_[x] != x) x = parent_[x] = parent_[parent_[x]];
+    return x;
+  }
+  void join(std::uint32_t a, std::uint32_t b) {
+    a = find(a);
+    b = find(b);
+    if (a != b) parent_[std::max(a, b)] = std::min(a, b);
+  }
+
+ private:
+  std::vector<std::uint32_t> parent_;
+};
+
+std::uint64_t ordered(std::uint32_t a, std::uint32_t b) {
+  return (static_cast<std::uint64_t>(std::min(a, b)) << 32) | std::max(a, b);
+}
+
+// canon[p]: the smallest point id at p's exact position.
+std::vector<std::uint32_t> canonical_points(const Arrangement& a) {
+  const std::uint32_t total = static_cast<std::uint32_t>(a.pos.size() + a.points.size());
+  std::vector<std::uint32_t> canon(total);
+  std::iota(canon.begin(), canon.end(), 0u);
+  std::vector<char> involved(a.pos.size(), 0);
+  for (const Cluster& c : a.clusters)
+    if (c.touched)
+      for (std::uint32_t t : c.tris)
+        for (std::uint32_t v : a.tris[t].v) involved[v] = 1;
+  struct Item {
+    std::uint32_t id;
+    Vec3 x;
+    double e;
+  };
+  std::vector<Item> items;
+  double max_err = 0, scale = 0;
+  for (std::uint32_t p = 0; p < total; ++p) {
+    if (p < a.pos.size() && !involved[p]) continue;
+    double e = 0;
+    const Vec3 x = a.approx3(p, &e);
+    items.push_back({p, x, e});
+    scale = std::max({scale, std::abs(x.x), std::abs(x.y), std::abs(x.z)});
+  }
+  for (const Item& it : items)
+    if (it.e < scale * 1e-6) max_err = std::max(max_err, it.e);
+  const double h = std::max({4 * max_err, scale * 1e-14, 1e-300});
+  auto cell = [&](double v) { return static_cast<std::int64_t>(std::floor(v / h)); };
+  auto key = [](std::int64_t x, std::int64_t y, std::int64_t z) {
+    return (static_cast<std::uint64_t>(x) * 0x9E3779B97F4A7C15ull) ^
+           (static_cast<std::uint64_t>(y) * 0xC2B2AE3D27D4EB4Full) ^
+           (static_cast<std::uint64_t>(z) * 0x165667B19E3779F9ull);
+  };
+  std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> grid;  // -> item indices
+  std::vector<std::uint32_t> wide;  // items whose error exceeds the cell
+  auto near = [](const Item& p, const Item& q) {
+    return std::abs(p.x.x - q.x.x) <= p.e + q.e && std::abs(p.x.y - q.x.y) <= p.e + q.e &&
+           std::abs(p.x.z - q.x.z) <= p.e + q.e;
+  };
+  std::vector<std::uint32_t> reps;  // representative items, for the wide ones
+  for (std::uint32_t i = 0; i < items.size(); ++i) {
+    const Item& it = items[i];
+    std::uint32_t found = kInvalidIndex;
+    if (it.e * 2 > h) {
+      for (std::uint32_t r : reps)
+        if (near(it, items[r]) && a.equal3(it.id, items[r].id)) {
+          found = r;
+          break;
+        }
+    } else {
+      const std::int64_t cx = cell(it.x.x), cy = cell(it.x.y), cz = cell(it.x.z);
+      for (int dx = -1; dx <= 1 && found == kInvalidIndex; ++dx)
+        for (int dy = -1; dy <= 1 && found == kInvalidIndex; ++dy)
+          for (int dz = -1; dz <= 1 && found == kInvalidIndex; ++dz) {
+            auto g = grid.find(key(cx + dx, cy + dy, cz + dz));
+            if (g == grid.end()) continue;
+            for (std::uint32_t r : g->second)
+              if (near(it, items[r]) && a.equal3(it.id, items[r].id)) {
+                found = r;
+                break;
+              }
+          }
+      for (std::uint32_t r : wide)
+        if (found == kInvalidIndex && near(it, items[r]) && a.equal3(it.id, items[r].id)) found = r;
+    }
+    if (found != kInvalidIndex) {
+      canon[it.id] = canon[items[found].id];
+      continue;
+    }
+    reps.push_back(i);
+    if (it.e * 2 > h) {
+      wide.push_back(i);
+    } else {
+      grid[key(cell(it.x.x), cell(it.x.y), cell(it.x.z))].push_back(i);
+    }
+  }
+  return canon;
+}
+
+// The points of each line class, sorted along the line.
+struct LineClasses {
+  std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> points;  // root key ->
+  std::unordered_map<std::uint32_t, int> axis;
+};
+
+LineClasses line_classes(Arrangement& a, const std::vector<std::uint32_t>& canon) {
+  LineClasses lc;
+  for (const Cluster& c : a.clusters)
+    for (const Line& l : c.lines) {
+      auto& list = lc.points[a.line_root(l.key)];
+      for (std::uint32_t p : l.points) list.push_back(canon[p]);
+    }
+  for (auto [key, p] : a.edge_points) lc.points[a.line_root(key)].push_back(canon[p]);
+  for (auto& [key, list] : lc.points) {
+    std::sort(list.begin(), list.end());
+    list.erase(std::unique(list.begin(), list.end()), list.end());
+    if (list.size() < 3) continue;
+    Vec3 lo{1e308, 1e308, 1e308}, hi{-1e308, -1e308, -1e308};
+    std::vector<double> coord(list.size());
+    for (std::uint32_t p : list) {
+      const Vec3 x = a.approx3(p);
+      for (int i = 0; i < 3; ++i) {
+        (&lo.x)[i] = std::min((&lo.x)[i], x[i]);
+        (&hi.x)[i] = std::max((&hi.x)[i], x[i]);
+      }
+    }
+    const Vec3 ext = hi - lo;
+    const int ax = ext.x >= ext.y && ext.x >= ext.z ? 0 : (ext.y >= ext.z ? 1 : 2);
+    lc.axis[key] = ax;
+    // Sort by the rounded coordinate, then finish exactly with insertion (safe for
+    // any comparator, and linear when the rounded order was right).
+    std::sort(list.begin(), list.end(),
+              [&](std::uint32_t p, std::uint32_t q) { return a.approx3(p)[ax] < a.approx3(q)[ax]; });
+    for (std::size_t i = 1; i < list.size(); ++i)
+      for (std::size_t j = i; j > 0 && a.compare3(list[j], list[j - 1], ax) < 0; --j)
+        std::swap(list[j], list[j - 1]);
+  }
+  return lc;
+}
+
+// Every point of the edge's line strictly between its ends, in order from p to q.
+void insert_between(const Arrangement& a, const LineClasses& lc, std::uint32_t root,
+                    std::uint32_t p, std::uint32_t q, std::vector<std::uint32_t>& out) {
+  auto it = lc.points.find(root);
+  if (it == lc.points.end() || it->second.size() < 3) return;
+  const auto& list = it->second;
+  const int ax = lc.axis.at(root);
+  const int dir = a.compare3(p, q, ax);
+  if (dir == 0) return;
+  auto less = [&](std::uint32_t x, std::uint32_t y) { return a.compare3(x, y, ax) < 0; };
+  const std::uint32_t lo = dir < 0 ? p : q, hi = dir < 0 ? q : p;
+  auto b = std::upper_bound(list.begin(), list.end(), lo, less);
+  auto e = std::lower_bound(list.begin(), list.end(), hi, less);
+  if (b >= e) return;
+  if (dir < 0) {
+    out.insert(out.end(), b, e);
+  } else {
+    out.insert(out.end(), std::make_reverse_iterator(e), std::make_reverse_iterator(b));
+  }
+}
+
+bool lex_greater(const Arrangement& a, std::uint32_t p, std::uint32_t q) {
+  for (int ax = 0; ax < 3; ++ax) {
+    const int c = a.compare3(p, q, ax);
+    if (c != 0) return c > 0;
+  }
+  return false;
+}
+
+// Whether two faces' planes and orientations agree (they share an edge).
+bool same_plane(const Arrangement& a, const OutPoly& x, const OutPoly& y) {
+  if (x.cluster == kInvalidIndex || y.cluster == kInvalidIndex) return false;
+  if (x.cluster == y.cluster) return x.normal_sign == y.normal_sign;
+  const Cluster& cx = a.clusters[x.cluster];
+  const Tri& rx = a.tris[cx.ref];
+  const Tri& ry = a.tris[a.clusters[y.cluster].ref];
+  const Vec3 p0 = a.pos[rx.v[0]], p1 = a.pos[rx.v[1]], p2 = a.pos[rx.v[2]];
+  for (std::uint32_t v : ry.v)
+    if (orient3d(p0, p1, p2, a.pos[v]) != 0) return false;
+  const int rel =
+      orient2d_projected(a.pos[ry.v[0]], a.pos[ry.v[1]], a.pos[ry.v[2]], cx.k) * cx.nk_sign;
+  return x.normal_sign == y.normal_sign * rel;
+}
+
+// The loops bounding the union of faces (directed edges used once), the outer first.
+std::vector<std::vector<std::uint32_t>> boundary(const Arrangement& a,
+                                                 const std::vector<const OutPoly*>& region) {
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> edges;
+  for (const OutPoly* p : region)
+    for (const auto& loop : p->loops)
+      for (std::size_t i = 0; i < loop.size(); ++i) edges.push_back({loop[i], loop[(i + 1) % loop.size()]});
+  std::sort(edges.begin(), edges.end());
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> kept;
+  for (auto e : edges)
+    if (!std::binary_search(edges.begin(), edges.end(), std::make_pair(e.second, e.first))) kept.push_back(e);
+  std::multimap<std::uint32_t, std::uint32_t> next;
+  for (auto e : kept) next.insert(e);
+  std::vector<std::vector<std::uint32_t>> loops;
+  while (!next.empty()) {
+    auto it = next.begin();
+    const std::uint32_t start = it->first;
+    std::vector<std::uint32_t> loop{start};
+    std::uint32_t cur = it->second;
+    next.erase(it);
+    while (cur != start) {
+      loop.push_back(cur);
+      auto n = next.find(cur);
+      if (n == next.end()) break;  // not closed: keep what was traced
+      cur = n->second;
+      next.erase(n);
+    }
+    if (loop.size() >= 3) loops.push_back(std::move(loop));
+  }
+  std::size_t outer = 0;
+  std::uint32_t best = kInvalidIndex;
+  for (std::size_t l = 0; l < loops.size(); ++l)
+    for (std::uint32_t v : loops[l])
+      if (best == kInvalidIndex || lex_greater(a, v, best)) {
+        best = v;
+        outer = l;
+      }
+  if (outer != 0) std::swap(loops[0], loops[outer]);
+  return loops;
+}
+
+double loop_volume6(const std::vector<Vec3>& pos, const std::vector<std::uint32_t>& loop) {
+  double v = 0;
+  const Vec3 o = pos[loop[0]];
+  for (std::size_t i = 1; i + 1 < loop.size(); ++i) v += dot(o, cross(pos[loop[i]], pos[loop[i + 1]]));
+  return v;
+}
+
+}  // namespace
+
+Result<BooleanResult> build_result(Arrangement& a, std::vector<OutPoly> polys, Report& report) {
+  // 1. One id per exact position.
+  const std::vector<std::uint32_t> canon = canonical_points(a);
+  for (OutPoly& p : polys)
+    for (std::size_t l = 0; l < p.loops.size(); ++l) {
+      std::vector<std::uint32_t> pts, keys;
+      const auto& loop = p.loops[l];
+      for (std::size_t i = 0; i < loop.size(); ++i) {
+        const std::uint32_t c = canon[loop[i]];
+        if (!pts.empty() && pts.back() == c) {
+          keys.back() = p.keys[l][i];
+          continue;
+        }
+        pts.push_back(c);
+        keys.push_back(p.keys[l][i]);
+      }
+      while (pts.size() > 1 && pts.back() == pts.front()) {
+        pts.pop_back();
+        keys.pop_back();
+      }
+      p.loops[l] = std::move(pts);
+      p.keys[l] = std::move(keys);
+    }
+
+  // 2. No T-junctions.
+  const LineClasses lc = line_classes(a, canon);
+  for (OutPoly& p : polys)
+    for (std::size_t l = 0; l < p.loops.size(); ++l) {
+      const auto& loop = p.loops[l];
+      std::vector<std::uint32_t> out;
+      for (std::size_t i = 0; i < loop.size(); ++i) {
+        out.push_back(loop[i]);
+        if (p.keys[l][i] != kInvalidIndex)
+          insert_between(a, lc, a.line_root(p.keys[l][i]), loop[i], loop[(i + 1) % loop.size()], out);
+      }
+      p.loops[l] = std::move(out);
+    }
+
+  // 3. Merge coplanar neighbours.
+  struct Use {
+    std::uint64_t key;
+    std::uint32_t poly;
+    bool forward;
+  };
+  auto edge_uses = [](const std::vector<OutPoly>& ps) {
+    std::vector<Use> uses;
+    for (std::uint32_t f = 0; f < ps.size(); ++f)
+      for (const auto& loop : ps[f].loops)
+        for (std::size_t i = 0; i < loop.size(); ++i) {
+          const std::uint32_t p = loop[i], q = loop[(i + 1) % loop.size()];
+          uses.push_back({ordered(p, q), f, p < q});
+        }
+    std::sort(uses.begin(), uses.end(), [](const Use& x, const Use& y) {
+      return x.key < y.key || (x.key == y.key && x.poly < y.poly);
+    });
+    return uses;
+  };
+  {
+    const std::vector<Use> uses = edge_uses(polys);
+    UnionFind regions(polys.size());
+    for (std::size_t i = 0; i < uses.size();) {
+      std::size_t j = i;
+      while (j < uses.size() && uses[j].key == uses[i].key) ++j;
+      if (j - i == 2 && uses[i].poly != uses[i + 1].poly && uses[i].forward != uses[i + 1].forward &&
+          same_plane(a, polys[uses[i].poly], polys[uses[i + 1].poly]))
+        regions.join(uses[i].poly, uses[i + 1].poly);
+      i = j;
+    }
+    std::vector<std::vector<const OutPoly*>> members(polys.size());
+    for (std::uint32_t f = 0; f < polys.size(); ++f) members[regions.find(f)].push_back(&polys[f]);
+    std::vector<OutPoly> merged;
+    for (std::uint32_t f = 0; f < polys.size(); ++f) {
+      if (members[f].empty()) continue;
+      if (members[f].size() == 1) {
+        merged.push_back(*members[f][0]);
+        continue;
+      }
+      OutPoly m = *members[f][0];
+      m.loops = boundary(a, members[f]);
+      m.keys.clear();
+      if (!m.loops.empty()) merged.push_back(std::move(m));
+    }
+    polys = std::move(merged);
+  }
+
+  // Collinear edges at a vertex of two neighbours merge.
+  {
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> nb;
+    for (const OutPoly& p : polys)
+      for (const auto& loop : p.loops)
+        for (std::size_t i = 0; i < loop.size(); ++i) {
+          const std::uint32_t x = loop[i], y = loop[(i + 1) % loop.size()];
+          nb.push_back({x, y});
+          nb.push_back({y, x});
+        }
+    std::sort(nb.begin(), nb.end());
+    nb.erase(std::unique(nb.begin(), nb.end()), nb.end());
+    std::unordered_map<std::uint32_t, char> drop;
+    for (std::size_t i = 0; i < nb.size();) {
+      std::size_t j = i;
+      while (j < nb.size() && nb[j].first == nb[i].first) ++j;
+      if (j - i == 2 && a.collinear3(nb[i].second, nb[i].first, nb[i + 1].second)) drop[nb[i].first] = 1;
+      i = j;
+    }
+    std::vector<OutPoly> kept;
+    for (OutPoly& p : polys) {
+      std::vector<std::vector<std::uint32_t>> loops;
+      for (const auto& loop : p.loops) {
+        std::vector<std::uint32_t> l;
+        for (std::uint32_t v : loop)
+          if (!drop.count(v)) l.push_back(v);
+        if (l.size() >= 3) {
+          loops.push_back(std::move(l));
+        } else if (loops.empty()) {
+          break;  // the outer loop vanished: the face was degenerate
+        }
+      }
+      if (loops.empty()) continue;
+      p.loops = std::move(loops);
+      kept.push_back(std::move(p));
+    }
+    polys = std::move(kept);
+  }
+
+  // 4. Round, find shells and cells, build.
+  BooleanResult result;
+  MeshInput in;
+  in.group_name = "boolean";
+  std::unordered_map<std::uint32_t, std::uint32_t> index;
+  for (const OutPoly& p : polys)
+    for (const auto& loop : p.loops)
+      for (std::uint32_t v : loop)
+        if (index.try_emplace(v, static_cast<std::uint32_t>(in.positions.size())).second)
+          in.positions.push_back(a.approx3(v));
+  const std::vector<Use> uses = edge_uses(polys);
+  UnionFind shells(polys.size());
+  for (std::size_t i = 0; i < uses.size();) {
+    std::size_t j = i;
+    while (j < uses.size() && uses[j].key == uses[i].key) ++j;
+    if (j - i == 2) shells.join(uses[i].poly, uses[i + 1].poly);
+    i = j;
+  }
+  std::vector<double> volume(polys.size(), 0);
+  std::vector<Box> box(polys.size());
+  std::vector<std::vector<std::uint32_t>> faces_idx;
+  for (std::uint32_t f = 0; f < polys.size(); ++f) {
+    const std::uint32_t s = shells.find(f);
+    for (const auto& loop : polys[f].loops) {
+      std::vector<std::uint32_t> idx;
+      for (std::uint32_t v : loop) {
+        idx.push_back(index[v]);
+        box[s].add(in.positions[idx.back()]);
+      }
+      volume[s] += loop_volume6(in.positions, idx);
+    }
+  }
+  std::vector<int> cell(polys.size(), -1);
+  for (std::uint32_t s = 0; s < polys.size(); ++s)
+    if (shells.find(s) == s && volume[s] > 0) cell[s] = in.volumes++;
+  for (std::uint32_t s = 0; s < polys.size(); ++s) {
+    if (shells.find(s) != s || volume[s] >= 0) continue;
+    int best = -1;
+    for (std::uint32_t o = 0; o < polys.size(); ++o) {
+      if (cell[o] < 0 || shells.find(o) != o) continue;
+      const Box& bo = box[o];
+      const Box& bs = box[s];
+      const bool holds = bo.lo.x <= bs.lo.x && bo.lo.y <= bs.lo.y && bo.lo.z <= bs.lo.z &&
+                         bo.hi.x >= bs.hi.x && bo.hi.y >= bs.hi.y && bo.hi.z >= bs.hi.z;
+      if (holds && (best < 0 || volume[o] < volume[best])) best = static_cast<int>(o);
+    }
+    if (best >= 0) cell[s] = cell[best];
+  }
+  for (std::uint32_t f = 0; f < polys.size(); ++f) {
+    MeshFace mf;
+    for (const auto& loop : polys[f].loops) {
+      std::vector<std::uint32_t> idx;
+      for (std::uint32_t v : loop) idx.push_back(index[v]);
+      mf.loops.push_back(std::move(idx));
+    }
+    mf.back = cell[shells.find(f)];
+    in.faces.push_back(std::move(mf));
+  }
+  auto built = build_mesh(result.model, in);
+  if (!built) return Error{ErrorCode::kUnsupported, "boolean: the result could not be built: " + built.error().message};
+  result.sources.resize(result.model.num_faces() ? built->faces.size() : 0);
+  result.sources.assign(polys.size(), {});
+  std::vector<FaceSource> by_id;
+  for (std::uint32_t f = 0; f < polys.size(); ++f) {
+    const OutPoly& p = polys[f];
+    const Tri& t = a.tris[p.tri];
+    const Cluster& c = a.clusters[a.cluster_of[p.tri]];
+    const Tri& ref = a.tris[c.ref];
+    FaceSource s;
+    s.operand = static_cast<int>(t.operand);
+    s.face = t.face;
+    int tri_sign = 1;
+    for (std::size_t k = 0; k < c.tris.size(); ++k)
+      if (c.tris[k] == p.tri) tri_sign = c.tri_sign[k];
+    const int along_ref = p.cluster == kInvalidIndex ? p.normal_sign : p.normal_sign;
+    s.reversed = (along_ref * tri_sign < 0) != a.faces[t.input_face].flipped;
+    s.plane = {a.pos[ref.v[0]], a.pos[ref.v[1]], a.pos[ref.v[2]]};
+    const FaceId id = built->faces[f];
+    if (by_id.size() <= id.value) by_id.resize(id.value + 1);
+    by_id[id.value] = s;
+  }
+  result.sources = std::move(by_id);
+  (void)report;
+  return result;
+}
+
+}  // namespace cellforge::boolean

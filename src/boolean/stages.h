@@ -1,0 +1,32 @@
+// The Boolean's stages after the arrangement: classification and selection
+// (classify.cpp), and merging and stitching into a model (output.cpp).
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "boolean/arrangement.h"
+#include "cellforge/boolean/boolean.h"
+
+namespace cellforge::boolean {
+
+// A face of the result before merging: loops of arrangement points, counterclockwise
+// about the result's outward normal, with the global line key of each edge
+// (kInvalidIndex where none is known).
+struct OutPoly {
+  std::vector<std::vector<std::uint32_t>> loops;
+  std::vector<std::vector<std::uint32_t>> keys;
+  std::uint32_t cluster = kInvalidIndex;  // its plane; kInvalidIndex for a non-planar face
+  int normal_sign = 1;                    // +1: outward normal along the cluster's reference
+  std::uint32_t tri = 0;                  // the input triangle it lies on (provenance)
+};
+
+// Stages 3 and 4: winding numbers of every piece's two sides by exact ray casting,
+// the expression on them, and the kept pieces as faces.
+std::vector<OutPoly> classify_and_select(const Arrangement& a, const Expr& expr, Report& report);
+
+// Stages 5 and 6: one vertex per exact position, every vertex of a line on each edge
+// along it, coplanar neighbours and collinear edges merged, coordinates rounded, and
+// the faces built into one group with a cell per connected solid.
+Result<BooleanResult> build_result(Arrangement& a, std::vector<OutPoly> polys, Report& report);
+
+}  // namespace cellforge::boolean
