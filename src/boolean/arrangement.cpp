@@ -211,9 +211,9 @@ H3<T> Arrangement::rep3(const RepPoint& r) const {
 }
 
 template H3<Fp> Arrangement::rep3<Fp>(const RepPoint&) const;
-template H3<Expansion> Arrangement::rep3<Expansion>(const RepPoint&) const;
+template H3<Dyadic> Arrangement::rep3<Dyadic>(const RepPoint&) const;
 template H3<Fp> Arrangement::point3<Fp>(std::uint32_t) const;
-template H3<Expansion> Arrangement::point3<Expansion>(std::uint32_t) const;
+template H3<Dyadic> Arrangement::point3<Dyadic>(std::uint32_t) const;
 
 // ---------------------------------------------------------------- predicates
 

@@ -17,7 +17,7 @@
 //   cross   two lines of a cluster meet: (U, V, W) = (A1,B1,C1) x (A2,B2,C2),
 //           lifted onto the cluster's plane n.P = n.a by P_k = (n.a W - n_u U - n_v V)/n_k
 // Every predicate is a sign of a polynomial in these, evaluated on Fp and, only when
-// that cannot decide, on Expansion (filtered.h). Nothing is ever rounded until the
+// that cannot decide, on Dyadic (filtered.h). Nothing is ever rounded until the
 // result is built.
 #pragma once
 #include <array>

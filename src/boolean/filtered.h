@@ -9,12 +9,18 @@
 // integer inputs are decided in the filter even when the answer is zero.
 //
 // A predicate is written once as a template over the number type and evaluated
-// first on Fp, and again on Expansion (geom/expansion.h) only when the filter
-// cannot decide: decide(f, g) below.
+// first on Fp, and again on Dyadic only when the filter cannot decide: decide()
+// below. Dyadic is an exact dyadic rational m * 2^e with an arbitrary-precision
+// integer m (GMP): the predicates on implicit points reach degree 30 in the input
+// coordinates, beyond what expansions of doubles hold without underflow.
 #pragma once
-#include <cmath>
+#include <gmp.h>
 
-#include "cellforge/geom/expansion.h"
+#include <cmath>
+#include <cstddef>
+#include <utility>
+
+#include "cellforge/geom/expansion.h"  // two_sum
 
 namespace cellforge::boolean {
 
@@ -29,6 +35,12 @@ struct Fp {
 inline constexpr double kUnit = 0x1p-53;
 inline constexpr double kGrow = 1 + 0x1p-50;
 inline constexpr int kUncertain = 2;
+
+// Predicates the filter left to exact arithmetic, on this thread (for the report).
+inline std::size_t& exact_evaluations() {
+  static thread_local std::size_t n = 0;
+  return n;
+}
 
 inline Fp operator+(Fp a, Fp b) {
   const double v = a.v + b.v;
@@ -49,14 +61,88 @@ inline int sign_of(Fp a) {
   if (-a.v > a.e) return -1;
   return (a.v == 0 && a.e == 0) ? 0 : kUncertain;
 }
-inline int sign_of(const Expansion& a) { return a.sign(); }
+
+// m * 2^e exactly.
+class Dyadic {
+ public:
+  Dyadic() { mpz_init(m_); }
+  Dyadic(double d) {  // NOLINT(google-explicit-constructor): doubles are exact
+    int e = 0;
+    const double f = std::frexp(d, &e);  // d = f 2^e, |f| in [0.5, 1)
+    mpz_init_set_d(m_, std::ldexp(f, 53));
+    e_ = e - 53;
+  }
+  Dyadic(const Dyadic& o) : e_(o.e_) { mpz_init_set(m_, o.m_); }
+  Dyadic(Dyadic&& o) noexcept : e_(o.e_) {
+    mpz_init(m_);
+    mpz_swap(m_, o.m_);
+  }
+  Dyadic& operator=(Dyadic o) {
+    mpz_swap(m_, o.m_);
+    std::swap(e_, o.e_);
+    return *this;
+  }
+  ~Dyadic() { mpz_clear(m_); }
+
+  int sign() const { return mpz_sgn(m_); }
+
+  friend Dyadic operator*(const Dyadic& a, const Dyadic& b) {
+    Dyadic r;
+    mpz_mul(r.m_, a.m_, b.m_);
+    r.e_ = a.e_ + b.e_;
+    return r;
+  }
+  friend Dyadic operator+(const Dyadic& a, const Dyadic& b) { return add(a, b, false); }
+  friend Dyadic operator-(const Dyadic& a, const Dyadic& b) { return add(a, b, true); }
+  friend Dyadic operator-(const Dyadic& a) {
+    Dyadic r(a);
+    mpz_neg(r.m_, r.m_);
+    return r;
+  }
+
+ private:
+  static Dyadic add(const Dyadic& a, const Dyadic& b, bool negate_b) {
+    Dyadic r;
+    if (mpz_sgn(b.m_) == 0) {
+      mpz_set(r.m_, a.m_);
+      r.e_ = a.e_;
+    } else if (mpz_sgn(a.m_) == 0) {
+      mpz_set(r.m_, b.m_);
+      if (negate_b) mpz_neg(r.m_, r.m_);
+      r.e_ = b.e_;
+    } else if (a.e_ >= b.e_) {  // a shifted down to b's exponent
+      mpz_mul_2exp(r.m_, a.m_, static_cast<mp_bitcnt_t>(a.e_ - b.e_));
+      if (negate_b) {
+        mpz_sub(r.m_, r.m_, b.m_);
+      } else {
+        mpz_add(r.m_, r.m_, b.m_);
+      }
+      r.e_ = b.e_;
+    } else {  // b shifted down to a's exponent
+      mpz_mul_2exp(r.m_, b.m_, static_cast<mp_bitcnt_t>(b.e_ - a.e_));
+      if (negate_b) {
+        mpz_sub(r.m_, a.m_, r.m_);
+      } else {
+        mpz_add(r.m_, a.m_, r.m_);
+      }
+      r.e_ = a.e_;
+    }
+    return r;
+  }
+
+  mpz_t m_;
+  long e_ = 0;
+};
+
+inline int sign_of(const Dyadic& a) { return a.sign(); }
 
 // The sign of a polynomial given as a callable templated on the number type.
 template <class Poly>
 int decide(Poly poly) {
   const int s = sign_of(poly.template operator()<Fp>());
   if (s != kUncertain) return s;
-  return sign_of(poly.template operator()<Expansion>());
+  ++exact_evaluations();
+  return sign_of(poly.template operator()<Dyadic>());
 }
 
 }  // namespace cellforge::boolean

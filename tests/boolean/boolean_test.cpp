@@ -1,15 +1,22 @@
 // Boolean operations on solids: named degenerate cases with hand-checked counts and
-// closed-form volumes (boolean/boolean.h).
+// closed-form volumes (boolean/boolean.h). Every run also checks that the result
+// validates and that rounding made no crossing (boolean_test_util.h).
 #include "cellforge/boolean/boolean.h"
 
 #include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
 
 #include "boolean/boolean_test_util.h"
 
 namespace cellforge::testing {
 namespace {
 
+using boolean::Expr;
 using boolean::Op;
+
+double polygon_area(int n, double r) { return 0.5 * n * r * r * std::sin(2 * std::numbers::pi / n); }
 
 TEST(Boolean, UnionOfOverlappingBoxes) {
   const Model a = box_model({0, 0, 0}, {2, 2, 2});
@@ -18,6 +25,7 @@ TEST(Boolean, UnionOfOverlappingBoxes) {
   EXPECT_NEAR(r.volume, 8 + 8 - 1, 1e-12);
   EXPECT_EQ(r.faces, 12u);
   EXPECT_EQ(r.vertices, 20u);
+  EXPECT_EQ(r.volumes, 1u);
 }
 
 TEST(Boolean, IntersectionOfOverlappingBoxes) {
@@ -36,6 +44,25 @@ TEST(Boolean, DifferenceOfOverlappingBoxes) {
   const BoolCase r = run(Op::kDifference, {&a, &b});
   EXPECT_NEAR(r.volume, 7, 1e-12);
   EXPECT_EQ(r.faces, 9u);
+  EXPECT_EQ(r.vertices, 14u);
+}
+
+TEST(Boolean, SameOperandTwice) {
+  const Model a = box_model({0, 0, 0}, {1, 2, 3});
+  for (Op op : {Op::kUnion, Op::kIntersection}) {
+    const BoolCase r = run(op, {&a, &a});
+    EXPECT_NEAR(r.volume, 6, 1e-12) << to_string(op);
+    EXPECT_EQ(r.faces, 6u);
+    EXPECT_EQ(r.edges, 12u);
+    EXPECT_EQ(r.vertices, 8u);
+  }
+  const BoolCase d = run(Op::kDifference, {&a, &a});
+  EXPECT_EQ(d.faces, 0u);
+  const Model s = sphere_model(3, 16);
+  const double vs = build::mass_properties(s).volume;
+  EXPECT_NEAR(run(Op::kUnion, {&s, &s}).volume, vs, 1e-12);
+  EXPECT_NEAR(run(Op::kIntersection, {&s, &s}).volume, vs, 1e-12);
+  EXPECT_EQ(run(Op::kDifference, {&s, &s}).faces, 0u);
 }
 
 TEST(Boolean, BoxesSharingAFaceUniteIntoOneBox) {
@@ -46,6 +73,275 @@ TEST(Boolean, BoxesSharingAFaceUniteIntoOneBox) {
   EXPECT_EQ(r.faces, 6u);
   EXPECT_EQ(r.edges, 12u);
   EXPECT_EQ(r.vertices, 8u);
+  EXPECT_EQ(run(Op::kIntersection, {&a, &b}).faces, 0u);
+  const BoolCase d = run(Op::kDifference, {&a, &b});
+  EXPECT_NEAR(d.volume, 1, 1e-12);
+  EXPECT_EQ(d.faces, 6u);
+}
+
+TEST(Boolean, ShiftedCoplanarOverlap) {
+  // Equal heights: the tops and bottoms are coplanar and overlap in [1,2]^2.
+  const Model a = box_model({0, 0, 0}, {2, 2, 1});
+  const Model b = box_model({1, 1, 0}, {3, 3, 1});
+  const BoolCase u = run(Op::kUnion, {&a, &b});
+  EXPECT_NEAR(u.volume, 7, 1e-12);
+  EXPECT_EQ(u.faces, 8u);  // top, bottom (L-shaped octagons), six sides
+  EXPECT_EQ(u.vertices, 16u);
+  const BoolCase i = run(Op::kIntersection, {&a, &b});
+  EXPECT_NEAR(i.volume, 1, 1e-12);
+  EXPECT_EQ(i.faces, 6u);
+  const BoolCase d = run(Op::kDifference, {&a, &b});
+  EXPECT_NEAR(d.volume, 3, 1e-12);
+  EXPECT_EQ(d.faces, 8u);
+}
+
+TEST(Boolean, BoxesTouchingAtAnEdge) {
+  const Model a = box_model({0, 0, 0}, {1, 1, 1});
+  const Model b = box_model({1, 1, 0}, {2, 2, 1});
+  const BoolCase u = run(Op::kUnion, {&a, &b});
+  EXPECT_NEAR(u.volume, 2, 1e-12);
+  EXPECT_EQ(u.faces, 12u);
+  EXPECT_EQ(u.edges, 23u);  // the shared edge once, with four faces
+  EXPECT_EQ(u.vertices, 14u);
+  EXPECT_EQ(u.volumes, 2u);
+  const EdgeId e = edge_at(u.result.model, {1, 1, 0}, {1, 1, 1});
+  EXPECT_EQ(u.result.model.use_count(e), 4u);
+  EXPECT_EQ(u.result.model.num_groups(), 1u);
+  EXPECT_EQ(run(Op::kIntersection, {&a, &b}).faces, 0u);
+  EXPECT_NEAR(run(Op::kDifference, {&a, &b}).volume, 1, 1e-12);
+}
+
+TEST(Boolean, BoxesTouchingAtAVertex) {
+  const Model a = box_model({0, 0, 0}, {1, 1, 1});
+  const Model b = box_model({1, 1, 1}, {2, 2, 2});
+  const BoolCase u = run(Op::kUnion, {&a, &b});
+  EXPECT_NEAR(u.volume, 2, 1e-12);
+  EXPECT_EQ(u.faces, 12u);
+  EXPECT_EQ(u.vertices, 15u);
+  EXPECT_EQ(run(Op::kIntersection, {&a, &b}).faces, 0u);
+}
+
+TEST(Boolean, EdgesCrossingInCoplanarFaces) {
+  // A square and a diamond of one height: their tops are coplanar, edges cross.
+  const Model a = box_model({-1, -1, 0}, {1, 1, 1});
+  MeshInput in;
+  in.volumes = 1;
+  const double s = 1.25;
+  std::vector<Vec3> p = {{s, 0, 0}, {0, s, 0}, {-s, 0, 0}, {0, -s, 0},
+                         {s, 0, 1}, {0, s, 1}, {-s, 0, 1}, {0, -s, 1}};
+  in.positions = p;
+  in.faces = {{{{3, 2, 1, 0}}, -1, 0}, {{{4, 5, 6, 7}}, -1, 0}, {{{0, 1, 5, 4}}, -1, 0},
+              {{{1, 2, 6, 5}}, -1, 0}, {{{2, 3, 7, 6}}, -1, 0}, {{{3, 0, 4, 7}}, -1, 0}};
+  const Model b = build(in);
+  const double corner = 0.5 * (2 - s) * (2 - s);  // a corner of the square outside
+  const BoolCase i = run(Op::kIntersection, {&a, &b});
+  EXPECT_NEAR(i.volume, 4 - 4 * corner, 1e-12);
+  EXPECT_EQ(i.faces, 10u);  // octagon top and bottom, eight sides
+  const BoolCase u = run(Op::kUnion, {&a, &b});
+  EXPECT_NEAR(u.volume, 2 * s * s + 4 * corner, 1e-12);
+  EXPECT_EQ(u.faces, 18u);
+}
+
+TEST(Boolean, VertexOnAFace) {
+  // A pyramid whose apex touches the middle of the box's top face.
+  const Model a = box_model({0, 0, 0}, {2, 2, 1});
+  MeshInput in;
+  in.volumes = 1;
+  in.positions = {{0, 0, 2}, {2, 0, 2}, {2, 2, 2}, {0, 2, 2}, {1, 1, 1}};
+  in.faces = {{{{0, 1, 2, 3}}, -1, 0}, {{{1, 0, 4}}, -1, 0}, {{{2, 1, 4}}, -1, 0},
+              {{{3, 2, 4}}, -1, 0}, {{{0, 3, 4}}, -1, 0}};
+  const Model b = build(in);
+  const BoolCase u = run(Op::kUnion, {&a, &b});
+  EXPECT_NEAR(u.volume, 4 + 4.0 / 3, 1e-12);
+  EXPECT_EQ(run(Op::kIntersection, {&a, &b}).faces, 0u);
+  EXPECT_NEAR(run(Op::kDifference, {&a, &b}).volume, 4, 1e-12);
+}
+
+TEST(Boolean, NestedBoxMakesACavity) {
+  const Model a = box_model({0, 0, 0}, {3, 3, 3});
+  const Model b = box_model({1, 1, 1}, {2, 2, 2});
+  const BoolCase d = run(Op::kDifference, {&a, &b});
+  EXPECT_NEAR(d.volume, 26, 1e-12);
+  EXPECT_EQ(d.faces, 12u);
+  EXPECT_EQ(d.volumes, 1u);  // one cell with an outer and an inner shell
+  const BoolCase u = run(Op::kUnion, {&a, &b});
+  EXPECT_NEAR(u.volume, 27, 1e-12);
+  EXPECT_EQ(u.faces, 6u);
+  const BoolCase i = run(Op::kIntersection, {&a, &b});
+  EXPECT_NEAR(i.volume, 1, 1e-12);
+  EXPECT_EQ(i.faces, 6u);
+}
+
+TEST(Boolean, BoxMinusBoxSharingThreeFaces) {
+  const Model a = box_model({0, 0, 0}, {3, 3, 3});
+  const Model b = box_model({0, 0, 0}, {1, 1, 1});
+  const BoolCase d = run(Op::kDifference, {&a, &b});
+  EXPECT_NEAR(d.volume, 26, 1e-12);
+  EXPECT_EQ(d.faces, 9u);
+  EXPECT_EQ(d.vertices, 14u);
+  const BoolCase u = run(Op::kUnion, {&a, &b});
+  EXPECT_EQ(u.faces, 6u);
+  EXPECT_EQ(u.vertices, 8u);
+}
+
+TEST(Boolean, DisjointOperands) {
+  const Model a = box_model({0, 0, 0}, {1, 1, 1});
+  const Model b = box_model({2, 0, 0}, {3, 1, 1});
+  const BoolCase u = run(Op::kUnion, {&a, &b});
+  EXPECT_NEAR(u.volume, 2, 1e-12);
+  EXPECT_EQ(u.faces, 12u);
+  EXPECT_EQ(u.volumes, 2u);
+  EXPECT_EQ(run(Op::kIntersection, {&a, &b}).faces, 0u);
+  const BoolCase d = run(Op::kDifference, {&a, &b});
+  EXPECT_EQ(d.faces, 6u);
+  EXPECT_NEAR(d.volume, 1, 1e-12);
+}
+
+TEST(Boolean, CylinderHoleExactlyThroughABox) {
+  const int n = 24;
+  const Model a = box_model({-2, -2, 0}, {2, 2, 1});
+  const Model c = cylinder_model(1, 1, n);
+  const BoolCase d = run(Op::kDifference, {&a, &c});
+  EXPECT_NEAR(d.volume, 16 - polygon_area(n, 1), 1e-12);
+  EXPECT_EQ(d.faces, 6u + n);  // top and bottom with a hole, four sides, n walls
+  EXPECT_EQ(d.edges, 12u + 3 * n);
+  EXPECT_EQ(d.vertices, 8u + 2 * n);
+  const BoolCase i = run(Op::kIntersection, {&a, &c});
+  EXPECT_NEAR(i.volume, polygon_area(n, 1), 1e-12);
+  EXPECT_EQ(i.faces, 2u + n);
+}
+
+TEST(Boolean, SphereMinusOffsetSphere) {
+  const Model a = sphere_model(10, 24);
+  const Model b = sphere_model(10, 24, {5, 3, 2});
+  const double va = build::mass_properties(a).volume;
+  const BoolCase u = run(Op::kUnion, {&a, &b});
+  const BoolCase i = run(Op::kIntersection, {&a, &b});
+  const BoolCase d = run(Op::kDifference, {&a, &b});
+  EXPECT_NEAR(u.volume + i.volume, 2 * va, 1e-9 * va);
+  EXPECT_NEAR(d.volume, va - i.volume, 1e-9 * va);
+  EXPECT_GT(i.volume, 0.3 * va);
+}
+
+TEST(Boolean, SphereMinusItselfTurnedOntoItsVertices) {
+  // A quarter turn maps the sphere's vertices onto vertices (sin and cos are exact).
+  const Model a = sphere_model(5, 16);
+  const Model b = moved(a, build::Transform::rotate(90, {0, 0, 1}));
+  EXPECT_EQ(run(Op::kDifference, {&a, &b}).faces, 0u);
+  const BoolCase u = run(Op::kUnion, {&a, &b});
+  EXPECT_NEAR(u.volume, build::mass_properties(a).volume, 1e-12);
+}
+
+TEST(Boolean, OperandWithANonManifoldEdge) {
+  // Two cubes sharing an edge in one model, cut by a slab through both.
+  const Model a = build(two_cubes_sharing_edge());
+  const Model b = box_model({-1, -1, 0.25}, {3, 3, 0.75});
+  const BoolCase i = run(Op::kIntersection, {&a, &b});
+  EXPECT_NEAR(i.volume, 1, 1e-12);
+  EXPECT_EQ(i.volumes, 2u);
+  EXPECT_EQ(i.result.model.use_count(edge_at(i.result.model, {1, 1, 0.25}, {1, 1, 0.75})), 4u);
+  const BoolCase d = run(Op::kDifference, {&a, &b});
+  EXPECT_NEAR(d.volume, 1, 1e-12);
+  EXPECT_EQ(d.volumes, 4u);
+}
+
+TEST(Boolean, CellsSharingAFaceInOneOperand) {
+  const Model a = build(two_cubes_sharing_face());  // [0,1]^2 x [0,2] as two cells
+  const Model b = box_model({0.5, -1, -1}, {2, 2, 3});
+  const BoolCase d = run(Op::kDifference, {&a, &b});
+  EXPECT_NEAR(d.volume, 1, 1e-12);
+  EXPECT_EQ(d.faces, 6u);  // the inner face is inside the operand and goes
+}
+
+TEST(Boolean, SelfIntersectingOperandIsResolved) {
+  MeshInput in;
+  in.volumes = 2;
+  add_box(in, {0, 0, 0}, {2, 2, 2}, 0);
+  add_box(in, {1, 1, 1}, {3, 3, 3}, 1);
+  const Model a = build(in);
+  const BoolCase r = run_expr(Expr::of(0), {&a});
+  EXPECT_NEAR(r.volume, 15, 1e-12);
+  EXPECT_EQ(r.faces, 12u);
+  const Model c = box_model({1.5, -1, -1}, {4, 4, 4});
+  EXPECT_NEAR(run(Op::kDifference, {&a, &c}).volume, 15 - (0.5 * 4 + 1.5 * 8 - 0.5), 1e-12);
+}
+
+TEST(Boolean, OperandOrderDoesNotMatter) {
+  const Model a = box_model({0, 0, 0}, {2, 2, 2});
+  const Model b = box_model({1, 0, 0}, {3, 2, 2});
+  const Model c = sphere_model(1.2, 12, {1.5, 1, 2});
+  std::vector<const Model*> ops = {&a, &b, &c};
+  std::vector<int> perm = {0, 1, 2};
+  double vu = -1, vi = -1;
+  std::size_t fu = 0;
+  do {
+    std::vector<const Model*> p = {ops[perm[0]], ops[perm[1]], ops[perm[2]]};
+    const BoolCase u = run(Op::kUnion, p);
+    const BoolCase i = run(Op::kIntersection, p);
+    if (vu < 0) {
+      vu = u.volume;
+      vi = i.volume;
+      fu = u.faces;
+    }
+    EXPECT_NEAR(u.volume, vu, 1e-12);
+    EXPECT_NEAR(i.volume, vi, 1e-12);
+    EXPECT_EQ(u.faces, fu);
+  } while (std::next_permutation(perm.begin(), perm.end()));
+}
+
+TEST(Boolean, NestedExpression) {
+  // (A u B) - (C n D), evaluated in one pass.
+  const Model a = box_model({0, 0, 0}, {2, 1, 1});
+  const Model b = box_model({1, 0, 0}, {3, 1, 1});
+  const Model c = box_model({0.5, -1, -1}, {2.5, 2, 2});
+  const Model d = box_model({-1, -1, 0.5}, {4, 2, 2});
+  const Expr e = Expr::op(Op::kDifference, {Expr::op(Op::kUnion, {Expr::of(0), Expr::of(1)}),
+                                            Expr::op(Op::kIntersection, {Expr::of(2), Expr::of(3)})});
+  const BoolCase r = run_expr(e, {&a, &b, &c, &d});
+  EXPECT_NEAR(r.volume, 3 - 2 * 0.5, 1e-12);
+}
+
+TEST(Boolean, FacesKnowWhereTheyCameFrom) {
+  const Model a = box_model({0, 0, 0}, {2, 2, 2});
+  const Model b = box_model({1, 1, 1}, {3, 3, 3});
+  const BoolCase d = run(Op::kDifference, {&a, &b});
+  int from_b = 0;
+  for (FaceId f : d.result.model.faces()) {
+    const boolean::FaceSource& s = d.result.sources.at(f.value);
+    ASSERT_TRUE(s.operand == 0 || s.operand == 1);
+    if (s.operand == 1) {
+      ++from_b;
+      EXPECT_TRUE(s.reversed);  // B's faces bound the result from the other side
+    } else {
+      EXPECT_FALSE(s.reversed);
+    }
+    EXPECT_EQ(orient3d(s.plane[0], s.plane[1], s.plane[2], centroid_of(d.result.model, f)), 0);
+  }
+  EXPECT_EQ(from_b, 3);
+}
+
+TEST(Boolean, SameInputSameOutput) {
+  const Model a = sphere_model(10, 20);
+  const Model b = sphere_model(10, 20, {5, 3, 2});
+  const BoolCase x = run(Op::kDifference, {&a, &b});
+  const BoolCase y = run(Op::kDifference, {&a, &b});
+  ASSERT_EQ(x.vertices, y.vertices);
+  ASSERT_EQ(x.faces, y.faces);
+  for (VertexId v : x.result.model.vertices()) EXPECT_EQ(x.result.model.position(v), y.result.model.position(v));
+  for (FaceId f : x.result.model.faces())
+    EXPECT_EQ(x.result.model.loop_vertices(x.result.model.outer_loop(f)),
+              y.result.model.loop_vertices(y.result.model.outer_loop(f)));
+}
+
+TEST(Boolean, RefusesAnOperandWithoutASolid) {
+  const Model a = box_model({0, 0, 0}, {1, 1, 1});
+  const Model sheet = build(square_sheet_with_hole());
+  const Model* ops[2] = {&a, &sheet};
+  auto r = boolean::apply(Op::kUnion, ops);
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.error().message.find("operand 1"), std::string::npos);
+  auto bad = boolean::evaluate(std::span<const Model* const>(ops, 1), Expr::of(3));
+  ASSERT_FALSE(bad.ok());
 }
 
 }  // namespace

@@ -3,11 +3,16 @@
 #pragma once
 #include <gtest/gtest.h>
 
-#include <initializer_list>
+#include <algorithm>
+#include <unordered_map>
 #include <vector>
 
 #include "cellforge/boolean/boolean.h"
 #include "cellforge/build/mass.h"
+#include "cellforge/build/primitives.h"
+#include "cellforge/build/transform.h"
+#include "cellforge/geom/predicates.h"
+#include "cellforge/io/triangulate.h"
 #include "cellforge/topo/validate.h"
 #include "support/fixtures.h"
 
@@ -47,6 +52,77 @@ inline BoolCase run_expr(const boolean::Expr& e, std::vector<const Model*> ops) 
 inline BoolCase run(boolean::Op op, std::vector<const Model*> ops) {
   const boolean::Expr e = boolean::Expr::over(op, static_cast<int>(ops.size()));
   return run_expr(e, std::move(ops));
+}
+
+// The faces of every group of m, with positions mapped by t, in one new model.
+inline Model moved(const Model& m, const build::Transform& t) {
+  MeshInput in;
+  std::unordered_map<std::uint32_t, std::uint32_t> vi, ci;
+  auto vid = [&](VertexId v) {
+    auto [it, fresh] = vi.try_emplace(v.value, static_cast<std::uint32_t>(in.positions.size()));
+    if (fresh) in.positions.push_back(t.apply(m.position(v)));
+    return it->second;
+  };
+  auto cid = [&](VolumeId c) {
+    if (!c.is_valid()) return -1;
+    auto [it, fresh] = ci.try_emplace(c.value, static_cast<std::uint32_t>(in.volumes));
+    if (fresh) ++in.volumes;
+    return static_cast<int>(it->second);
+  };
+  const bool mirror = t.determinant() < 0;
+  for (FaceId f : m.faces()) {
+    MeshFace mf;
+    for (LoopId l = m.outer_loop(f); l.is_valid(); l = m.next_loop(l)) {
+      std::vector<std::uint32_t> loop;
+      for (VertexId v : m.loop_vertices(l)) loop.push_back(vid(v));
+      if (mirror) std::reverse(loop.begin(), loop.end());
+      mf.loops.push_back(std::move(loop));
+    }
+    mf.front = cid(m.front_volume(f));
+    mf.back = cid(m.back_volume(f));
+    in.faces.push_back(std::move(mf));
+  }
+  return build(in);
+}
+
+inline Model sphere_model(double r, int fn, Vec3 at = {}) {
+  Model m;
+  EXPECT_TRUE(build::make_sphere(m, {.r = r, .faceting = {.fn = static_cast<double>(fn)}}).ok());
+  return at == Vec3{} ? std::move(m) : moved(m, build::Transform::translate(at));
+}
+
+inline Model cylinder_model(double r, double h, int fn, Vec3 at = {}) {
+  Model m;
+  EXPECT_TRUE(build::make_cylinder(m, {.h = h, .r1 = r, .r2 = r, .faceting = {.fn = static_cast<double>(fn)}}).ok());
+  return at == Vec3{} ? std::move(m) : moved(m, build::Transform::translate(at));
+}
+
+// Winding number of the closed faces of m (their cells behind) at p, by a ray along
+// +x, exactly: written apart from the Boolean's own classification, to check it.
+// A ray through an edge or vertex is shifted by (0, e, e^2); p on a face gives -1.
+inline int winding_at(const Model& m, Vec3 p) {
+  int w = 0;
+  for (FaceId f : m.faces()) {
+    const int sense = m.back_volume(f).is_valid() ? 1 : (m.front_volume(f).is_valid() ? -1 : 0);
+    if (sense == 0 || (m.back_volume(f).is_valid() && m.front_volume(f).is_valid())) continue;
+    for (const auto& tri : io::triangulate_face(m, f)) {
+      const Vec3 t[3] = {m.position(tri[0]), m.position(tri[1]), m.position(tri[2])};
+      const int mx = orient2d_projected(t[0], t[1], t[2], 0);
+      if (mx == 0) continue;
+      bool inside = true;
+      for (int e = 0; e < 3 && inside; ++e) {
+        const Vec3 a = t[e], b = t[(e + 1) % 3];
+        int o = orient2d_projected(a, b, p, 0);
+        if (o == 0) o = a.z != b.z ? (a.z > b.z ? 1 : -1) : (b.y > a.y ? 1 : -1);
+        inside = o == mx;
+      }
+      if (!inside) continue;
+      const int s = orient3d(t[0], t[1], t[2], p);
+      if (s == 0) return -1;
+      if (s == -mx) w += sense * mx;
+    }
+  }
+  return w;
 }
 
 }  // namespace cellforge::testing
