@@ -179,7 +179,9 @@ H3<T> Arrangement::point3(std::uint32_t p) const {
   if constexpr (std::is_same_v<T, Fp>) {
     return h3f[p - pos.size()];
   } else {
-    return compute3<T>(*this, points[p - pos.size()]);
+    auto it = exact3.find(p);
+    if (it == exact3.end()) it = exact3.emplace(p, compute3<T>(*this, points[p - pos.size()])).first;
+    return it->second;
   }
 }
 
@@ -228,6 +230,13 @@ int Arrangement::w2_sign(const Cluster& c, std::uint32_t p) const {
 }
 
 int Arrangement::side(const Cluster& c, const Line& l, std::uint32_t p) const {
+  if (p >= pos.size()) {  // a crossing of this line lies on it
+    const PointDef& d = points[p - pos.size()];
+    const auto li = static_cast<std::uint32_t>(&l - c.lines.data());
+    if (d.kind == PointKind::kCross && &clusters[d.a] == &c && (d.b == li || d.c == li)) return 0;
+  } else if (l.kind == LineKind::kThrough && (p == l.a || p == l.b)) {
+    return 0;
+  }
   const int s = decide([&]<class T>() {
     const auto L = coeffs<T>(c, l);
     const H2<T> h = point2<T>(c, p);
@@ -326,6 +335,13 @@ Vec3 Arrangement::approx3(std::uint32_t p, double* err) const {
     return pos[p];
   }
   const H3<Fp>& h = h3f[p - pos.size()];
+  if (!(std::abs(h.c[3].v) > h.c[3].e * 0x1p20)) {  // W not known well in doubles
+    const H3<Dyadic> x = point3<Dyadic>(p);
+    const double w = x.c[3].to_double();
+    const Vec3 r{x.c[0].to_double() / w, x.c[1].to_double() / w, x.c[2].to_double() / w};
+    if (err) *err = std::max({std::abs(r.x), std::abs(r.y), std::abs(r.z)}) * 8 * kUnit + 1e-300;
+    return r;
+  }
   double e[3];
   const Vec3 r{quotient(h.c[0], h.c[3], e[0]), quotient(h.c[1], h.c[3], e[1]),
                quotient(h.c[2], h.c[3], e[2])};
@@ -336,6 +352,14 @@ Vec3 Arrangement::approx3(std::uint32_t p, double* err) const {
 void Arrangement::approx2(const Cluster& c, std::uint32_t p, double& u, double& v,
                           double& err) const {
   const H2<Fp> h = point2<Fp>(c, p);
+  if (!(std::abs(h.w.v) > h.w.e * 0x1p20)) {  // W not known well in doubles
+    const H2<Dyadic> x = point2<Dyadic>(c, p);
+    const double w = x.w.to_double();
+    u = x.u.to_double() / w;
+    v = x.v.to_double() / w;
+    err = std::max(std::abs(u), std::abs(v)) * 8 * kUnit + 1e-300;
+    return;
+  }
   double eu, ev;
   u = quotient(h.u, h.w, eu);
   v = quotient(h.v, h.w, ev);

@@ -152,7 +152,8 @@ class Arrangement {
   std::vector<std::uint32_t> key_parent;
 
   std::size_t pairs_tested = 0, pairs_hit = 0;
-  mutable std::size_t fallbacks = 0;
+  // Exact homogeneous coordinates of points that needed them, computed once.
+  mutable std::unordered_map<std::uint32_t, H3<Dyadic>> exact3;
 
   // ---- exact evaluation
   template <class T>

@@ -224,6 +224,7 @@ Result<BooleanResult> evaluate(std::span<const Model* const> operands, const Exp
                                                std::to_string(expr.max_operand()) + " of " +
                                                std::to_string(operands.size())};
   Report report;
+  const std::size_t exact_before = exact_evaluations();
   auto t = Clock::now();
   auto soup = make_soup(operands);
   if (!soup) return soup.error();
@@ -254,6 +255,7 @@ Result<BooleanResult> evaluate(std::span<const Model* const> operands, const Exp
   t = Clock::now();
   report.rounding_self_intersections = rounding_crossings(result->model);
   report.seconds.build = seconds_since(t);
+  report.exact_fallbacks = exact_evaluations() - exact_before;
   result->report = report;
   return result;
 }

@@ -2,17 +2,20 @@
 //
 // A piece is classified at a point strictly inside it (the centroid of three of its
 // corners), on both sides: front = x + d n and back = x - d n for an infinitesimal d,
-// n the normal of its cluster's reference triangle. The winding number of operand k
-// at a point is the sum, over k's outward triangles crossed by the ray from it along
-// +x, of the sign of the triangle's normal x-component (+1 where the ray leaves).
-// Every test is exact; a ray through an edge, a vertex or a coplanar triangle is
-// decided by symbolic perturbation: first by d (the side the point is shifted to),
-// then by a shift (0, e, e^2) of the ray in (y, z) with e infinitesimal, so that
-// each crossing of a closed surface is counted exactly once.
+// n the normal of its cluster's reference triangle. The winding number of an operand
+// at a point is the sum, over the operand's outward triangles crossed by the ray from
+// it along +axis k (the dominant axis of n), of the sign of the triangle normal's
+// component k (+1 where the ray leaves). Every test is exact; a ray through an edge,
+// a vertex or a coplanar triangle is decided by symbolic perturbation: first by d
+// (the side the point is shifted to), then by a shift (e, e^2) of the ray across it
+// (axes k+1, k+2) with e infinitesimal, so that each crossing of a closed surface is
+// counted exactly once.
 //
 // Triangles that nothing cuts are classified a patch at a time: the triangles of one
 // operand joined across manifold edges, consistently oriented, that touch nothing.
 #include <algorithm>
+#include <optional>
+#include <optional>
 
 #include "boolean/stages.h"
 #include "cellforge/geom/predicates.h"
@@ -46,23 +49,33 @@ class RayCaster {
     ++rays;
     w.front.assign(a_.operands, 0);
     w.back.assign(a_.operands, 0);
+    // Along the axis closest to the piece's normal: the ray leaves the piece's plane
+    // at once, so the edges lying in that plane are not met edge-on.
+    k_ = a_.clusters[r.cluster].k;
+    i_ = (k_ + 1) % 3;
+    j_ = (k_ + 2) % 3;
+    exact_x_.reset();
     const H3<Fp> h = a_.rep3<Fp>(r);
     double e[3], x[3];
+    // Doubles are good enough when W is known to a relative 2^-20; else exactly.
+    const bool rounded_ok = std::abs(h.c[3].v) > h.c[3].e * 0x1p20;
+    if (!rounded_ok) exact_x_ = a_.rep3<Dyadic>(r);  // too close to call in doubles
     for (int i = 0; i < 3; ++i) {
-      if (!(std::abs(h.c[3].v) > h.c[3].e)) {
-        x[i] = 0;
-        e[i] = 1e300;
-      } else {
+      if (rounded_ok) {
         x[i] = h.c[i].v / h.c[3].v;
         e[i] = ((h.c[i].e + std::abs(x[i]) * h.c[3].e) / (std::abs(h.c[3].v) - h.c[3].e) +
                 std::abs(x[i]) * 4 * kUnit) * 1.01;
+      } else {
+        x[i] = exact_x_->c[i].to_double() / exact_x_->c[3].to_double();
+        e[i] = std::abs(x[i]) * 8 * kUnit + 1e-300;
       }
+      x_[i] = Fp(x[i], e[i]);
     }
     const int ws = decide([&]<class T>() { return a_.rep3<T>(r).c[3]; });
     const Tri& ref = a_.tris[a_.clusters[r.cluster].ref];
     auto accept = [&](const Box& b) {
-      return b.hi.x >= x[0] - e[0] && b.lo.y <= x[1] + e[1] && b.hi.y >= x[1] - e[1] &&
-             b.lo.z <= x[2] + e[2] && b.hi.z >= x[2] - e[2];
+      return b.hi[k_] >= x[k_] - e[k_] && b.lo[i_] <= x[i_] + e[i_] && b.hi[i_] >= x[i_] - e[i_] &&
+             b.lo[j_] <= x[j_] + e[j_] && b.hi[j_] >= x[j_] - e[j_];
     };
     a_.bvh.query(accept, [&](std::uint32_t t) { contribute(r, ws, ref, t, w); });
   }
@@ -70,38 +83,55 @@ class RayCaster {
   mutable std::size_t rays = 0;
 
  private:
+  // The sign of a polynomial that is affine in the point: first on the point's
+  // rounded coordinates with their error bounds (tight, unlike the homogeneous form),
+  // then exactly on its homogeneous coordinates (with W's sign ws).
+  template <class Affine>
+  int affine_sign(const RepPoint& r, int ws, Affine f) const {
+    const int s = sign_of(f(H3<Fp>{{x_[0], x_[1], x_[2], Fp(1.0)}}));
+    if (s != kUncertain) return s;
+    ++exact_evaluations();
+    if (!exact_x_) exact_x_ = a_.rep3<Dyadic>(r);
+    return ws * sign_of(f(*exact_x_));
+  }
+
   void contribute(const RepPoint& r, int ws, const Tri& ref, std::uint32_t ti, Windings& w) const {
     const Tri& t = a_.tris[ti];
     const Vec3 p[3] = {a_.pos[t.v[0]], a_.pos[t.v[1]], a_.pos[t.v[2]]};
-    const int mx = orient2d_projected(p[0], p[1], p[2], 0);
-    if (mx == 0) return;  // parallel to the ray
+    const int k = k_, i = i_, j = j_;
+    const int mk = orient2d_projected(p[0], p[1], p[2], k);
+    if (mk == 0) return;  // parallel to the ray
     bool in_front = true, in_back = true;
-    for (int k = 0; k < 3; ++k) {
-      const Vec3 s = p[k], q = p[(k + 1) % 3];
-      const int o = ws * decide([&]<class T>() {
-                      const H3<T> x = a_.rep3<T>(r);
-                      return (T(q.y) - T(s.y)) * (x.c[2] - T(s.z) * x.c[3]) -
-                             (T(q.z) - T(s.z)) * (x.c[1] - T(s.y) * x.c[3]);
-                    });
+    for (int q = 0; q < 3; ++q) {
+      const Vec3 s = p[q], u = p[(q + 1) % 3];
+      const int o = affine_sign(r, ws, [&]<class T>(const H3<T>& x) {
+        return (T(u[i]) - T(s[i])) * (x.c[j] - T(s[j]) * x.c[3]) -
+               (T(u[j]) - T(s[j])) * (x.c[i] - T(s[i]) * x.c[3]);
+      });
       if (o != 0) {
-        if (o != mx) return;
+        if (o != mk) return;
         continue;
       }
       const int d = decide([&]<class T>() {
         const V3<T> n = normal_t<T>(a_, ref);
-        return (T(q.y) - T(s.y)) * n[2] - (T(q.z) - T(s.z)) * n[1];
+        return (T(u[i]) - T(s[i])) * n[j] - (T(u[j]) - T(s[j])) * n[i];
       });
-      const int eps = s.z != q.z ? sgn(s.z - q.z) : sgn(q.y - s.y);
-      in_front &= (d != 0 ? d : eps) == mx;
-      in_back &= (d != 0 ? -d : eps) == mx;
+      const int eps = s[j] != u[j] ? sgn(s[j] - u[j]) : sgn(u[i] - s[i]);
+      in_front &= (d != 0 ? d : eps) == mk;
+      in_back &= (d != 0 ? -d : eps) == mk;
     }
     if (!in_front && !in_back) return;
-    const int s = ws * decide([&]<class T>() {
-                    const V3<T> n = normal_t<T>(a_, t);
-                    const H3<T> x = a_.rep3<T>(r);
-                    return n[0] * (x.c[0] - T(p[0].x) * x.c[3]) + n[1] * (x.c[1] - T(p[0].y) * x.c[3]) +
-                           n[2] * (x.c[2] - T(p[0].z) * x.c[3]);
-                  });
+    // A triangle on the piece's plane has the point on its plane: known without
+    // arithmetic (the exact test would be of degree 30).
+    const Vec3 r0 = a_.pos[ref.v[0]], r1 = a_.pos[ref.v[1]], r2 = a_.pos[ref.v[2]];
+    const bool coplanar = a_.cluster_of[ti] == r.cluster ||
+                          (orient3d(r0, r1, r2, p[0]) == 0 && orient3d(r0, r1, r2, p[1]) == 0 &&
+                           orient3d(r0, r1, r2, p[2]) == 0);
+    const int s = coplanar ? 0 : affine_sign(r, ws, [&]<class T>(const H3<T>& x) {
+      const V3<T> n = normal_t<T>(a_, t);
+      return n[0] * (x.c[0] - T(p[0].x) * x.c[3]) + n[1] * (x.c[1] - T(p[0].y) * x.c[3]) +
+             n[2] * (x.c[2] - T(p[0].z) * x.c[3]);
+    });
     int sf = s, sb = s;
     if (s == 0) {
       const int d = decide([&]<class T>() {
@@ -112,15 +142,18 @@ class RayCaster {
         sf = d;
         sb = -d;
       } else {
-        const int my = orient2d_projected(p[0], p[1], p[2], 1);
-        sf = sb = my != 0 ? my : orient2d_projected(p[0], p[1], p[2], 2);
+        const int mi = orient2d_projected(p[0], p[1], p[2], i);
+        sf = sb = mi != 0 ? mi : orient2d_projected(p[0], p[1], p[2], j);
       }
     }
-    if (in_front && sf == -mx) w.front[t.operand] += mx;
-    if (in_back && sb == -mx) w.back[t.operand] += mx;
+    if (in_front && sf == -mk) w.front[t.operand] += mk;
+    if (in_back && sb == -mk) w.back[t.operand] += mk;
   }
 
   const Arrangement& a_;
+  mutable int k_ = 0, i_ = 1, j_ = 2;  // the ray's axis and the two across it
+  mutable Fp x_[3];  // the point of the current ray, rounded, with error bounds
+  mutable std::optional<H3<Dyadic>> exact_x_;  // and exactly, once needed
 };
 
 // +1: keep with the reference normal outward; -1: keep reversed; 0: drop.

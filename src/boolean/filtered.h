@@ -85,6 +85,12 @@ class Dyadic {
   ~Dyadic() { mpz_clear(m_); }
 
   int sign() const { return mpz_sgn(m_); }
+  // The value within a relative 2^-52 (the mantissa is truncated to 53 bits).
+  double to_double() const {
+    long exp = 0;
+    const double d = mpz_get_d_2exp(&exp, m_);
+    return std::ldexp(d, static_cast<int>(exp + e_));
+  }
 
   friend Dyadic operator*(const Dyadic& a, const Dyadic& b) {
     Dyadic r;
