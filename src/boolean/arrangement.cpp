@@ -495,7 +495,7 @@ bool coplanar_overlap(const Arrangement& A, const Tri& a, const Tri& b, int k) {
 }  // namespace
 
 void Arrangement::intersect() {
-  std::vector<std::array<std::uint32_t, 2>> crossing;
+  std::vector<std::array<std::uint32_t, 3>> crossing;  // i, j, which of them is cut
   UnionFind coplanar(tris.size());
   auto record = [&](std::uint32_t p, std::uint32_t q, std::uint32_t v) {
     edge_points.push_back({edge_key(p, q), v});
@@ -533,8 +533,20 @@ void Arrangement::intersect() {
     if (pos_a == 3 || neg_a == 3) return;
     vertices_on_edges(*this, a, b, ob, record);
     vertices_on_edges(*this, b, a, oa, record);
-    if (pos_b == 0 || neg_b == 0 || pos_a == 0 || neg_a == 0) return;  // touching only
-    crossing.push_back({i, j});
+    // b cuts a's cluster where it crosses a's plane, or where one of its edges lies in
+    // that plane (the surfaces meet along the edge even when b stays on one side);
+    // an edge that a shares is a's own boundary already.
+    auto cuts = [](const Tri& x, const Tri& y, const int o[3], int pos_y, int neg_y) {
+      if (pos_y > 0 && neg_y > 0) return true;
+      if (pos_y + neg_y != 1) return false;
+      int shared = 0;
+      for (int k = 0; k < 3; ++k)
+        if (o[k] == 0 && (y.v[k] == x.v[0] || y.v[k] == x.v[1] || y.v[k] == x.v[2])) ++shared;
+      return shared < 2;
+    };
+    const bool cut_a = cuts(a, b, ob, pos_b, neg_b), cut_b = cuts(b, a, oa, pos_a, neg_a);
+    if (!cut_a && !cut_b) return;
+    crossing.push_back({i, j, static_cast<std::uint32_t>(cut_a) | (static_cast<std::uint32_t>(cut_b) << 1)});
     ++pairs_hit;
   });
 
@@ -571,13 +583,14 @@ void Arrangement::intersect() {
   }
 
   // Each crossing pair cuts both clusters along the other's trace.
-  for (auto [i, j] : crossing) {
-    add_pair(i, j);
-    add_pair(j, i);
+  for (auto [i, j, which] : crossing) {
+    if (which & 1) add_pair(i, j);
+    if (which & 2) add_pair(j, i);
   }
 }
 
-// Triangle b crosses the plane of triangle t: the constraint on t's cluster.
+// Triangle b crosses the plane of triangle t, or has an edge in it: the constraint
+// on t's cluster.
 void Arrangement::add_pair(std::uint32_t t, std::uint32_t b) {
   const std::uint32_t ct = cluster_of[t], cb = cluster_of[b];
   const Tri& a = tris[t];
