@@ -8,7 +8,8 @@
 //    key (arrangement.h), sorted along the line exactly.
 // 3. Faces on one plane with one orientation that share an edge no third face uses
 //    merge; their boundary is traced, and the loop through the lexicographically
-//    largest vertex is the outer one. A vertex with two neighbours on one line goes.
+//    largest vertex is the outer one (a region whose boundary passes a vertex twice
+//    stays unmerged). A vertex with two neighbours on one line goes.
 // 4. Coordinates are rounded, face-connected shells found, and each shell of positive
 //    volume bounds a cell; a shell of negative volume is a cavity of the smallest
 //    cell whose box holds it.
@@ -341,7 +342,16 @@ Result<BooleanResult> build_result(Arrangement& a, std::vector<OutPoly> polys, R
       OutPoly m = *members[f][0];
       m.loops = boundary(a, members[f]);
       m.keys.clear();
-      if (!m.loops.empty()) merged.push_back(std::move(m));
+      // A boundary through a vertex twice (two holes touching at a corner) is left
+      // as the pieces it came from: every face stays a polygon with simple loops.
+      std::vector<std::uint32_t> seen;
+      for (const auto& loop : m.loops) seen.insert(seen.end(), loop.begin(), loop.end());
+      std::sort(seen.begin(), seen.end());
+      if (std::adjacent_find(seen.begin(), seen.end()) != seen.end()) {
+        for (const OutPoly* q : members[f]) merged.push_back(*q);
+      } else if (!m.loops.empty()) {
+        merged.push_back(std::move(m));
+      }
     }
     polys = std::move(merged);
   }
