@@ -494,6 +494,26 @@ bool coplanar_overlap(const Arrangement& A, const Tri& a, const Tri& b, int k) {
 
 }  // namespace
 
+// Whether segment pq, in the plane of triangle x, meets x's interior: no line of x's
+// edges and not the line pq itself separates them (exact, in x's dominant projection).
+bool Arrangement::segment_enters(const Tri& x, std::uint32_t p, std::uint32_t q) const {
+  const Vec3 a = pos[x.v[0]], b = pos[x.v[1]], c = pos[x.v[2]];
+  const int k = dominant_axis(cross(b - a, c - a));
+  const int o = orient2d_projected(a, b, c, k);
+  const Vec3 pp = pos[p], pq = pos[q];
+  for (int e = 0; e < 3; ++e) {
+    const Vec3 s = pos[x.v[e]], t = pos[x.v[(e + 1) % 3]];
+    if (orient2d_projected(s, t, pp, k) * o <= 0 && orient2d_projected(s, t, pq, k) * o <= 0) return false;
+  }
+  int above = 0, below = 0;
+  for (const Vec3 v : {a, b, c}) {
+    const int s = orient2d_projected(pp, pq, v, k);
+    above += s > 0;
+    below += s < 0;
+  }
+  return above > 0 && below > 0;
+}
+
 void Arrangement::intersect() {
   std::vector<std::array<std::uint32_t, 3>> crossing;  // i, j, which of them is cut
   UnionFind coplanar(tris.size());
@@ -536,13 +556,14 @@ void Arrangement::intersect() {
     // b cuts a's cluster where it crosses a's plane, or where one of its edges lies in
     // that plane (the surfaces meet along the edge even when b stays on one side);
     // an edge that a shares is a's own boundary already.
-    auto cuts = [](const Tri& x, const Tri& y, const int o[3], int pos_y, int neg_y) {
+    auto cuts = [&](const Tri& x, const Tri& y, const int o[3], int pos_y, int neg_y) {
       if (pos_y > 0 && neg_y > 0) return true;
       if (pos_y + neg_y != 1) return false;
-      int shared = 0;
+      std::uint32_t e[2];
+      int n = 0;
       for (int k = 0; k < 3; ++k)
-        if (o[k] == 0 && (y.v[k] == x.v[0] || y.v[k] == x.v[1] || y.v[k] == x.v[2])) ++shared;
-      return shared < 2;
+        if (o[k] == 0) e[n++] = y.v[k];
+      return segment_enters(x, e[0], e[1]);
     };
     const bool cut_a = cuts(a, b, ob, pos_b, neg_b), cut_b = cuts(b, a, oa, pos_a, neg_a);
     if (!cut_a && !cut_b) return;
@@ -607,6 +628,18 @@ void Arrangement::add_pair(std::uint32_t t, std::uint32_t b) {
   }
   assert(n == 2);
   if (n < 2) return;
+  // Triangles of a mesh that share a corner v often cross each other's planes by a
+  // rounding's width; the cut then runs from v away from t and cuts nothing. It
+  // enters t only if its other end lies strictly inside t's angle at v.
+  const Cluster& c = clusters[ct];
+  for (int e = 0; e < 2; ++e) {
+    const std::uint32_t v = ends[e], x = ends[1 - e];
+    const int at = v == a.v[0] ? 0 : (v == a.v[1] ? 1 : (v == a.v[2] ? 2 : -1));
+    if (at < 0) continue;
+    const std::uint32_t next = a.v[(at + 1) % 3], prev = a.v[(at + 2) % 3];
+    const int turn = orient2d_projected(pos[a.v[0]], pos[a.v[1]], pos[a.v[2]], c.k);
+    if (orient2(c, v, next, x) * turn <= 0 || orient2(c, v, x, prev) * turn <= 0) return;
+  }
   clusters[ct].constraints.push_back({cb, b, ends[0], ends[1]});
   clusters[ct].touched = true;
 }

@@ -280,8 +280,10 @@ std::vector<OutPoly> classify_and_select(const Arrangement& a, const Expr& expr,
     while (j < halves.size() && halves[j].key == halves[i].key) ++j;
     if (j - i == 2) {
       const HalfEdge &x = halves[i], &y = halves[i + 1];
+      // Not across an edge that another solid touches at a point inside it.
+      const std::uint32_t p = static_cast<std::uint32_t>(x.key >> 32), q = static_cast<std::uint32_t>(x.key);
       if (untouched(x.tri) && untouched(y.tri) && x.forward != y.forward &&
-          a.tris[x.tri].operand == a.tris[y.tri].operand) {
+          a.tris[x.tri].operand == a.tris[y.tri].operand && a.find_edge_key(p, q) == kInvalidIndex) {
         const std::uint32_t rx = find(x.tri), ry = find(y.tri);
         if (rx != ry) parent[std::max(rx, ry)] = std::min(rx, ry);
       }

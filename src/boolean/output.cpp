@@ -48,25 +48,20 @@ std::uint64_t ordered(std::uint32_t a, std::uint32_t b) {
   return (static_cast<std::uint64_t>(std::min(a, b)) << 32) | std::max(a, b);
 }
 
-// canon[p]: the smallest point id at p's exact position.
-std::vector<std::uint32_t> canonical_points(const Arrangement& a) {
+// canon[p]: the smallest id among the `used` points at p's exact position.
+std::vector<std::uint32_t> canonical_points(const Arrangement& a, const std::vector<std::uint32_t>& used) {
   const std::uint32_t total = static_cast<std::uint32_t>(a.pos.size() + a.points.size());
   std::vector<std::uint32_t> canon(total);
   std::iota(canon.begin(), canon.end(), 0u);
-  std::vector<char> involved(a.pos.size(), 0);
-  for (const Cluster& c : a.clusters)
-    if (c.touched)
-      for (std::uint32_t t : c.tris)
-        for (std::uint32_t v : a.tris[t].v) involved[v] = 1;
   struct Item {
     std::uint32_t id;
     Vec3 x;
     double e;
   };
   std::vector<Item> items;
+  items.reserve(used.size());
   double max_err = 0, scale = 0;
-  for (std::uint32_t p = 0; p < total; ++p) {
-    if (p < a.pos.size() && !involved[p]) continue;
+  for (std::uint32_t p : used) {
     double e = 0;
     const Vec3 x = a.approx3(p, &e);
     items.push_back({p, x, e});
@@ -74,7 +69,9 @@ std::vector<std::uint32_t> canonical_points(const Arrangement& a) {
   }
   for (const Item& it : items)
     if (it.e < scale * 1e-6) max_err = std::max(max_err, it.e);
-  const double h = std::max({4 * max_err, scale * 1e-14, 1e-300});
+  // Cells far wider than any error: two equal points share a cell unless one of them
+  // lies within its error of a cell wall, and only those look next door.
+  const double h = std::max({1e4 * max_err, scale * 1e-12, 1e-300});
   auto cell = [&](double v) { return static_cast<std::int64_t>(std::floor(v / h)); };
   auto key = [](std::int64_t x, std::int64_t y, std::int64_t z) {
     return (static_cast<std::uint64_t>(x) * 0x9E3779B97F4A7C15ull) ^
@@ -82,43 +79,44 @@ std::vector<std::uint32_t> canonical_points(const Arrangement& a) {
            (static_cast<std::uint64_t>(z) * 0x165667B19E3779F9ull);
   };
   std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> grid;  // -> item indices
-  std::vector<std::uint32_t> wide;  // items whose error exceeds the cell
+  grid.reserve(items.size());
+  std::vector<std::uint32_t> wide, reps;  // items whose error exceeds a cell; all representatives
   auto near = [](const Item& p, const Item& q) {
     return std::abs(p.x.x - q.x.x) <= p.e + q.e && std::abs(p.x.y - q.x.y) <= p.e + q.e &&
            std::abs(p.x.z - q.x.z) <= p.e + q.e;
   };
-  std::vector<std::uint32_t> reps;  // representative items, for the wide ones
+  auto match = [&](const Item& it, const std::vector<std::uint32_t>& list) {
+    for (std::uint32_t r : list)
+      if (near(it, items[r]) && (it.id == items[r].id || a.equal3(it.id, items[r].id))) return r;
+    return kInvalidIndex;
+  };
   for (std::uint32_t i = 0; i < items.size(); ++i) {
     const Item& it = items[i];
     std::uint32_t found = kInvalidIndex;
-    if (it.e * 2 > h) {
-      for (std::uint32_t r : reps)
-        if (near(it, items[r]) && a.equal3(it.id, items[r].id)) {
-          found = r;
-          break;
-        }
+    if (it.e * 4 > h) {
+      found = match(it, reps);
     } else {
-      const std::int64_t cx = cell(it.x.x), cy = cell(it.x.y), cz = cell(it.x.z);
-      for (int dx = -1; dx <= 1 && found == kInvalidIndex; ++dx)
-        for (int dy = -1; dy <= 1 && found == kInvalidIndex; ++dy)
-          for (int dz = -1; dz <= 1 && found == kInvalidIndex; ++dz) {
-            auto g = grid.find(key(cx + dx, cy + dy, cz + dz));
-            if (g == grid.end()) continue;
-            for (std::uint32_t r : g->second)
-              if (near(it, items[r]) && a.equal3(it.id, items[r].id)) {
-                found = r;
-                break;
-              }
+      const std::int64_t c[3] = {cell(it.x.x), cell(it.x.y), cell(it.x.z)};
+      int lo[3], hi[3];
+      for (int k = 0; k < 3; ++k) {  // a neighbour only where the error reaches a wall
+        const double v = it.x[k], m = 2 * max_err + it.e;
+        lo[k] = cell(v - m) < c[k] ? -1 : 0;
+        hi[k] = cell(v + m) > c[k] ? 1 : 0;
+      }
+      for (int dx = lo[0]; dx <= hi[0] && found == kInvalidIndex; ++dx)
+        for (int dy = lo[1]; dy <= hi[1] && found == kInvalidIndex; ++dy)
+          for (int dz = lo[2]; dz <= hi[2] && found == kInvalidIndex; ++dz) {
+            auto g = grid.find(key(c[0] + dx, c[1] + dy, c[2] + dz));
+            if (g != grid.end()) found = match(it, g->second);
           }
-      for (std::uint32_t r : wide)
-        if (found == kInvalidIndex && near(it, items[r]) && a.equal3(it.id, items[r].id)) found = r;
+      if (found == kInvalidIndex) found = match(it, wide);
     }
     if (found != kInvalidIndex) {
       canon[it.id] = canon[items[found].id];
       continue;
     }
     reps.push_back(i);
-    if (it.e * 2 > h) {
+    if (it.e * 4 > h) {
       wide.push_back(i);
     } else {
       grid[key(cell(it.x.x), cell(it.x.y), cell(it.x.z))].push_back(i);
@@ -144,9 +142,8 @@ LineClasses line_classes(Arrangement& a, const std::vector<std::uint32_t>& canon
   for (auto& [key, list] : lc.points) {
     std::sort(list.begin(), list.end());
     list.erase(std::unique(list.begin(), list.end()), list.end());
-    if (list.size() < 3) continue;
+    if (list.size() < 2) continue;
     Vec3 lo{1e308, 1e308, 1e308}, hi{-1e308, -1e308, -1e308};
-    std::vector<double> coord(list.size());
     for (std::uint32_t p : list) {
       const Vec3 x = a.approx3(p);
       for (int i = 0; i < 3; ++i) {
@@ -159,8 +156,10 @@ LineClasses line_classes(Arrangement& a, const std::vector<std::uint32_t>& canon
     lc.axis[key] = ax;
     // Sort by the rounded coordinate, then finish exactly with insertion (safe for
     // any comparator, and linear when the rounded order was right).
-    std::sort(list.begin(), list.end(),
-              [&](std::uint32_t p, std::uint32_t q) { return a.approx3(p)[ax] < a.approx3(q)[ax]; });
+    std::vector<std::pair<double, std::uint32_t>> keyed;
+    for (std::uint32_t p : list) keyed.push_back({a.approx3(p)[ax], p});
+    std::sort(keyed.begin(), keyed.end());
+    for (std::size_t i = 0; i < list.size(); ++i) list[i] = keyed[i].second;
     for (std::size_t i = 1; i < list.size(); ++i)
       for (std::size_t j = i; j > 0 && a.compare3(list[j], list[j - 1], ax) < 0; --j)
         std::swap(list[j], list[j - 1]);
@@ -172,9 +171,18 @@ LineClasses line_classes(Arrangement& a, const std::vector<std::uint32_t>& canon
 void insert_between(const Arrangement& a, const LineClasses& lc, std::uint32_t root,
                     std::uint32_t p, std::uint32_t q, std::vector<std::uint32_t>& out) {
   auto it = lc.points.find(root);
-  if (it == lc.points.end() || it->second.size() < 3) return;
+  if (it == lc.points.end() || it->second.empty()) return;
   const auto& list = it->second;
-  const int ax = lc.axis.at(root);
+  // Along the axis the class was sorted by; a class of one point takes one along
+  // which the edge runs.
+  auto ax_it = lc.axis.find(root);
+  int ax = 0;
+  if (ax_it != lc.axis.end()) {
+    ax = ax_it->second;
+  } else {
+    const Vec3 d = a.approx3(q) - a.approx3(p);
+    ax = std::abs(d.x) >= std::abs(d.y) && std::abs(d.x) >= std::abs(d.z) ? 0 : (std::abs(d.y) >= std::abs(d.z) ? 1 : 2);
+  }
   const int dir = a.compare3(p, q, ax);
   if (dir == 0) return;
   auto less = [&](std::uint32_t x, std::uint32_t y) { return a.compare3(x, y, ax) < 0; };
@@ -263,8 +271,16 @@ double loop_volume6(const std::vector<Vec3>& pos, const std::vector<std::uint32_
 }  // namespace
 
 Result<BooleanResult> build_result(Arrangement& a, std::vector<OutPoly> polys, Report& report) {
-  // 1. One id per exact position.
-  const std::vector<std::uint32_t> canon = canonical_points(a);
+  // 1. One id per exact position, among the points a face or a line holds.
+  std::vector<std::uint32_t> used;
+  for (const OutPoly& p : polys)
+    for (const auto& loop : p.loops) used.insert(used.end(), loop.begin(), loop.end());
+  for (const Cluster& c : a.clusters)
+    for (const Line& l : c.lines) used.insert(used.end(), l.points.begin(), l.points.end());
+  for (auto [key, p] : a.edge_points) used.push_back(p);
+  std::sort(used.begin(), used.end());
+  used.erase(std::unique(used.begin(), used.end()), used.end());
+  const std::vector<std::uint32_t> canon = canonical_points(a, used);
   for (OutPoly& p : polys)
     for (std::size_t l = 0; l < p.loops.size(); ++l) {
       std::vector<std::uint32_t> pts, keys;
