@@ -516,6 +516,7 @@ bool Arrangement::segment_enters(const Tri& x, std::uint32_t p, std::uint32_t q)
 
 void Arrangement::intersect() {
   std::vector<std::array<std::uint32_t, 3>> crossing;  // i, j, which of them is cut
+  std::vector<std::array<std::uint32_t, 2>> touching;  // triangle, vertex on its plane
   UnionFind coplanar(tris.size());
   auto record = [&](std::uint32_t p, std::uint32_t q, std::uint32_t v) {
     edge_points.push_back({edge_key(p, q), v});
@@ -566,6 +567,15 @@ void Arrangement::intersect() {
       return segment_enters(x, e[0], e[1]);
     };
     const bool cut_a = cuts(a, b, ob, pos_b, neg_b), cut_b = cuts(b, a, oa, pos_a, neg_a);
+    // A corner of one resting on the other's plane, the rest on one side: a point
+    // where the surfaces touch, a vertex of the other's arrangement if inside it.
+    auto touch = [&](std::uint32_t x, const Tri& y, const int o[3], int pos_y, int neg_y) {
+      if (pos_y + neg_y != 2 || (pos_y != 0 && neg_y != 0)) return;
+      for (int k = 0; k < 3; ++k)
+        if (o[k] == 0) touching.push_back({x, y.v[k]});
+    };
+    touch(i, b, ob, pos_b, neg_b);
+    touch(j, a, oa, pos_a, neg_a);
     if (!cut_a && !cut_b) return;
     crossing.push_back({i, j, static_cast<std::uint32_t>(cut_a) | (static_cast<std::uint32_t>(cut_b) << 1)});
     ++pairs_hit;
@@ -603,6 +613,20 @@ void Arrangement::intersect() {
     c.touched = c.tris.size() > 1;
   }
 
+  for (auto [t, v] : touching) {
+    const Tri& x = tris[t];
+    const Vec3 p0 = pos[x.v[0]], p1 = pos[x.v[1]], p2 = pos[x.v[2]];
+    const int k = clusters[cluster_of[t]].k;
+    const int o = orient2d_projected(p0, p1, p2, k);
+    if (v == x.v[0] || v == x.v[1] || v == x.v[2]) continue;
+    if (orient2d_projected(p0, p1, pos[v], k) * o > 0 && orient2d_projected(p1, p2, pos[v], k) * o > 0 &&
+        orient2d_projected(p2, p0, pos[v], k) * o > 0) {
+      Cluster& c = clusters[cluster_of[t]];
+      if (std::find(c.touch_points.begin(), c.touch_points.end(), v) == c.touch_points.end())
+        c.touch_points.push_back(v);
+      c.touched = true;
+    }
+  }
   // Each crossing pair cuts both clusters along the other's trace.
   for (auto [i, j, which] : crossing) {
     if (which & 1) add_pair(i, j);
@@ -739,6 +763,20 @@ void Arrangement::split_cluster(std::uint32_t ci) {
   piece_box(c, c.pieces[0]);
 
   std::vector<Piece> made;
+  auto split_all = [&](std::uint32_t line, std::uint32_t p, std::uint32_t q, Box sb) {
+    const std::size_t n = c.pieces.size();
+    for (std::size_t pi = 0; pi < n; ++pi) {
+      const Box& pb = c.pieces[pi].box2;
+      if (pb.lo.x > sb.hi.x || sb.lo.x > pb.hi.x || pb.lo.y > sb.hi.y || sb.lo.y > pb.hi.y)
+        continue;
+      made.clear();
+      if (!split_piece(c, ci, pi, line, p, q, made, crossings)) continue;
+      c.pieces[pi] = std::move(made[0]);
+      piece_box(c, c.pieces[pi]);
+      c.pieces.push_back(std::move(made[1]));
+      piece_box(c, c.pieces.back());
+    }
+  };
   for (const Segment& s : segments) {
     Box sb;
     for (std::uint32_t q : {s.p, s.q}) {
@@ -747,17 +785,27 @@ void Arrangement::split_cluster(std::uint32_t ci) {
       sb.add(Vec3{u - e, v - e, 0});
       sb.add(Vec3{u + e, v + e, 0});
     }
-    const std::size_t n = c.pieces.size();
-    for (std::size_t pi = 0; pi < n; ++pi) {
-      const Box& pb = c.pieces[pi].box2;
-      if (pb.lo.x > sb.hi.x || sb.lo.x > pb.hi.x || pb.lo.y > sb.hi.y || sb.lo.y > pb.hi.y)
-        continue;
-      made.clear();
-      if (!split_piece(c, ci, pi, s.line, s.p, s.q, made, crossings)) continue;
-      c.pieces[pi] = std::move(made[0]);
-      piece_box(c, c.pieces[pi]);
-      c.pieces.push_back(std::move(made[1]));
-      piece_box(c, c.pieces.back());
+    split_all(s.line, s.p, s.q, sb);
+  }
+  // A touching point becomes a vertex where the lines u = p_u and v = p_v through it
+  // cross (it lies on both exactly, as a double); they cut only the pieces it is in.
+  for (std::uint32_t v : c.touch_points) {
+    const Vec3 p = pos[v];
+    for (LineKind kind : {LineKind::kAxisU, LineKind::kAxisV}) {
+      const std::uint32_t l = add_line(c, Line::make(kind, 0, 0, kind == LineKind::kAxisU ? p[i] : p[j]));
+      c.lines[l].key = fresh_key();
+      for (std::size_t pi = 0, n = c.pieces.size(); pi < n; ++pi) {
+        const Piece& P = c.pieces[pi];
+        bool inside = true;  // p in the closed piece
+        for (std::size_t q = 0; q < P.pts.size() && inside; ++q) inside = side(c, c.lines[P.lines[q]], v) >= 0;
+        if (!inside) continue;
+        made.clear();
+        if (!split_piece(c, ci, pi, l, kInvalidIndex, kInvalidIndex, made, crossings)) continue;
+        c.pieces[pi] = std::move(made[0]);
+        piece_box(c, c.pieces[pi]);
+        c.pieces.push_back(std::move(made[1]));
+        piece_box(c, c.pieces.back());
+      }
     }
   }
 }
@@ -810,9 +858,11 @@ bool Arrangement::split_piece(Cluster& c, std::uint32_t ci, std::size_t pi, std:
   // Cut only where the segment overlaps the chord with positive length.
   const Line& L = c.lines[li];
   std::uint32_t a = chord[0], b = chord[1], lo = s0, hi = s1;
-  if (along(c, L, a, b) > 0) std::swap(a, b);
-  if (along(c, L, lo, hi) > 0) std::swap(lo, hi);
-  if (!(along(c, L, a, hi) < 0 && along(c, L, lo, b) < 0)) return false;
+  if (s0 != kInvalidIndex) {  // kInvalidIndex: cut the whole chord
+    if (along(c, L, a, b) > 0) std::swap(a, b);
+    if (along(c, L, lo, hi) > 0) std::swap(lo, hi);
+  }
+  if (s0 != kInvalidIndex && !(along(c, L, a, hi) < 0 && along(c, L, lo, b) < 0)) return false;
 
   for (std::size_t q = 0; q < n; ++q)
     if (sides[q] == 0) c.lines[li].points.push_back(P.pts[q]);

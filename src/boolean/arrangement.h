@@ -102,6 +102,7 @@ struct Cluster {
   int k = 2;                  // dominant axis of the reference normal
   int nk_sign = 1;            // sign of the reference normal's component k
   std::vector<Constraint> constraints;
+  std::vector<std::uint32_t> touch_points;  // input vertices touching it inside
   std::vector<Line> lines;
   std::vector<Piece> pieces;
   bool touched = false;  // cut by anything, or several triangles

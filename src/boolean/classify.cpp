@@ -312,6 +312,22 @@ std::vector<OutPoly> classify_and_select(const Arrangement& a, const Expr& expr,
     bool whole = !f.tris.empty();
     for (std::uint32_t t : f.tris)
       whole &= untouched(t) && tri_keep[t] != 0 && tri_keep[t] == tri_keep[f.tris[0]];
+    // Not when something touches a diagonal inside it (the face must take the point).
+    if (whole && f.tris.size() > 1) {
+      std::vector<std::uint64_t> rim;
+      for (const auto& loop : f.loops)
+        for (std::size_t k = 0; k < loop.size(); ++k) {
+          const std::uint32_t p = loop[k], q = loop[(k + 1) % loop.size()];
+          rim.push_back((static_cast<std::uint64_t>(std::min(p, q)) << 32) | std::max(p, q));
+        }
+      std::sort(rim.begin(), rim.end());
+      for (std::uint32_t t : f.tris)
+        for (int e = 0; e < 3 && whole; ++e) {
+          const std::uint32_t p = a.tris[t].v[e], q = a.tris[t].v[(e + 1) % 3];
+          const std::uint64_t key = (static_cast<std::uint64_t>(std::min(p, q)) << 32) | std::max(p, q);
+          whole = std::binary_search(rim.begin(), rim.end(), key) || a.find_edge_key(p, q) == kInvalidIndex;
+        }
+    }
     if (whole) {
       const int keep = tri_keep[f.tris[0]];
       OutPoly poly;

@@ -346,6 +346,11 @@ Result<BooleanResult> build_result(Arrangement& a, std::vector<OutPoly> polys, R
         regions.join(uses[i].poly, uses[i + 1].poly);
       i = j;
     }
+    // Faces using each vertex: a merge may not swallow a vertex another face needs.
+    std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> users;
+    for (std::uint32_t f = 0; f < polys.size(); ++f)
+      for (const auto& loop : polys[f].loops)
+        for (std::uint32_t v : loop) users[v].push_back(f);
     std::vector<std::vector<const OutPoly*>> members(polys.size());
     for (std::uint32_t f = 0; f < polys.size(); ++f) members[regions.find(f)].push_back(&polys[f]);
     std::vector<OutPoly> merged;
@@ -358,12 +363,19 @@ Result<BooleanResult> build_result(Arrangement& a, std::vector<OutPoly> polys, R
       OutPoly m = *members[f][0];
       m.loops = boundary(a, members[f]);
       m.keys.clear();
-      // A boundary through a vertex twice (two holes touching at a corner) is left
-      // as the pieces it came from: every face stays a polygon with simple loops.
+      // A boundary through a vertex twice (two holes touching at a corner), or a merge
+      // that would leave inside the face a vertex other faces use (a corner touching
+      // it), is left as the pieces it came from.
       std::vector<std::uint32_t> seen;
       for (const auto& loop : m.loops) seen.insert(seen.end(), loop.begin(), loop.end());
       std::sort(seen.begin(), seen.end());
-      if (std::adjacent_find(seen.begin(), seen.end()) != seen.end()) {
+      bool keep_apart = std::adjacent_find(seen.begin(), seen.end()) != seen.end();
+      for (const OutPoly* q : members[f])
+        for (const auto& loop : q->loops)
+          for (std::uint32_t v : loop)
+            if (!keep_apart && !std::binary_search(seen.begin(), seen.end(), v))
+              for (std::uint32_t u : users[v]) keep_apart |= regions.find(u) != f;
+      if (keep_apart) {
         for (const OutPoly* q : members[f]) merged.push_back(*q);
       } else if (!m.loops.empty()) {
         merged.push_back(std::move(m));
