@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# The main job on the bundled examples: build, validate, query, store, export.
+# The main job on the bundled examples: build, combine by Boolean operations,
+# validate, query, store, export.
 set -euo pipefail
 cd "$(dirname "$0")"
 
@@ -32,7 +33,23 @@ for part in sphere cone torus twist; do
   "$bin" db save "$out/$part.stl" --name "$part" --db "$db"
 done
 
+# Parts combined by exact Boolean operations: a plate with a hole exactly through it
+# (caps coplanar with its faces), a sphere minus an offset sphere, and two cubes
+# that share only an edge (a valid non-manifold union), each validated and stored.
+"$bin" make cube size=40,30,8 center=true -o "$out/plate.stl"
+"$bin" make cylinder h=8 r=6 fn=48 center=true -o "$out/peg.stl"
+"$bin" make sphere r=10 fn=48 -o "$out/ball.stl"
+"$bin" make cube size=10,10,10 -o "$out/cube.stl"
+"$bin" bool difference "$out/plate.stl" "$out/peg.stl" -o "$out/plate_with_hole.stl"
+"$bin" bool difference "$out/ball.stl" "$out/cube.stl" -o "$out/ball_minus_cube.stl" --report json
+"$bin" bool union "$out/cube.stl" examples/cube_at_10_10.off -o "$out/cubes_sharing_an_edge.json"
+for part in plate_with_hole ball_minus_cube cubes_sharing_an_edge; do
+  ext=stl; [ "$part" = cubes_sharing_an_edge ] && ext=json
+  "$bin" db save "$out/$part.$ext" --name "$part" --db "$db"
+done
+
 # What a slicer will see: exported meshes read back and diagnosed.
 "$bin" info "$out/box_with_hole.stl"
 "$bin" info "$out/torus.stl"
+"$bin" info "$out/plate_with_hole.stl"
 echo "run.sh: exported to $out/"
