@@ -494,6 +494,13 @@ bool coplanar_overlap(const Arrangement& A, const Tri& a, const Tri& b, int k) {
 
 }  // namespace
 
+// orient3d of vertex v against triangle x's plane; 0 without arithmetic for x's own
+// corners (the exact stage would run for every neighbour in a mesh).
+int Arrangement::side_of(const Tri& x, std::uint32_t v) const {
+  if (v == x.v[0] || v == x.v[1] || v == x.v[2]) return 0;
+  return orient3d(pos[x.v[0]], pos[x.v[1]], pos[x.v[2]], pos[v]);
+}
+
 // Whether segment pq, in the plane of triangle x, meets x's interior: no line of x's
 // edges and not the line pq itself separates them (exact, in x's dominant projection).
 bool Arrangement::segment_enters(const Tri& x, std::uint32_t p, std::uint32_t q) const {
@@ -528,7 +535,7 @@ void Arrangement::intersect() {
     const Vec3 a0 = pos[a.v[0]], a1 = pos[a.v[1]], a2 = pos[a.v[2]];
     int ob[3], pos_b = 0, neg_b = 0;
     for (int k = 0; k < 3; ++k) {
-      ob[k] = orient3d(a0, a1, a2, pos[b.v[k]]);
+      ob[k] = side_of(a, b.v[k]);
       pos_b += ob[k] > 0;
       neg_b += ob[k] < 0;
     }
@@ -544,10 +551,9 @@ void Arrangement::intersect() {
       }
       return;
     }
-    const Vec3 b0 = pos[b.v[0]], b1 = pos[b.v[1]], b2 = pos[b.v[2]];
     int oa[3], pos_a = 0, neg_a = 0;
     for (int k = 0; k < 3; ++k) {
-      oa[k] = orient3d(b0, b1, b2, pos[a.v[k]]);
+      oa[k] = side_of(b, a.v[k]);
       pos_a += oa[k] > 0;
       neg_a += oa[k] < 0;
     }
@@ -642,14 +648,27 @@ void Arrangement::add_pair(std::uint32_t t, std::uint32_t b) {
   const Tri& o = tris[b];
   int s[3];
   for (int k = 0; k < 3; ++k)
-    s[k] = orient3d(pos[a.v[0]], pos[a.v[1]], pos[a.v[2]], pos[o.v[k]]);
+    s[k] = side_of(a, o.v[k]);
   std::uint32_t ends[3];
   int n = 0;
+  const std::size_t points_before = points.size();
   for (int k = 0; k < 3; ++k) {
     const int k1 = (k + 1) % 3;
     if (s[k] == 0) ends[n++] = o.v[k];
     if (s[k] * s[k1] < 0) ends[n++] = lpi_point(o.v[k], o.v[k1], ct);
   }
+  // A point made for a cut that is then dropped is taken back.
+  auto drop_new_points = [&] {
+    while (points.size() > points_before) {
+      const PointDef d = points.back();
+      auto& list = lpi_ids_[ordered(d.a, d.b)];
+      list.pop_back();
+      if (list.empty()) lpi_ids_.erase(ordered(d.a, d.b));
+      points.pop_back();
+      h3f.pop_back();
+      h2f.pop_back();
+    }
+  };
   assert(n == 2);
   if (n < 2) return;
   // Triangles of a mesh that share a corner v often cross each other's planes by a
@@ -662,7 +681,10 @@ void Arrangement::add_pair(std::uint32_t t, std::uint32_t b) {
     if (at < 0) continue;
     const std::uint32_t next = a.v[(at + 1) % 3], prev = a.v[(at + 2) % 3];
     const int turn = orient2d_projected(pos[a.v[0]], pos[a.v[1]], pos[a.v[2]], c.k);
-    if (orient2(c, v, next, x) * turn <= 0 || orient2(c, v, x, prev) * turn <= 0) return;
+    if (orient2(c, v, next, x) * turn <= 0 || orient2(c, v, x, prev) * turn <= 0) {
+      drop_new_points();
+      return;
+    }
   }
   clusters[ct].constraints.push_back({cb, b, ends[0], ends[1]});
   clusters[ct].touched = true;

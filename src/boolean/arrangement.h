@@ -190,6 +190,7 @@ class Arrangement {
   std::uint32_t add_line(Cluster& c, Line l);
   void add_pair(std::uint32_t t, std::uint32_t b);
   bool segment_enters(const Tri& x, std::uint32_t p, std::uint32_t q) const;
+  int side_of(const Tri& x, std::uint32_t v) const;
   void split_cluster(std::uint32_t ci);
   bool split_piece(Cluster& c, std::uint32_t ci, std::size_t pi, std::uint32_t li,
                    std::uint32_t s0, std::uint32_t s1, std::vector<Piece>& out,
