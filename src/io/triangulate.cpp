@@ -1,8 +1,10 @@
 // Ear clipping with hole bridging (triangulate.h). The polygon is a circular list
-// of indices; holes are spliced in through bridges to visible outer vertices
-// (nearest first, each candidate checked with exact orientation tests), then ears
-// are cut while one exists. O(n^2) per face, which is fine for the faces a
-// B-rep has; triangles, the common case, are returned as they are.
+// of indices; holes are spliced in where they touch it or through bridges to
+// visible outer vertices (nearest first, each candidate checked with exact
+// orientation tests), the ring is split where it passes a point twice crossing
+// itself, then ears are cut while one exists. O(n^2) per face (O(n^3) with
+// pinched rings), fine for the faces a B-rep has; triangles, the common case, are
+// returned as they are.
 #include "cellforge/io/triangulate.h"
 
 #include <algorithm>
@@ -49,26 +51,28 @@ class Clipper {
  public:
   explicit Clipper(std::vector<Point2> points) : p_(std::move(points)) {}
 
-  // Joins every hole into `outer` through a bridge from its rightmost vertex.
+  // Joins every hole into `outer`: a hole that shares a point with the ring is
+  // spliced in there (holes touching the outer loop or a joined hole at a vertex),
+  // any other through a bridge from its rightmost vertex, rightmost hole first, so
+  // that the holes not yet joined lie to the left of the bridge's start.
   void bridge(std::vector<std::uint32_t>& outer, std::vector<std::vector<std::uint32_t>> holes) {
-    const auto rightmost = [&](const std::vector<std::uint32_t>& h) {
-      return static_cast<std::size_t>(
-          std::max_element(h.begin(), h.end(),
-                           [&](std::uint32_t a, std::uint32_t b) {
-                             return p_[a].u < p_[b].u || (p_[a].u == p_[b].u && p_[a].v > p_[b].v);
-                           }) -
-          h.begin());
-    };
-    std::sort(holes.begin(), holes.end(), [&](const auto& a, const auto& b) {
-      return p_[a[rightmost(a)]].u > p_[b[rightmost(b)]].u;
-    });
-    for (std::size_t hi = 0; hi < holes.size(); ++hi) {
-      const auto& hole = holes[hi];
-      const std::size_t mi = rightmost(hole);
-      const std::size_t at = find_bridge(outer, hole, mi, holes, hi);
+    while (!holes.empty()) {
+      if (join_touching(outer, holes)) continue;
+      const auto right_of = [&](std::uint32_t a, std::uint32_t b) {  // a beyond b
+        return p_[a].u > p_[b].u || (p_[a].u == p_[b].u && p_[a].v < p_[b].v);
+      };
+      const auto rightmost = [&](const std::vector<std::uint32_t>& h) {
+        return static_cast<std::size_t>(std::min_element(h.begin(), h.end(), right_of) - h.begin());
+      };
+      const auto hole = std::min_element(
+          holes.begin(), holes.end(),
+          [&](const auto& a, const auto& b) { return right_of(a[rightmost(a)], b[rightmost(b)]); });
+      const std::vector<std::uint32_t> h = std::move(*hole);
+      holes.erase(hole);
+      const std::size_t mi = rightmost(h);
+      const std::size_t at = find_bridge(outer, h, mi, holes);
       std::vector<std::uint32_t> spliced(outer.begin(), outer.begin() + at + 1);
-      for (std::size_t k = 0; k <= hole.size(); ++k)
-        spliced.push_back(hole[(mi + k) % hole.size()]);
+      for (std::size_t k = 0; k <= h.size(); ++k) spliced.push_back(h[(mi + k) % h.size()]);
       spliced.insert(spliced.end(), outer.begin() + at, outer.end());
       outer = std::move(spliced);
     }
@@ -76,7 +80,43 @@ class Clipper {
 
   std::vector<Tri> clip(const std::vector<std::uint32_t>& poly) {
     std::vector<Tri> out;
-    std::vector<std::uint32_t> ring = poly;
+    std::vector<std::vector<std::uint32_t>> rings = {poly};
+    while (!rings.empty()) {
+      std::vector<std::uint32_t> ring = std::move(rings.back());
+      rings.pop_back();
+      if (!split_at_crossing(ring, rings)) clip_ring(std::move(ring), out);
+    }
+    return out;
+  }
+
+ private:
+  // A ring that passes a point twice with crossing interior cones, each holding an
+  // edge of the other (a hole touching the ring at several points, or holes
+  // touching in a cycle, cut the polygon into parts meeting there), is split there
+  // into two rings by swapping the copies' successors: the cones become the two
+  // overlaps, one per part.
+  bool split_at_crossing(const std::vector<std::uint32_t>& ring,
+                         std::vector<std::vector<std::uint32_t>>& rings) const {
+    const std::size_t n = ring.size();
+    const auto at = [&](std::size_t k) { return p_[ring[k % n]]; };
+    const auto in_cone = [&](std::size_t k, Point2 q) {
+      return inside_cone(at(k + n - 1), at(k), at(k + 1), q);
+    };
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t j = i + 1; j < n; ++j) {
+        if (at(i) != at(j)) continue;
+        if (!(in_cone(i, at(j + n - 1)) || in_cone(i, at(j + 1))) ||
+            !(in_cone(j, at(i + n - 1)) || in_cone(j, at(i + 1))))
+          continue;
+        rings.emplace_back(ring.begin() + i + 1, ring.begin() + j + 1);
+        rings.emplace_back(ring.begin() + j + 1, ring.end());
+        rings.back().insert(rings.back().end(), ring.begin(), ring.begin() + i + 1);
+        return true;
+      }
+    return false;
+  }
+
+  void clip_ring(std::vector<std::uint32_t> ring, std::vector<Tri>& out) const {
     while (ring.size() > 3) {
       const std::size_t n = ring.size();
       std::size_t pick = n;
@@ -89,16 +129,39 @@ class Clipper {
       ring.erase(ring.begin() + static_cast<std::ptrdiff_t>(pick));
     }
     if (ring.size() == 3) out.push_back({ring[0], ring[1], ring[2]});
-    return out;
   }
 
- private:
+  // Splices in a hole with a vertex at a point of the ring, at the copy of that
+  // point whose interior cone holds the hole; the ring then passes the point twice.
+  bool join_touching(std::vector<std::uint32_t>& outer,
+                     std::vector<std::vector<std::uint32_t>>& holes) {
+    const std::size_t n = outer.size();
+    for (auto h = holes.begin(); h != holes.end(); ++h) {
+      for (std::size_t j = 0; j < h->size(); ++j) {
+        const Point2 next = p_[(*h)[(j + 1) % h->size()]];
+        for (std::size_t k = 0; k < n; ++k) {
+          if (p_[outer[k]] != p_[(*h)[j]] ||
+              !inside_cone(p_[outer[(k + n - 1) % n]], p_[outer[k]], p_[outer[(k + 1) % n]], next))
+            continue;
+          std::vector<std::uint32_t> spliced(outer.begin(), outer.begin() + k + 1);
+          for (std::size_t i = 1; i <= h->size(); ++i) spliced.push_back((*h)[(j + i) % h->size()]);
+          spliced.insert(spliced.end(), outer.begin() + k + 1, outer.end());
+          outer = std::move(spliced);
+          holes.erase(h);
+          return true;
+        }
+      }
+    }
+    return false;
+  }
+
+  // The ring position to bridge hole vertex mi to: the nearest ring vertex q such
+  // that segment mq leaves q into the ring's interior, leaves m outside the hole
+  // (and outside every other hole with a vertex at m), and meets no edge elsewhere.
   std::size_t find_bridge(const std::vector<std::uint32_t>& outer,
                           const std::vector<std::uint32_t>& hole, std::size_t mi,
-                          const std::vector<std::vector<std::uint32_t>>& holes, std::size_t hi) {
+                          const std::vector<std::vector<std::uint32_t>>& others) {
     const Point2 m = p_[hole[mi]];
-    const Point2 m_prev = p_[hole[(mi + hole.size() - 1) % hole.size()]];
-    const Point2 m_next = p_[hole[(mi + 1) % hole.size()]];
     std::vector<std::size_t> order(outer.size());
     std::iota(order.begin(), order.end(), 0);
     const auto dist = [&](std::size_t k) {
@@ -109,17 +172,27 @@ class Clipper {
               [&](std::size_t a, std::size_t b) { return dist(a) < dist(b); });
     for (std::size_t k : order) {
       const Point2 q = p_[outer[k]];
-      if (q == m) return k;
       const Point2 q_prev = p_[outer[(k + outer.size() - 1) % outer.size()]];
       const Point2 q_next = p_[outer[(k + 1) % outer.size()]];
-      if (!inside_cone(q_prev, q, q_next, m) || !inside_cone(m_next, m, m_prev, q)) continue;
-      if (crosses(outer, m, q) || crosses(hole, m, q)) continue;
-      bool blocked = false;
-      for (std::size_t h = hi + 1; h < holes.size() && !blocked; ++h)
-        blocked = crosses(holes[h], m, q);
-      if (!blocked) return k;
+      if (!inside_cone(q_prev, q, q_next, m) || crosses(outer, m, q) || !clear(hole, m, q))
+        continue;
+      if (std::all_of(others.begin(), others.end(),
+                      [&](const auto& other) { return clear(other, m, q); }))
+        return k;
     }
     return order.front();  // nothing visible (a degenerate face): the nearest vertex
+  }
+
+  // Segment mq, from a point m of hole loop `loop` or beside it, meets none of its
+  // edges away from m and q, and leaves m on the interior side of the loop (which is
+  // clockwise: the polygon's interior is on its left).
+  bool clear(const std::vector<std::uint32_t>& loop, Point2 m, Point2 q) const {
+    for (std::size_t i = 0; i < loop.size(); ++i) {
+      if (p_[loop[i]] != m) continue;
+      const Point2 prev = p_[loop[(i + loop.size() - 1) % loop.size()]];
+      if (!inside_cone(prev, m, p_[loop[(i + 1) % loop.size()]], q)) return false;
+    }
+    return !crosses(loop, m, q);
   }
 
   // Segment mq meets an edge of `loop` that has neither m nor q as an end.

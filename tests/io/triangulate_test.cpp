@@ -8,6 +8,8 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <random>
+#include <sstream>
 
 #include "cellforge/io/diagnose.h"
 #include "io/exact.h"
@@ -95,6 +97,318 @@ TEST(Triangulate, FaceOrientationFollowsTheModel) {
       EXPECT_GT(dot(cross(b - a, c - a), n), 0);
     }
   }
+}
+
+TEST(Triangulate, BridgeAlongAHoleDiagonal) {
+  // Seen along +y (u = z, v = x) the hole's rightmost vertex (2.5, 2.5) has the
+  // outer corner (1.5, 3.5) nearest, on the line u + v = 5 through the hole's
+  // interior and its vertex (2, 3): the bridge must leave the hole outward and go
+  // to another corner, not fall back to the nearest one.
+  const Loops loops = {{{0.5, 3.5, 1.5}, {0.5, 3.5, 4}, {3.5, 3.5, 4}, {3.5, 3.5, 1.5}},
+                       {{2.5, 3.5, 2}, {3, 3.5, 2}, {3, 3.5, 2.5}, {2.5, 3.5, 2.5}}};
+  const auto tris = io::triangulate_polygon(loops, {0, 1, 0});
+  ASSERT_EQ(tris.size(), 8u - 2 + 2);
+  const auto uv = [&](std::uint32_t i) {
+    const Vec3 p = loops[i / 4][i % 4];
+    return io::Point2{p.z, p.x};
+  };
+  double area = 0;
+  for (const auto& t : tris) {
+    const io::Point2 a = uv(t[0]), b = uv(t[1]), c = uv(t[2]);
+    EXPECT_EQ(io::orient2d(a, b, c), 1);
+    area += ((b.u - a.u) * (c.v - a.v) - (b.v - a.v) * (c.u - a.u)) / 2;
+    for (std::uint32_t h = 4; h < 8; ++h) {  // no hole corner inside a triangle
+      const io::Point2 q = uv(h);
+      if (q == a || q == b || q == c) continue;
+      EXPECT_FALSE(io::orient2d(a, b, q) >= 0 && io::orient2d(b, c, q) >= 0 &&
+                   io::orient2d(c, a, q) >= 0)
+          << t[0] << " " << t[1] << " " << t[2] << " holds " << h;
+    }
+  }
+  EXPECT_EQ(area, 2.5 * 3 - 0.5 * 0.5);
+}
+
+// Property test: seeded random polygons with holes on an integer grid (every
+// product below is a small integer, so double arithmetic is exact), checked to be
+// tiled exactly by their triangles.
+class TilingCheck {
+ public:
+  using Loop = std::vector<io::Point2>;
+  explicit TilingCheck(std::vector<Loop> loops) : loops_(std::move(loops)) {}
+
+  // Why the triangles fail to tile the polygon, or empty.
+  std::string failure() const {
+    Loops in;
+    std::vector<io::Point2> all;
+    for (const Loop& l : loops_) {
+      in.emplace_back();
+      for (io::Point2 p : l) in.back().push_back({p.u, p.v, 0});
+      all.insert(all.end(), l.begin(), l.end());
+    }
+    const auto tris = io::triangulate_polygon(in, {0, 0, 1});
+    std::vector<bool> used(all.size(), false);
+    double twice_area = 0;
+    for (std::size_t i = 0; i < tris.size(); ++i) {
+      const auto& t = tris[i];
+      const io::Point2 a = all[t[0]], b = all[t[1]], c = all[t[2]];
+      if (io::orient2d(a, b, c) != 1) return "triangle " + name(t) + " not counterclockwise";
+      twice_area += twice_signed_area({a, b, c});
+      for (std::uint32_t k : t) used[k] = true;
+      if (const std::string why = meets_boundary({a, b, c}); !why.empty())
+        return "triangle " + name(t) + ": " + why;
+      if (!in_region({a.u + b.u + c.u, a.v + b.v + c.v}, 3))
+        return "triangle " + name(t) + " outside the polygon";
+      for (std::size_t j = 0; j < i; ++j)
+        if (interiors_meet({a, b, c}, {all[tris[j][0]], all[tris[j][1]], all[tris[j][2]]}))
+          return "triangles " + name(t) + " and " + name(tris[j]) + " overlap";
+    }
+    for (std::size_t k = 0; k < used.size(); ++k)
+      if (!used[k]) return "vertex " + std::to_string(k) + " unused";
+    double polygon = std::fabs(twice_signed_area(loops_[0]));
+    for (std::size_t l = 1; l < loops_.size(); ++l)
+      polygon -= std::fabs(twice_signed_area(loops_[l]));
+    if (twice_area != polygon)
+      return "area " + std::to_string(twice_area / 2) + " != " + std::to_string(polygon / 2);
+    return "";
+  }
+
+  // The loops form a polygon with holes: boundaries meet only at shared vertices
+  // (no edge touches another except at a common end, no two edges overlap), holes
+  // lie inside the outer loop and outside each other.
+  bool valid() const {
+    for (std::size_t a = 0; a < loops_.size(); ++a) {
+      if (twice_signed_area(loops_[a]) == 0) return false;
+      for (std::size_t b = a + 1; b < loops_.size(); ++b) {
+        if (!boundaries_meet_at_vertices(loops_[a], loops_[b])) return false;
+        // Hole b inside the outer loop, outside hole a; loop a outside hole b.
+        const int inside_a = a == 0 ? 1 : 0;
+        for (io::Point2 p : loops_[b])
+          if (!has(loops_[a], p) && winding(loops_[a], p, 1) != inside_a) return false;
+        for (io::Point2 p : loops_[a])
+          if (!has(loops_[b], p) && winding(loops_[b], p, 1) != 0) return false;
+        if (winding(loops_[a], vertex_sum(loops_[b]), double(loops_[b].size())) != inside_a)
+          return false;
+        if (a > 0 && winding(loops_[b], vertex_sum(loops_[a]), double(loops_[a].size())) != 0)
+          return false;
+      }
+    }
+    return true;
+  }
+
+  // Some loops share a vertex.
+  bool touching() const {
+    for (std::size_t a = 0; a < loops_.size(); ++a)
+      for (std::size_t b = a + 1; b < loops_.size(); ++b)
+        for (io::Point2 p : loops_[a])
+          if (has(loops_[b], p)) return true;
+    return false;
+  }
+
+  std::string describe() const {
+    std::ostringstream out;
+    for (const Loop& l : loops_) {
+      out << "{";
+      for (io::Point2 p : l) out << "(" << p.u << "," << p.v << ")";
+      out << "} ";
+    }
+    return out.str();
+  }
+
+ private:
+  static std::string name(const std::array<std::uint32_t, 3>& t) {
+    return "(" + std::to_string(t[0]) + " " + std::to_string(t[1]) + " " + std::to_string(t[2]) +
+           ")";
+  }
+  static double twice_signed_area(const Loop& l) {
+    double a = 0;
+    for (std::size_t i = 0; i < l.size(); ++i) {
+      const io::Point2 s = l[i], t = l[(i + 1) % l.size()];
+      a += s.u * t.v - t.u * s.v;
+    }
+    return a;
+  }
+  static bool has(const Loop& l, io::Point2 p) {
+    return std::find(l.begin(), l.end(), p) != l.end();
+  }
+  // n times the vertex centroid of an n-gon (inside it when it is convex).
+  static io::Point2 vertex_sum(const Loop& l) {
+    io::Point2 s;
+    for (io::Point2 p : l) s = {s.u + p.u, s.v + p.v};
+    return s;
+  }
+  // Winding number about the point p / scale, for p off the loop.
+  static int winding(const Loop& l, io::Point2 p, double scale) {
+    int w = 0;
+    for (std::size_t i = 0; i < l.size(); ++i) {
+      const io::Point2 s{l[i].u * scale, l[i].v * scale};
+      const io::Point2 t{l[(i + 1) % l.size()].u * scale, l[(i + 1) % l.size()].v * scale};
+      if (s.v <= p.v && p.v < t.v && io::orient2d(s, t, p) > 0) ++w;
+      if (t.v <= p.v && p.v < s.v && io::orient2d(s, t, p) < 0) --w;
+    }
+    return w;
+  }
+  static bool on_segment(io::Point2 a, io::Point2 b, io::Point2 p) {  // closed, exact
+    return io::orient2d(a, b, p) == 0 && std::min(a.u, b.u) <= p.u && p.u <= std::max(a.u, b.u) &&
+           std::min(a.v, b.v) <= p.v && p.v <= std::max(a.v, b.v);
+  }
+  static bool proper_cross(io::Point2 a, io::Point2 b, io::Point2 c, io::Point2 d) {
+    return io::orient2d(a, b, c) * io::orient2d(a, b, d) < 0 &&
+           io::orient2d(c, d, a) * io::orient2d(c, d, b) < 0;
+  }
+  static bool boundaries_meet_at_vertices(const Loop& x, const Loop& y) {
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      const io::Point2 a = x[i], b = x[(i + 1) % x.size()];
+      for (std::size_t j = 0; j < y.size(); ++j) {
+        const io::Point2 c = y[j], d = y[(j + 1) % y.size()];
+        if (proper_cross(a, b, c, d)) return false;
+        // An end of one edge on the other, other than at a shared end.
+        if ((c != a && c != b && on_segment(a, b, c)) ||
+            (d != a && d != b && on_segment(a, b, d)) ||
+            (a != c && a != d && on_segment(c, d, a)) || (b != c && b != d && on_segment(c, d, b)))
+          return false;
+        if ((a == c && b == d) || (a == d && b == c)) return false;
+      }
+    }
+    return true;
+  }
+  // The open triangle meets no loop: no loop vertex in the closed triangle other
+  // than at its corners, no loop edge crossing one of its sides.
+  std::string meets_boundary(const Loop& t) const {
+    for (const Loop& l : loops_) {
+      for (std::size_t i = 0; i < l.size(); ++i) {
+        const io::Point2 p = l[i], q = l[(i + 1) % l.size()];
+        if (!has(t, p) && io::orient2d(t[0], t[1], p) >= 0 && io::orient2d(t[1], t[2], p) >= 0 &&
+            io::orient2d(t[2], t[0], p) >= 0)
+          return "holds a loop vertex";
+        for (int s = 0; s < 3; ++s)
+          if (proper_cross(t[s], t[(s + 1) % 3], p, q)) return "crosses a loop edge";
+      }
+    }
+    return "";
+  }
+  bool in_region(io::Point2 p, double scale) const {
+    if (winding(loops_[0], p, scale) == 0) return false;
+    for (std::size_t l = 1; l < loops_.size(); ++l)
+      if (winding(loops_[l], p, scale) != 0) return false;
+    return true;
+  }
+  // Two counterclockwise triangles share interior points unless a side of one has
+  // the other on its closed outer side (separating axis).
+  static bool interiors_meet(const Loop& x, const Loop& y) {
+    for (const auto& [s, t] : {std::pair{&x, &y}, std::pair{&y, &x}})
+      for (int e = 0; e < 3; ++e) {
+        const io::Point2 a = (*s)[e], b = (*s)[(e + 1) % 3];
+        if (std::all_of(t->begin(), t->end(),
+                        [&](io::Point2 p) { return io::orient2d(a, b, p) <= 0; }))
+          return false;
+      }
+    return true;
+  }
+
+  std::vector<Loop> loops_;
+};
+
+class RandomPolygons {
+ public:
+  using Loop = TilingCheck::Loop;
+  explicit RandomPolygons(std::uint32_t seed) : rng_(seed) {}
+
+  // A rectangle with a vertex at every grid point of its sides, or at its corners
+  // only, and up to `holes` holes: rectangles, diamonds and triangles on the grid,
+  // free to touch the outer loop and each other at vertices.
+  std::vector<Loop> holed_rectangle(int holes) {
+    const int w = uniform(3, 9), h = uniform(3, 9);
+    Loop outer;
+    const bool dense = uniform(0, 1) == 1;
+    const auto side = [&](io::Point2 from, double du, double dv, int steps) {
+      for (int i = 0; i < steps; ++i)
+        if (dense || i == 0) outer.push_back({from.u + du * i, from.v + dv * i});
+    };
+    side({0, 0}, 1, 0, w);
+    side({double(w), 0}, 0, 1, h);
+    side({double(w), double(h)}, -1, 0, w);
+    side({0, double(h)}, 0, -1, h);
+    return with_holes(std::move(outer), holes, w, h);
+  }
+
+  // A polygon star-shaped about the origin (convex or not) with up to `holes` holes.
+  std::vector<Loop> star(int holes) {
+    for (;;) {
+      Loop outer;
+      const int n = uniform(3, 12);
+      for (int i = 0; i < n; ++i) outer.push_back({double(uniform(-6, 6)), double(uniform(-6, 6))});
+      const auto upper = [](io::Point2 p) { return p.v > 0 || (p.v == 0 && p.u > 0); };
+      std::sort(outer.begin(), outer.end(), [&](io::Point2 a, io::Point2 b) {
+        if (upper(a) != upper(b)) return upper(a);
+        return io::orient2d({0, 0}, a, b) > 0;
+      });
+      bool ok = true;
+      for (std::size_t i = 0; i < outer.size(); ++i)
+        ok = ok && io::orient2d(outer[i], outer[(i + 1) % outer.size()], {0, 0}) > 0;
+      if (ok) return with_holes(std::move(outer), holes, -6, -6, 6, 6);
+    }
+  }
+
+ private:
+  int uniform(int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng_); }
+
+  std::vector<Loop> with_holes(Loop outer, int holes, int w, int h) {
+    return with_holes(std::move(outer), holes, 0, 0, w, h);
+  }
+  std::vector<Loop> with_holes(Loop outer, int holes, int u0, int v0, int u1, int v1) {
+    std::vector<Loop> loops = {std::move(outer)};
+    for (int tries = 0; tries < 60 && int(loops.size()) <= holes; ++tries) {
+      loops.push_back(hole(u0, v0, u1, v1));
+      if (!TilingCheck(loops).valid()) loops.pop_back();
+    }
+    return loops;
+  }
+  Loop hole(int u0, int v0, int u1, int v1) {
+    const auto at = [&](int du, int dv) {
+      return io::Point2{double(uniform(u0, u1 - du)), double(uniform(v0, v1 - dv))};
+    };
+    Loop l;
+    switch (uniform(0, 2)) {
+      case 0: {
+        const int du = uniform(1, 3), dv = uniform(1, 3);
+        const io::Point2 p = at(du, dv);
+        l = {p, {p.u + du, p.v}, {p.u + du, p.v + dv}, {p.u, p.v + dv}};
+        break;
+      }
+      case 1: {
+        const int r = uniform(1, std::min({2, (u1 - u0) / 2, (v1 - v0) / 2}));
+        const io::Point2 p = at(2 * r, 2 * r);
+        l = {{p.u + r, p.v}, {p.u + 2 * r, p.v + r}, {p.u + r, p.v + 2 * r}, {p.u, p.v + r}};
+        break;
+      }
+      default:
+        l = {at(0, 0), at(0, 0), at(0, 0)};
+    }
+    if (uniform(0, 1)) std::reverse(l.begin(), l.end());
+    return l;
+  }
+
+  std::mt19937 rng_;
+};
+
+TEST(TriangulateProperty, RandomPolygonsWithHolesAreTiledExactly) {
+  constexpr std::uint32_t kSeeds = 3000;
+  int holes = 0, cases = 0, touching = 0;
+  for (std::uint32_t seed = 1; seed <= kSeeds; ++seed) {
+    RandomPolygons gen(seed);
+    for (const auto& loops :
+         {gen.holed_rectangle(1 + int(seed % 4)), gen.star(0), gen.star(int(seed % 3))}) {
+      const TilingCheck check(loops);
+      ASSERT_TRUE(check.valid()) << "seed " << seed << ": " << check.describe();
+      const std::string why = check.failure();
+      ASSERT_TRUE(why.empty()) << "seed " << seed << ": " << why << "\n" << check.describe();
+      holes += int(loops.size()) - 1;
+      touching += check.touching() ? 1 : 0;
+      ++cases;
+    }
+  }
+  std::printf("%d polygons, %d holes, %d with loops touching at a vertex\n", cases, holes,
+              touching);
 }
 
 // admesh (Debian package admesh) checks an STL: no disconnected facets, no
