@@ -664,6 +664,7 @@ void Arrangement::add_pair(std::uint32_t t, std::uint32_t b) {
       auto& list = lpi_ids_[ordered(d.a, d.b)];
       list.pop_back();
       if (list.empty()) lpi_ids_.erase(ordered(d.a, d.b));
+      exact3.erase(static_cast<std::uint32_t>(pos.size() + points.size() - 1));  // the id is reused
       points.pop_back();
       h3f.pop_back();
       h2f.pop_back();
