@@ -30,7 +30,8 @@ class Row {
 };
 using RowFn = std::function<void(const Row&)>;
 
-// Receives the values of one row of a bulk insert, in column order.
+// Receives the values of one row of a bulk insert, in column order. Strings must
+// outlive the bulk_insert call (they are sent without a copy).
 class RowWriter {
  public:
   virtual ~RowWriter() = default;
@@ -48,10 +49,37 @@ class Connection {
   virtual std::string backend() const = 0;
   // The column type of an auto-numbered primary key.
   virtual std::string serial_primary_key() const = 0;
+  // What ends CREATE TABLE for a table clustered on its primary key (SQLite:
+  // WITHOUT ROWID, so rows live in key order in one B-tree; PostgreSQL: nothing).
+  virtual std::string clustered() const = 0;
+  // The DDL of the spatial index tables face_tiles and volume_boxes
+  // (docs/database.md): SQLite R*Tree virtual tables; PostgreSQL tables with a
+  // GiST index on a cube (the cube extension).
+  virtual std::vector<std::string> spatial_schema() const = 0;
+  // An indexed test that the spatial index row `alias` (face_tiles or
+  // volume_boxes) meets the box in parameters $p ... $p+5 (min x y z, max x y z).
+  // SQLite's R*Tree holds 32-bit floats rounded outwards, so the test may keep a
+  // little more than the exact one, which the caller adds.
+  virtual std::string overlaps(const std::string& alias, int p) const = 0;
+  // A subquery giving the integers of a key-set parameter (key_set below) as
+  // one column: "SELECT value FROM json_each($N)" or "SELECT unnest($N::bigint[])".
+  virtual std::string key_set_query(int param) const = 0;
+  // The value of a key-set parameter holding `keys`.
+  virtual Value key_set(const std::vector<std::uint32_t>& keys) const = 0;
 
   virtual Status exec(const std::string& sql, const std::vector<Value>& params = {}) = 0;
   virtual Status select(const std::string& sql, const std::vector<Value>& params,
                         const RowFn& fn) = 0;
+  // A select of the store's own SQL (never user text) whose parameters are all
+  // integers, for reading many rows: PostgreSQL streams it with COPY ... TO STDOUT
+  // (FORMAT binary), which takes no parameters, so the integers are written into
+  // the statement; SQLite runs select().
+  virtual Status bulk_select(const std::string& sql, const std::vector<std::int64_t>& params,
+                             const RowFn& fn) = 0;
+  // A select holding user SQL (a condition): refused unless it is one statement
+  // that cannot write. Inside a read transaction.
+  virtual Status untrusted_select(const std::string& sql, const std::vector<Value>& params,
+                                  const RowFn& fn) = 0;
 
   // A write transaction holding the lock for `lock_name` (SQLite: the database
   // write lock; PostgreSQL: a transaction advisory lock on the name's hash).

@@ -30,13 +30,22 @@ ModelRows to_rows(const Model& m) {
   ModelRows r;
   static_cast<Snapshot&>(r) = snapshot(m);
   r.planes.reserve(r.faces.size());
+  r.boxes.reserve(r.faces.size());
   for (FaceId f : m.faces()) {
     Vec3 area;
+    const Vec3 first = m.position(m.loop_vertices(m.outer_loop(f)).front());
+    QueryBox box{first, first};
     for (LoopId l = m.outer_loop(f); l.is_valid(); l = m.next_loop(l)) {
-      area = area + newell(m.loop_points(l));
+      const std::vector<Vec3> pts = m.loop_points(l);
+      area = area + newell(pts);
+      for (const Vec3& p : pts) {
+        box.min = {std::min(box.min.x, p.x), std::min(box.min.y, p.y), std::min(box.min.z, p.z)};
+        box.max = {std::max(box.max.x, p.x), std::max(box.max.y, p.y), std::max(box.max.z, p.z)};
+      }
     }
     const Vec3 n = normalized(area);
-    r.planes.push_back({n, -dot(n, m.position(m.loop_vertices(m.outer_loop(f)).front()))});
+    r.planes.push_back({n, -dot(n, first)});
+    r.boxes.push_back(box);
   }
   r.edge_uses.reserve(r.edges.size());
   for (EdgeId e : m.edges()) r.edge_uses.push_back(static_cast<std::uint32_t>(m.use_count(e)));

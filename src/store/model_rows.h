@@ -24,6 +24,7 @@ struct ModelRows : Snapshot {
     double d = 0;
   };
   std::vector<Plane> planes;             // per face
+  std::vector<QueryBox> boxes;           // per face: the box of its loops' points
   std::vector<std::uint32_t> edge_uses;  // per edge
 
   std::uint64_t row_count() const {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cstring>
 #include <ctime>
 #include <map>
 
@@ -13,10 +14,14 @@ namespace cellforge::store {
 
 namespace {
 
-constexpr int kSchemaVersion = 1;
+constexpr int kSchemaVersion = 2;
 
-// {serial} becomes the backend's auto-numbered primary key type. Keep in step
-// with docs/database.md.
+// Faces per entry of the face_tiles spatial index: a tile is a run of
+// consecutive face keys, indexed by the box of their boxes.
+constexpr std::uint32_t kTileFaces = 64;
+
+// {serial} becomes the backend's auto-numbered primary key type, {clustered} what
+// keeps a table's rows in primary-key order. Keep in step with docs/database.md.
 constexpr const char* kSchema[] = {
     R"(CREATE TABLE objects (
   id {serial},
@@ -40,31 +45,31 @@ constexpr const char* kSchema[] = {
   object_id BIGINT NOT NULL,
   ord INTEGER NOT NULL,
   volume_name TEXT NOT NULL,
-  PRIMARY KEY (object_id, ord)))",
+  PRIMARY KEY (object_id, ord)){clustered})",
     R"(CREATE INDEX object_volumes_by_name ON object_volumes (volume_name))",
     R"(CREATE TABLE model_groups (
   volume_id BIGINT NOT NULL,
   group_key INTEGER NOT NULL,
   name TEXT NOT NULL,
-  PRIMARY KEY (volume_id, group_key)))",
+  PRIMARY KEY (volume_id, group_key)){clustered})",
     R"(CREATE TABLE parameters (
   volume_id BIGINT NOT NULL,
   group_key INTEGER NOT NULL,
   ord INTEGER NOT NULL,
   name TEXT NOT NULL,
   value TEXT NOT NULL,
-  PRIMARY KEY (volume_id, group_key, ord)))",
+  PRIMARY KEY (volume_id, group_key, ord)){clustered})",
     R"(CREATE TABLE cells (
   volume_id BIGINT NOT NULL,
   cell_key INTEGER NOT NULL,
   group_key INTEGER NOT NULL,
-  PRIMARY KEY (volume_id, cell_key)))",
+  PRIMARY KEY (volume_id, cell_key)){clustered})",
     R"(CREATE TABLE vertices (
   volume_id BIGINT NOT NULL,
   vertex_key INTEGER NOT NULL,
   x DOUBLE PRECISION NOT NULL, y DOUBLE PRECISION NOT NULL, z DOUBLE PRECISION NOT NULL,
   group_key INTEGER NOT NULL,
-  PRIMARY KEY (volume_id, vertex_key)))",
+  PRIMARY KEY (volume_id, vertex_key)){clustered})",
     R"(CREATE TABLE edges (
   volume_id BIGINT NOT NULL,
   edge_key INTEGER NOT NULL,
@@ -72,7 +77,7 @@ constexpr const char* kSchema[] = {
   end_vertex INTEGER NOT NULL,
   edge_type INTEGER NOT NULL,
   uses INTEGER NOT NULL,
-  PRIMARY KEY (volume_id, edge_key)))",
+  PRIMARY KEY (volume_id, edge_key)){clustered})",
     R"(CREATE TABLE surfaces (
   volume_id BIGINT NOT NULL,
   surface_key INTEGER NOT NULL,
@@ -81,7 +86,7 @@ constexpr const char* kSchema[] = {
   ax DOUBLE PRECISION NOT NULL, ay DOUBLE PRECISION NOT NULL, az DOUBLE PRECISION NOT NULL,
   radius DOUBLE PRECISION NOT NULL, radius2 DOUBLE PRECISION NOT NULL,
   height DOUBLE PRECISION NOT NULL, segments INTEGER NOT NULL,
-  PRIMARY KEY (volume_id, surface_key)))",
+  PRIMARY KEY (volume_id, surface_key)){clustered})",
     R"(CREATE TABLE faces (
   volume_id BIGINT NOT NULL,
   face_key INTEGER NOT NULL,
@@ -91,7 +96,9 @@ constexpr const char* kSchema[] = {
   surface_key INTEGER,
   nx DOUBLE PRECISION NOT NULL, ny DOUBLE PRECISION NOT NULL, nz DOUBLE PRECISION NOT NULL,
   d DOUBLE PRECISION NOT NULL,
-  PRIMARY KEY (volume_id, face_key)))",
+  min_x DOUBLE PRECISION NOT NULL, min_y DOUBLE PRECISION NOT NULL, min_z DOUBLE PRECISION NOT NULL,
+  max_x DOUBLE PRECISION NOT NULL, max_y DOUBLE PRECISION NOT NULL, max_z DOUBLE PRECISION NOT NULL,
+  PRIMARY KEY (volume_id, face_key)){clustered})",
     R"(CREATE TABLE loops (
   volume_id BIGINT NOT NULL,
   loop_key INTEGER NOT NULL,
@@ -99,7 +106,7 @@ constexpr const char* kSchema[] = {
   ord INTEGER NOT NULL,
   kind TEXT NOT NULL,
   point_vertex INTEGER,
-  PRIMARY KEY (volume_id, loop_key)))",
+  PRIMARY KEY (volume_id, loop_key)){clustered})",
     R"(CREATE TABLE loop_edges (
   volume_id BIGINT NOT NULL,
   loop_key INTEGER NOT NULL,
@@ -107,7 +114,7 @@ constexpr const char* kSchema[] = {
   edge_key INTEGER NOT NULL,
   reversed INTEGER NOT NULL,
   radial_ord INTEGER NOT NULL,
-  PRIMARY KEY (volume_id, loop_key, ord)))",
+  PRIMARY KEY (volume_id, loop_key, ord)){clustered})",
     R"(CREATE INDEX loop_edges_by_edge ON loop_edges (volume_id, edge_key))",
     R"(CREATE VIEW latest_volumes AS
 SELECT * FROM volumes v
@@ -246,6 +253,52 @@ class SqlStore final : public Store {
     return to_model(rows);
   }
 
+  Result<Model> get_faces_where(const std::string& name, const std::string& condition,
+                                int version) override {
+    ModelRows rows;
+    Status s = read(name, version,
+                    [&](std::int64_t id) { return read_face_rows(id, condition, rows); });
+    if (!s) return s.error();
+    return to_model(rows);
+  }
+
+  Result<std::vector<std::uint32_t>> faces_in_box(const std::string& name, const QueryBox& box,
+                                                  int version) override {
+    std::vector<std::uint32_t> out;
+    Status s = read(name, version, [&](std::int64_t id) {
+      std::vector<Value> p{id};
+      for (double c : {box.min.x, box.min.y, box.min.z, box.max.x, box.max.y, box.max.z}) {
+        p.emplace_back(c);
+      }
+      // The tiles first (CROSS JOIN keeps that order in SQLite), then each face.
+      return db_->select(
+          "SELECT f.face_key FROM face_tiles t CROSS JOIN faces f WHERE t.volume_id = $1 AND " +
+              db_->overlaps("t", 2) +
+              " AND f.volume_id = t.volume_id AND f.face_key BETWEEN t.first_face AND t.last_face "
+              "AND " + box_meets("f", 2) + " ORDER BY f.face_key",
+          p, [&](const Row& r) { out.push_back(key(r, 0)); });
+    });
+    if (!s) return s.error();
+    return out;
+  }
+
+  Result<std::vector<VolumeInfo>> volumes_in_box(const QueryBox& box) override {
+    std::vector<Value> p;
+    for (double c : {box.min.x, box.min.y, box.min.z, box.max.x, box.max.y, box.max.z}) {
+      p.emplace_back(c);
+    }
+    std::string columns;
+    for (const char* c = kVolumeColumns; *c;) {  // "id, name, ..." as "v.id, v.name, ..."
+      const char* end = std::strchr(c, ',');
+      const std::string column(c, end ? end : c + std::strlen(c));
+      columns += (columns.empty() ? "v." : ", v.") + column;
+      c = end ? end + 2 : c + std::strlen(c);
+    }
+    return volumes("SELECT " + columns + " FROM volume_boxes b CROSS JOIN volumes v WHERE " +
+                       db_->overlaps("b", 1) + " AND v.id = b.id AND " + box_meets("v", 1),
+                   p);
+  }
+
   Result<std::vector<StoredPoint>> get_points(const std::string& name, int version) override {
     std::vector<StoredPoint> out;
     Status s = read(name, version, [&](std::int64_t id) {
@@ -346,6 +399,13 @@ class SqlStore final : public Store {
         if (s) s = db_->exec(std::string("DELETE FROM ") + table + " WHERE volume_id = $1", {id});
       }
     }
+    for (std::int64_t id : ids) {
+      if (s) {
+        s = db_->exec("DELETE FROM face_tiles WHERE id BETWEEN $1 AND $2",
+                      {tile_id(id, 0), tile_id(id + 1, 0) - 1});
+      }
+      if (s) s = db_->exec("DELETE FROM volume_boxes WHERE id = $1", {id});
+    }
     if (s) s = db_->exec("DELETE FROM volumes WHERE name = $1", {name});
     if (s) s = db_->exec("DELETE FROM object_volumes WHERE volume_name = $1", {name});
     if (!s) {
@@ -382,6 +442,18 @@ class SqlStore final : public Store {
  private:
   static std::uint32_t key(const Row& r, int c) { return static_cast<std::uint32_t>(r.i(c)); }
 
+  // The exact test that the box columns (min_x ... max_z) of `alias` meet the box
+  // in parameters $p ... $p+5 (min x y z, max x y z).
+  static std::string box_meets(const std::string& alias, int p) {
+    std::string out;
+    const char* axes[] = {"x", "y", "z"};
+    for (int k = 0; k < 3; ++k) {
+      out += (k ? " AND " : "") + alias + ".max_" + axes[k] + " >= $" + std::to_string(p + k) +
+             " AND " + alias + ".min_" + axes[k] + " <= $" + std::to_string(p + 3 + k);
+    }
+    return out;
+  }
+
   Status create_schema_locked() {
     if (Status s =
             db_->exec("CREATE TABLE IF NOT EXISTS cellforge_schema (version INTEGER NOT NULL)");
@@ -401,10 +473,13 @@ class SqlStore final : public Store {
       return db_error("the database has schema version " + std::to_string(version) +
                       "; this cellforge knows version " + std::to_string(kSchemaVersion));
     }
-    for (const char* ddl : kSchema) {
-      std::string sql = ddl;
-      if (const auto at = sql.find("{serial}"); at != std::string::npos) {
-        sql.replace(at, 8, db_->serial_primary_key());
+    std::vector<std::string> ddl(std::begin(kSchema), std::end(kSchema));
+    for (const std::string& spatial : db_->spatial_schema()) ddl.push_back(spatial);
+    for (std::string& sql : ddl) {
+      for (const auto& [from, to] : {std::pair<std::string, std::string>{"{serial}",
+                                                                          db_->serial_primary_key()},
+                                     {"{clustered}", db_->clustered()}}) {
+        if (const auto at = sql.find(from); at != std::string::npos) sql.replace(at, from.size(), to);
       }
       if (Status s = db_->exec(sql); !s) return s;
     }
@@ -435,7 +510,7 @@ class SqlStore final : public Store {
          info.cells,      info.groups},
         [&](const Row& r) { info.id = r.i(0); });
     if (!s) return s;
-    if (s = write_rows(info.id, rows, o.progress); !s) return s;
+    if (s = write_rows(info.id, rows, {info.bbox_min, info.bbox_max}, o.progress); !s) return s;
     if (!o.object.empty()) s = add_to_object(o.object, info.name);
     return s;
   }
@@ -465,7 +540,7 @@ class SqlStore final : public Store {
     return s;
   }
 
-  Status write_rows(std::int64_t id, const ModelRows& r,
+  Status write_rows(std::int64_t id, const ModelRows& r, const QueryBox& volume_box,
                     const std::function<void(std::uint64_t)>& progress) {
     std::uint64_t done = 0;
     auto insert = [&](const char* table, int columns, std::size_t n, const FillFn& fill) {
@@ -517,11 +592,13 @@ class SqlStore final : public Store {
       });
     }
     if (s) {
-      s = insert("faces", 10, r.faces.size(), [&](std::size_t i, RowWriter& w) {
+      s = insert("faces", 16, r.faces.size(), [&](std::size_t i, RowWriter& w) {
         const auto& f = r.faces[i];
+        const QueryBox& b = r.boxes[i];
         w.i(id), w.i(static_cast<std::int64_t>(i)), w.i(f.group), w.opt(f.front), w.opt(f.back),
             w.opt(f.surface), w.d(r.planes[i].normal.x), w.d(r.planes[i].normal.y),
-            w.d(r.planes[i].normal.z), w.d(r.planes[i].d);
+            w.d(r.planes[i].normal.z), w.d(r.planes[i].d), w.d(b.min.x), w.d(b.min.y),
+            w.d(b.min.z), w.d(b.max.x), w.d(b.max.y), w.d(b.max.z);
       });
     }
     if (s) {
@@ -538,7 +615,46 @@ class SqlStore final : public Store {
         w.i(id), w.i(u.loop), w.i(u.ord), w.i(u.edge), w.i(u.reversed ? 1 : 0), w.i(u.radial_ord);
       });
     }
+    const std::vector<QueryBox> tiles = tile_boxes(r.boxes);
+    if (s) {
+      s = insert("face_tiles", 10, tiles.size(), [&](std::size_t t, RowWriter& w) {
+        const QueryBox& b = tiles[t];
+        const auto first = static_cast<std::int64_t>(t * kTileFaces);
+        const auto last = static_cast<std::int64_t>(std::min<std::size_t>(
+                              (t + 1) * kTileFaces, r.faces.size())) -
+                          1;
+        w.i(tile_id(id, t)), w.d(b.min.x), w.d(b.max.x), w.d(b.min.y), w.d(b.max.y), w.d(b.min.z),
+            w.d(b.max.z), w.i(id), w.i(first), w.i(last);
+      });
+    }
+    if (s && !r.vertices.empty()) {  // the box of a model without points is empty
+      s = insert("volume_boxes", 7, 1, [&](std::size_t, RowWriter& w) {
+        w.i(id), w.d(volume_box.min.x), w.d(volume_box.max.x), w.d(volume_box.min.y),
+            w.d(volume_box.max.y), w.d(volume_box.min.z), w.d(volume_box.max.z);
+      });
+    }
     return s;
+  }
+
+  // The id of tile t of a stored volume in face_tiles: one range per volume.
+  static std::int64_t tile_id(std::int64_t volume_id, std::size_t t) {
+    return volume_id * (std::int64_t{1} << 32) + static_cast<std::int64_t>(t);
+  }
+
+  // The box of every kTileFaces consecutive faces.
+  static std::vector<QueryBox> tile_boxes(const std::vector<QueryBox>& faces) {
+    std::vector<QueryBox> tiles;
+    for (std::size_t i = 0; i < faces.size(); ++i) {
+      const QueryBox& b = faces[i];
+      if (i % kTileFaces == 0) {
+        tiles.push_back(b);
+        continue;
+      }
+      QueryBox& t = tiles.back();
+      t.min = {std::min(t.min.x, b.min.x), std::min(t.min.y, b.min.y), std::min(t.min.z, b.min.z)};
+      t.max = {std::max(t.max.x, b.max.x), std::max(t.max.y, b.max.y), std::max(t.max.z, b.max.z)};
+    }
+    return tiles;
   }
 
   // Runs `body` on the id of (name, version) inside one read transaction.
@@ -567,8 +683,58 @@ class SqlStore final : public Store {
   }
 
   Status read_rows(std::int64_t id, ModelRows& r) {
-    const std::vector<Value> p{id};
+    const std::vector<std::int64_t> p{id};
     auto opt = [](const Row& row, int c) { return row.is_null(c) ? kNone : row.i(c); };
+    Status s = read_small_tables(id, r);
+    if (s) {
+      s = db_->bulk_select("SELECT group_key FROM cells WHERE volume_id = $1 ORDER BY cell_key", p,
+                           [&](const Row& row) { r.cells.push_back(key(row, 0)); });
+    }
+    if (s) {
+      s = db_->bulk_select(
+          "SELECT x, y, z, group_key FROM vertices WHERE volume_id = $1 ORDER BY vertex_key", p,
+          [&](const Row& row) {
+            r.vertices.push_back({{row.d(0), row.d(1), row.d(2)}, key(row, 3)});
+          });
+    }
+    if (s) {
+      s = db_->bulk_select(
+          "SELECT start_vertex, end_vertex, uses FROM edges WHERE volume_id = $1 ORDER BY edge_key",
+          p, [&](const Row& row) {
+            r.edges.push_back({key(row, 0), key(row, 1)});
+            r.edge_uses.push_back(key(row, 2));
+          });
+    }
+    if (s) {
+      s = db_->bulk_select(
+          "SELECT group_key, front_cell, back_cell, surface_key, nx, ny, nz, d FROM faces "
+          "WHERE volume_id = $1 ORDER BY face_key",
+          p, [&](const Row& row) {
+            r.faces.push_back({key(row, 0), opt(row, 1), opt(row, 2), opt(row, 3)});
+            r.planes.push_back({{row.d(4), row.d(5), row.d(6)}, row.d(7)});
+          });
+    }
+    if (s) {
+      s = db_->bulk_select(
+          "SELECT face_key, ord, point_vertex FROM loops WHERE volume_id = $1 ORDER BY loop_key", p,
+          [&](const Row& row) {
+            r.loops.push_back({key(row, 0), key(row, 1), opt(row, 2)});
+          });
+    }
+    if (s) {
+      s = db_->bulk_select(
+          "SELECT loop_key, ord, edge_key, reversed, radial_ord FROM loop_edges "
+          "WHERE volume_id = $1 ORDER BY loop_key, ord",
+          p, [&](const Row& row) {
+            r.uses.push_back({key(row, 0), key(row, 1), key(row, 2), row.i(3) != 0, key(row, 4)});
+          });
+    }
+    return s;
+  }
+
+  // Groups, parameters and surfaces: what a partial load keeps whole.
+  Status read_small_tables(std::int64_t id, ModelRows& r) {
+    const std::vector<Value> p{id};
     Status s = db_->select("SELECT name FROM model_groups WHERE volume_id = $1 ORDER BY group_key",
                            p, [&](const Row& row) { r.groups.push_back({row.s(0)}); });
     if (s) {
@@ -577,25 +743,6 @@ class SqlStore final : public Store {
           "ORDER BY group_key, ord",
           p, [&](const Row& row) {
             r.parameters.push_back({key(row, 0), row.s(1), row.s(2)});
-          });
-    }
-    if (s) {
-      s = db_->select("SELECT group_key FROM cells WHERE volume_id = $1 ORDER BY cell_key", p,
-                      [&](const Row& row) { r.cells.push_back(key(row, 0)); });
-    }
-    if (s) {
-      s = db_->select(
-          "SELECT x, y, z, group_key FROM vertices WHERE volume_id = $1 ORDER BY vertex_key", p,
-          [&](const Row& row) {
-            r.vertices.push_back({{row.d(0), row.d(1), row.d(2)}, key(row, 3)});
-          });
-    }
-    if (s) {
-      s = db_->select(
-          "SELECT start_vertex, end_vertex, uses FROM edges WHERE volume_id = $1 ORDER BY edge_key",
-          p, [&](const Row& row) {
-            r.edges.push_back({key(row, 0), key(row, 1)});
-            r.edge_uses.push_back(key(row, 2));
           });
     }
     if (s) {
@@ -612,31 +759,89 @@ class SqlStore final : public Store {
                                   static_cast<int>(row.i(10))});
           });
     }
-    if (s) {
-      s = db_->select(
-          "SELECT group_key, front_cell, back_cell, surface_key, nx, ny, nz, d FROM faces "
-          "WHERE volume_id = $1 ORDER BY face_key",
-          p, [&](const Row& row) {
-            r.faces.push_back({key(row, 0), opt(row, 1), opt(row, 2), opt(row, 3)});
-            r.planes.push_back({{row.d(4), row.d(5), row.d(6)}, row.d(7)});
-          });
-    }
-    if (s) {
-      s = db_->select(
-          "SELECT face_key, ord, point_vertex FROM loops WHERE volume_id = $1 ORDER BY loop_key", p,
-          [&](const Row& row) {
-            r.loops.push_back({key(row, 0), key(row, 1), opt(row, 2)});
-          });
-    }
-    if (s) {
-      s = db_->select(
-          "SELECT loop_key, ord, edge_key, reversed, radial_ord FROM loop_edges "
-          "WHERE volume_id = $1 ORDER BY loop_key, ord",
-          p, [&](const Row& row) {
-            r.uses.push_back({key(row, 0), key(row, 1), key(row, 2), row.i(3) != 0, key(row, 4)});
-          });
-    }
     return s;
+  }
+
+  // The rows of the faces named by `condition` and of what they use, renumbered
+  // densely as a sheet model: no cells, and the stored radial order among the
+  // uses kept (restore sorts each edge's uses by radial_ord).
+  Status read_face_rows(std::int64_t id, const std::string& condition, ModelRows& r) {
+    auto opt = [](const Row& row, int c) { return row.is_null(c) ? kNone : row.i(c); };
+    std::vector<std::uint32_t> face_keys;
+    Status s = db_->untrusted_select(
+        "SELECT f.face_key, f.group_key, f.surface_key FROM faces f JOIN volumes v ON v.id = "
+        "f.volume_id WHERE f.volume_id = $1 AND (" +
+            condition + ") ORDER BY f.face_key",
+        {id}, [&](const Row& row) {
+          face_keys.push_back(key(row, 0));
+          r.faces.push_back({key(row, 1), kNone, kNone, opt(row, 2)});
+        });
+    if (s) s = read_small_tables(id, r);
+    const auto in_set = [&](const char* column, int param) {
+      return std::string(" AND ") + column + " IN (" + db_->key_set_query(param) + ")";
+    };
+    std::vector<std::uint32_t> loop_keys;
+    std::vector<std::int64_t> point_vertices;
+    if (s) {
+      s = db_->select("SELECT loop_key, face_key, ord, point_vertex FROM loops WHERE volume_id = $1" +
+                          in_set("face_key", 2) + " ORDER BY loop_key",
+                      {id, db_->key_set(face_keys)}, [&](const Row& row) {
+                        loop_keys.push_back(key(row, 0));
+                        r.loops.push_back({key(row, 1), key(row, 2), opt(row, 3)});
+                      });
+    }
+    std::vector<std::uint32_t> edge_keys;
+    if (s) {
+      s = db_->select(
+          "SELECT loop_key, ord, edge_key, reversed, radial_ord FROM loop_edges WHERE volume_id = "
+          "$1" + in_set("loop_key", 2) + " ORDER BY loop_key, ord",
+          {id, db_->key_set(loop_keys)}, [&](const Row& row) {
+            r.uses.push_back({key(row, 0), key(row, 1), key(row, 2), row.i(3) != 0, key(row, 4)});
+            edge_keys.push_back(key(row, 2));
+          });
+    }
+    std::sort(edge_keys.begin(), edge_keys.end());
+    edge_keys.erase(std::unique(edge_keys.begin(), edge_keys.end()), edge_keys.end());
+    std::vector<std::uint32_t> vertex_keys;
+    if (s) {
+      s = db_->select("SELECT start_vertex, end_vertex, uses FROM edges WHERE volume_id = $1" +
+                          in_set("edge_key", 2) + " ORDER BY edge_key",
+                      {id, db_->key_set(edge_keys)}, [&](const Row& row) {
+                        r.edges.push_back({key(row, 0), key(row, 1)});
+                        r.edge_uses.push_back(key(row, 2));
+                        vertex_keys.push_back(key(row, 0));
+                        vertex_keys.push_back(key(row, 1));
+                      });
+    }
+    for (const auto& l : r.loops) {
+      if (l.point_vertex != kNone) vertex_keys.push_back(static_cast<std::uint32_t>(l.point_vertex));
+    }
+    std::sort(vertex_keys.begin(), vertex_keys.end());
+    vertex_keys.erase(std::unique(vertex_keys.begin(), vertex_keys.end()), vertex_keys.end());
+    if (s) {
+      s = db_->select("SELECT x, y, z, group_key FROM vertices WHERE volume_id = $1" +
+                          in_set("vertex_key", 2) + " ORDER BY vertex_key",
+                      {id, db_->key_set(vertex_keys)}, [&](const Row& row) {
+                        r.vertices.push_back({{row.d(0), row.d(1), row.d(2)}, key(row, 3)});
+                      });
+    }
+    if (!s) return s;
+    // Stored keys to dense ones; a key the rows name but the set lacks is left
+    // out of range, for restore to refuse.
+    const auto renumber = [](const std::vector<std::uint32_t>& keys, std::uint32_t k) {
+      const auto at = std::lower_bound(keys.begin(), keys.end(), k);
+      return at != keys.end() && *at == k ? static_cast<std::uint32_t>(at - keys.begin())
+                                          : static_cast<std::uint32_t>(keys.size());
+    };
+    for (auto& l : r.loops) {
+      l.face = renumber(face_keys, l.face);
+      if (l.point_vertex != kNone) {
+        l.point_vertex = renumber(vertex_keys, static_cast<std::uint32_t>(l.point_vertex));
+      }
+    }
+    for (auto& u : r.uses) u.loop = renumber(loop_keys, u.loop), u.edge = renumber(edge_keys, u.edge);
+    for (auto& e : r.edges) e.start = renumber(vertex_keys, e.start), e.end = renumber(vertex_keys, e.end);
+    return Status::Ok();
   }
 
   Result<std::vector<VolumeInfo>> volumes(const std::string& sql, const std::vector<Value>& p) {

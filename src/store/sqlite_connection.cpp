@@ -52,12 +52,11 @@ class SqliteRow final : public Row {
 class SqliteWriter final : public RowWriter {
  public:
   explicit SqliteWriter(sqlite3_stmt* s) : s_(s) {}
-  void reset() { col_ = 0; }
   void null() override { sqlite3_bind_null(s_, ++col_); }
   void i(std::int64_t v) override { sqlite3_bind_int64(s_, ++col_, v); }
   void d(double v) override { sqlite3_bind_double(s_, ++col_, v); }
   void s(const std::string& v) override {
-    sqlite3_bind_text(s_, ++col_, v.data(), static_cast<int>(v.size()), SQLITE_TRANSIENT);
+    sqlite3_bind_text(s_, ++col_, v.data(), static_cast<int>(v.size()), SQLITE_STATIC);
   }
 
  private:
@@ -99,14 +98,7 @@ class SqliteConnection final : public Connection {
     if (sqlite3_prepare_v2(db_, to_sqlite(sql).c_str(), -1, &st.get(), nullptr) != SQLITE_OK) {
       return fail(db_, "prepare");
     }
-    for (std::size_t k = 0; k < params.size(); ++k) bind(st, static_cast<int>(k + 1), params[k]);
-    const SqliteRow row(st);
-    for (;;) {
-      const int rc = sqlite3_step(st);
-      if (rc == SQLITE_DONE) return Status::Ok();
-      if (rc != SQLITE_ROW) return fail(db_, "step");
-      fn(row);
-    }
+    return run(st, params, fn);
   }
 
   Status begin_write(const std::string&) override { return exec("BEGIN IMMEDIATE", {}); }
@@ -119,25 +111,86 @@ class SqliteConnection final : public Connection {
     if (!sqlite3_get_autocommit(db_)) sqlite3_exec(db_, "ROLLBACK", nullptr, nullptr, nullptr);
   }
 
+  // Rows go in as multi-row INSERTs of kBatch rows, one prepared statement re-bound
+  // per batch (and one for the remainder): far fewer steps through the VDBE.
   Status bulk_insert(const std::string& table, int columns, std::size_t rows, const FillFn& fill,
                      const std::function<void(std::uint64_t)>& progress) override {
-    std::string sql = "INSERT INTO " + table + " VALUES (";
-    for (int c = 0; c < columns; ++c) sql += c ? ", ?" : "?";
-    sql += ")";
-    Statement st;
-    if (sqlite3_prepare_v2(db_, sql.c_str(), -1, &st.get(), nullptr) != SQLITE_OK) {
-      return fail(db_, "prepare " + table);
-    }
-    SqliteWriter w(st);
-    for (std::size_t r = 0; r < rows; ++r) {
-      w.reset();
-      fill(r, w);
+    constexpr std::size_t kBatch = 64;
+    Statement full, rest;
+    std::size_t r = 0;
+    auto batch = [&](Statement& st, std::size_t n) -> Status {
+      if (!st.get() &&
+          sqlite3_prepare_v2(db_, insert_sql(table, columns, n).c_str(), -1, &st.get(), nullptr) !=
+              SQLITE_OK) {
+        return fail(db_, "prepare " + table);
+      }
+      SqliteWriter w(st);
+      for (std::size_t k = 0; k < n; ++k) fill(r + k, w);
       if (sqlite3_step(st) != SQLITE_DONE) return fail(db_, "insert into " + table);
       sqlite3_reset(st);
-      if (progress && (r + 1) % 65536 == 0) progress(r + 1);
+      r += n;
+      return Status::Ok();
+    };
+    while (rows - r >= kBatch) {
+      if (Status s = batch(full, kBatch); !s) return s;
+      if (progress && r % 65536 == 0) progress(r);
+    }
+    if (r < rows) {
+      if (Status s = batch(rest, rows - r); !s) return s;
     }
     if (progress) progress(rows);
     return Status::Ok();
+  }
+
+  Status bulk_select(const std::string& sql, const std::vector<std::int64_t>& params,
+                     const RowFn& fn) override {
+    return select(sql, std::vector<Value>(params.begin(), params.end()), fn);
+  }
+
+  Status untrusted_select(const std::string& sql, const std::vector<Value>& params,
+                          const RowFn& fn) override {
+    Statement st;
+    const std::string text = to_sqlite(sql);
+    const char* tail = nullptr;
+    if (sqlite3_prepare_v2(db_, text.c_str(), static_cast<int>(text.size()), &st.get(), &tail) !=
+        SQLITE_OK) {
+      return fail(db_, "condition");
+    }
+    if (!st.get() || (tail && std::strspn(tail, " \t\r\n;") != std::strlen(tail))) {
+      return db_error("the condition must be part of one SQL statement");
+    }
+    if (!sqlite3_stmt_readonly(st)) return db_error("the condition must not write");
+    return run(st, params, fn);
+  }
+
+  std::string clustered() const override { return " WITHOUT ROWID"; }
+  std::vector<std::string> spatial_schema() const override {
+    return {
+        "CREATE VIRTUAL TABLE face_tiles USING rtree(id, min_x, max_x, min_y, max_y, min_z, "
+        "max_z, +volume_id, +first_face, +last_face)",
+        "CREATE VIRTUAL TABLE volume_boxes USING rtree(id, min_x, max_x, min_y, max_y, min_z, "
+        "max_z)",
+    };
+  }
+  std::string overlaps(const std::string& alias, int p) const override {
+    std::string out;
+    const char* axes[] = {"x", "y", "z"};
+    for (int k = 0; k < 3; ++k) {
+      out += (k ? " AND " : "") + alias + ".max_" + axes[k] + " >= $" + std::to_string(p + k) +
+             " AND " + alias + ".min_" + axes[k] + " <= $" + std::to_string(p + 3 + k);
+    }
+    return out;
+  }
+  std::string key_set_query(int param) const override {
+    return "SELECT value FROM json_each($" + std::to_string(param) + ")";
+  }
+  Value key_set(const std::vector<std::uint32_t>& keys) const override {
+    std::string s = "[";
+    for (std::size_t k = 0; k < keys.size(); ++k) {
+      if (k) s += ',';
+      s += std::to_string(keys[k]);
+    }
+    return s + "]";
   }
 
   Result<QueryResult> read_only_query(const std::string& sql) override {
@@ -182,6 +235,26 @@ class SqliteConnection final : public Connection {
   }
 
  private:
+  static std::string insert_sql(const std::string& table, int columns, std::size_t rows) {
+    std::string one = "(";
+    for (int c = 0; c < columns; ++c) one += c ? ", ?" : "?";
+    one += ")";
+    std::string sql = "INSERT INTO " + table + " VALUES ";
+    for (std::size_t r = 0; r < rows; ++r) sql += (r ? ", " : "") + one;
+    return sql;
+  }
+
+  Status run(sqlite3_stmt* st, const std::vector<Value>& params, const RowFn& fn) {
+    for (std::size_t k = 0; k < params.size(); ++k) bind(st, static_cast<int>(k + 1), params[k]);
+    const SqliteRow row(st);
+    for (;;) {
+      const int rc = sqlite3_step(st);
+      if (rc == SQLITE_DONE) return Status::Ok();
+      if (rc != SQLITE_ROW) return fail(db_, "step");
+      fn(row);
+    }
+  }
+
   static void bind(sqlite3_stmt* st, int k, const Value& v) {
     if (const auto* i = std::get_if<std::int64_t>(&v)) {
       sqlite3_bind_int64(st, k, *i);

@@ -71,6 +71,12 @@ struct StoredFace {
   double d = 0;
 };
 
+// An axis-aligned box, closed: a face or volume box meets it when the two
+// overlap or touch on every axis.
+struct QueryBox {
+  Vec3 min, max;
+};
+
 // The answer of a read-only SQL query, values as text (nullopt for NULL).
 struct QueryResult {
   std::vector<std::string> columns;
@@ -94,6 +100,23 @@ class Store {
   virtual Result<std::vector<StoredPoint>> get_points(const std::string& name, int version = 0) = 0;
   virtual Result<std::vector<StoredEdge>> get_edges(const std::string& name, int version = 0) = 0;
   virtual Result<std::vector<StoredFace>> get_faces(const std::string& name, int version = 0) = 0;
+  // A partial load: the faces of a version that satisfy `condition`, an SQL
+  // condition on the row `f` of table faces and the row `v` of table volumes
+  // (e.g. "f.group_key = 1", or a spatial query on face_tiles, docs/database.md),
+  // with their loops, edges and vertices, as a sheet model (no 3-cells, no wires,
+  // no isolated points; every group and surface kept), validated. Edge directions,
+  // loop starts and radial order are the stored ones. The condition runs
+  // read-only; a condition that is not one read-only SQL expression is refused.
+  virtual Result<Model> get_faces_where(const std::string& name, const std::string& condition,
+                                        int version = 0) = 0;
+  // The keys of the faces of a version whose bounding boxes meet `box`, in key
+  // order: an indexed query (the face_tiles spatial index, then each face's box).
+  virtual Result<std::vector<std::uint32_t>> faces_in_box(const std::string& name,
+                                                          const QueryBox& box,
+                                                          int version = 0) = 0;
+  // Every stored version whose bounding box meets `box` (volume_boxes), by name
+  // and version.
+  virtual Result<std::vector<VolumeInfo>> volumes_in_box(const QueryBox& box) = 0;
 
   virtual Result<VolumeInfo> info(const std::string& name, int version = 0) = 0;
   // The latest version of every name, by name.
