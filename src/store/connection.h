@@ -47,8 +47,14 @@ class Connection {
  public:
   virtual ~Connection() = default;
   virtual std::string backend() const = 0;
+  // A second connection to the same database (for reading in parallel).
+  virtual Result<std::unique_ptr<Connection>> open_another() const = 0;
   // The column type of an auto-numbered primary key.
   virtual std::string serial_primary_key() const = 0;
+  // The column type of a double that must come back bit for bit (SQLite: none,
+  // because a column of REAL affinity stores an integral double as an integer and
+  // so loses the sign of -0.0; PostgreSQL: DOUBLE PRECISION).
+  virtual std::string double_type() const = 0;
   // What ends CREATE TABLE for a table clustered on its primary key (SQLite:
   // WITHOUT ROWID, so rows live in key order in one B-tree; PostgreSQL: nothing).
   virtual std::string clustered() const = 0;

@@ -14,11 +14,12 @@ namespace cellforge::store {
 
 namespace {
 
-// Newell vector of a loop: twice its vector area.
-Vec3 newell(const std::vector<Vec3>& pts) {
+// Newell vector of a loop: twice its vector area, of the points times `scale` (a
+// power of two, so that coordinates near the largest double do not overflow).
+Vec3 newell(const std::vector<Vec3>& pts, double scale) {
   Vec3 n;
   for (std::size_t i = 0; i < pts.size(); ++i) {
-    const Vec3 a = pts[i], b = pts[(i + 1) % pts.size()];
+    const Vec3 a = pts[i] * scale, b = pts[(i + 1) % pts.size()] * scale;
     n = n + Vec3{(a.y - b.y) * (a.z + b.z), (a.z - b.z) * (a.x + b.x), (a.x - b.x) * (a.y + b.y)};
   }
   return n;
@@ -32,16 +33,22 @@ ModelRows to_rows(const Model& m) {
   r.planes.reserve(r.faces.size());
   r.boxes.reserve(r.faces.size());
   for (FaceId f : m.faces()) {
-    Vec3 area;
     const Vec3 first = m.position(m.loop_vertices(m.outer_loop(f)).front());
     QueryBox box{first, first};
     for (LoopId l = m.outer_loop(f); l.is_valid(); l = m.next_loop(l)) {
-      const std::vector<Vec3> pts = m.loop_points(l);
-      area = area + newell(pts);
-      for (const Vec3& p : pts) {
+      for (const Vec3& p : m.loop_points(l)) {
         box.min = {std::min(box.min.x, p.x), std::min(box.min.y, p.y), std::min(box.min.z, p.z)};
         box.max = {std::max(box.max.x, p.x), std::max(box.max.y, p.y), std::max(box.max.z, p.z)};
       }
+    }
+    double largest = 0;
+    for (double c : {box.min.x, box.min.y, box.min.z, box.max.x, box.max.y, box.max.z}) {
+      largest = std::max(largest, std::abs(c));
+    }
+    const double scale = largest > 0 ? std::ldexp(1.0, -std::ilogb(largest)) : 1.0;
+    Vec3 area;
+    for (LoopId l = m.outer_loop(f); l.is_valid(); l = m.next_loop(l)) {
+      area = area + newell(m.loop_points(l), scale);
     }
     const Vec3 n = normalized(area);
     r.planes.push_back({n, -dot(n, first)});

@@ -6,6 +6,8 @@
 #include <cstring>
 #include <ctime>
 #include <map>
+#include <thread>
+#include <cstdlib>
 
 #include "store/connection.h"
 #include "store/model_rows.h"
@@ -21,7 +23,8 @@ constexpr int kSchemaVersion = 2;
 constexpr std::uint32_t kTileFaces = 64;
 
 // {serial} becomes the backend's auto-numbered primary key type, {clustered} what
-// keeps a table's rows in primary-key order. Keep in step with docs/database.md.
+// keeps a table's rows in primary-key order, {double} the type of a column that
+// gives back every IEEE double bit for bit. Keep in step with docs/database.md.
 constexpr const char* kSchema[] = {
     R"(CREATE TABLE objects (
   id {serial},
@@ -31,11 +34,11 @@ constexpr const char* kSchema[] = {
   name TEXT NOT NULL,
   version INTEGER NOT NULL,
   type TEXT NOT NULL,
-  cx DOUBLE PRECISION NOT NULL, cy DOUBLE PRECISION NOT NULL, cz DOUBLE PRECISION NOT NULL,
-  volume DOUBLE PRECISION NOT NULL,
-  area DOUBLE PRECISION NOT NULL,
-  min_x DOUBLE PRECISION NOT NULL, min_y DOUBLE PRECISION NOT NULL, min_z DOUBLE PRECISION NOT NULL,
-  max_x DOUBLE PRECISION NOT NULL, max_y DOUBLE PRECISION NOT NULL, max_z DOUBLE PRECISION NOT NULL,
+  cx {double} NOT NULL, cy {double} NOT NULL, cz {double} NOT NULL,
+  volume {double} NOT NULL,
+  area {double} NOT NULL,
+  min_x {double} NOT NULL, min_y {double} NOT NULL, min_z {double} NOT NULL,
+  max_x {double} NOT NULL, max_y {double} NOT NULL, max_z {double} NOT NULL,
   source TEXT NOT NULL,
   created TEXT NOT NULL,
   n_vertices BIGINT NOT NULL, n_edges BIGINT NOT NULL, n_faces BIGINT NOT NULL,
@@ -67,7 +70,7 @@ constexpr const char* kSchema[] = {
     R"(CREATE TABLE vertices (
   volume_id BIGINT NOT NULL,
   vertex_key INTEGER NOT NULL,
-  x DOUBLE PRECISION NOT NULL, y DOUBLE PRECISION NOT NULL, z DOUBLE PRECISION NOT NULL,
+  x {double} NOT NULL, y {double} NOT NULL, z {double} NOT NULL,
   group_key INTEGER NOT NULL,
   PRIMARY KEY (volume_id, vertex_key)){clustered})",
     R"(CREATE TABLE edges (
@@ -82,10 +85,10 @@ constexpr const char* kSchema[] = {
   volume_id BIGINT NOT NULL,
   surface_key INTEGER NOT NULL,
   kind TEXT NOT NULL,
-  cx DOUBLE PRECISION NOT NULL, cy DOUBLE PRECISION NOT NULL, cz DOUBLE PRECISION NOT NULL,
-  ax DOUBLE PRECISION NOT NULL, ay DOUBLE PRECISION NOT NULL, az DOUBLE PRECISION NOT NULL,
-  radius DOUBLE PRECISION NOT NULL, radius2 DOUBLE PRECISION NOT NULL,
-  height DOUBLE PRECISION NOT NULL, segments INTEGER NOT NULL,
+  cx {double} NOT NULL, cy {double} NOT NULL, cz {double} NOT NULL,
+  ax {double} NOT NULL, ay {double} NOT NULL, az {double} NOT NULL,
+  radius {double} NOT NULL, radius2 {double} NOT NULL,
+  height {double} NOT NULL, segments INTEGER NOT NULL,
   PRIMARY KEY (volume_id, surface_key)){clustered})",
     R"(CREATE TABLE faces (
   volume_id BIGINT NOT NULL,
@@ -94,10 +97,10 @@ constexpr const char* kSchema[] = {
   front_cell INTEGER,
   back_cell INTEGER,
   surface_key INTEGER,
-  nx DOUBLE PRECISION NOT NULL, ny DOUBLE PRECISION NOT NULL, nz DOUBLE PRECISION NOT NULL,
-  d DOUBLE PRECISION NOT NULL,
-  min_x DOUBLE PRECISION NOT NULL, min_y DOUBLE PRECISION NOT NULL, min_z DOUBLE PRECISION NOT NULL,
-  max_x DOUBLE PRECISION NOT NULL, max_y DOUBLE PRECISION NOT NULL, max_z DOUBLE PRECISION NOT NULL,
+  nx {double} NOT NULL, ny {double} NOT NULL, nz {double} NOT NULL,
+  d {double} NOT NULL,
+  min_x {double} NOT NULL, min_y {double} NOT NULL, min_z {double} NOT NULL,
+  max_x {double} NOT NULL, max_y {double} NOT NULL, max_z {double} NOT NULL,
   PRIMARY KEY (volume_id, face_key)){clustered})",
     R"(CREATE TABLE loops (
   volume_id BIGINT NOT NULL,
@@ -115,7 +118,6 @@ constexpr const char* kSchema[] = {
   reversed INTEGER NOT NULL,
   radial_ord INTEGER NOT NULL,
   PRIMARY KEY (volume_id, loop_key, ord)){clustered})",
-    R"(CREATE INDEX loop_edges_by_edge ON loop_edges (volume_id, edge_key))",
     R"(CREATE VIEW latest_volumes AS
 SELECT * FROM volumes v
 WHERE v.version = (SELECT MAX(w.version) FROM volumes w WHERE w.name = v.name))",
@@ -241,7 +243,9 @@ class SqlStore final : public Store {
       db_->rollback();
       return s.error();
     }
+    auto t0 = std::chrono::steady_clock::now();
     if (Status c = db_->commit(); !c) return c.error();
+    if (std::getenv("CF_TRACE")) std::fprintf(stderr, "  commit %.3f s\n", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
     return info;
   }
 
@@ -478,8 +482,11 @@ class SqlStore final : public Store {
     for (std::string& sql : ddl) {
       for (const auto& [from, to] : {std::pair<std::string, std::string>{"{serial}",
                                                                           db_->serial_primary_key()},
-                                     {"{clustered}", db_->clustered()}}) {
-        if (const auto at = sql.find(from); at != std::string::npos) sql.replace(at, from.size(), to);
+                                     {"{clustered}", db_->clustered()},
+                                     {"{double}", db_->double_type()}}) {
+        for (std::size_t at; (at = sql.find(from)) != std::string::npos;) {
+          sql.replace(at, from.size(), to);
+        }
       }
       if (Status s = db_->exec(sql); !s) return s;
     }
@@ -546,7 +553,9 @@ class SqlStore final : public Store {
     auto insert = [&](const char* table, int columns, std::size_t n, const FillFn& fill) {
       std::function<void(std::uint64_t)> report;
       if (progress) report = [&, base = done](std::uint64_t k) { progress(base + k); };
+      auto t0 = std::chrono::steady_clock::now();
       Status s = db_->bulk_insert(table, columns, n, fill, report);
+      if (std::getenv("CF_TRACE")) std::fprintf(stderr, "  %s %zu rows %.3f s\n", table, n, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
       done += n;
       return s;
     };
@@ -685,6 +694,12 @@ class SqlStore final : public Store {
   Status read_rows(std::int64_t id, ModelRows& r) {
     const std::vector<std::int64_t> p{id};
     auto opt = [](const Row& row, int c) { return row.is_null(c) ? kNone : row.i(c); };
+    if (!helper_) {
+      if (auto another = db_->open_another()) helper_ = std::move(another.value());
+    }
+    Status helper_status = Status::Ok();
+    std::thread helper;
+    if (helper_) helper = std::thread([&] { helper_status = read_uses_elsewhere(id, r.uses); });
     Status s = read_small_tables(id, r);
     if (s) {
       s = db_->bulk_select("SELECT group_key FROM cells WHERE volume_id = $1 ORDER BY cell_key", p,
@@ -721,15 +736,38 @@ class SqlStore final : public Store {
             r.loops.push_back({key(row, 0), key(row, 1), opt(row, 2)});
           });
     }
-    if (s) {
-      s = db_->bulk_select(
-          "SELECT loop_key, ord, edge_key, reversed, radial_ord FROM loop_edges "
-          "WHERE volume_id = $1 ORDER BY loop_key, ord",
-          p, [&](const Row& row) {
-            r.uses.push_back({key(row, 0), key(row, 1), key(row, 2), row.i(3) != 0, key(row, 4)});
-          });
-    }
+    if (helper.joinable()) helper.join();
+    if (s) s = helper_status;
+    if (s && !helper_) s = read_uses(*db_, id, r.uses);
     return s;
+  }
+
+  static Status read_uses(Connection& db, std::int64_t id, std::vector<Snapshot::Use>& uses) {
+    return db.bulk_select(
+        "SELECT loop_key, ord, edge_key, reversed, radial_ord FROM loop_edges "
+        "WHERE volume_id = $1 ORDER BY loop_key, ord",
+        {id}, [&](const Row& row) {
+          uses.push_back({key(row, 0), key(row, 1), key(row, 2), row.i(3) != 0, key(row, 4)});
+        });
+  }
+
+  // The edge uses (nearly half the rows) of stored volume `id`, read on the
+  // second connection in a read transaction of its own. The rows of a committed
+  // version never change, so that snapshot holds the same rows as the first one
+  // if it holds the volume at all.
+  Status read_uses_elsewhere(std::int64_t id, std::vector<Snapshot::Use>& uses) {
+    Connection& db = *helper_;
+    if (Status s = db.begin_read(); !s) return s;
+    bool found = false;
+    Status s = db.select("SELECT id FROM volumes WHERE id = $1", {id},
+                         [&](const Row&) { found = true; });
+    if (s && !found) s = db_error("the volume was removed while it was read");
+    if (s) s = read_uses(db, id, uses);
+    if (!s) {
+      db.rollback();
+      return s;
+    }
+    return db.commit();
   }
 
   // Groups, parameters and surfaces: what a partial load keeps whole.
@@ -861,6 +899,7 @@ class SqlStore final : public Store {
   }
 
   std::unique_ptr<Connection> db_;
+  std::unique_ptr<Connection> helper_;  // reads in parallel with db_ (read_rows)
 };
 
 }  // namespace

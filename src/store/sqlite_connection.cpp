@@ -73,7 +73,9 @@ class SqliteConnection final : public Connection {
   }
 
   Status open() {
-    if (sqlite3_open_v2(path_.c_str(), &db_, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE, nullptr) !=
+    // NOMUTEX: a connection is used by one thread at a time.
+    if (sqlite3_open_v2(path_.c_str(), &db_,
+                        SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE | SQLITE_OPEN_NOMUTEX, nullptr) !=
         SQLITE_OK) {
       return fail(db_, "cannot open " + path_);
     }
@@ -86,6 +88,7 @@ class SqliteConnection final : public Connection {
   }
 
   std::string backend() const override { return "sqlite"; }
+  Result<std::unique_ptr<Connection>> open_another() const override { return open_sqlite(path_); }
   std::string serial_primary_key() const override { return "INTEGER PRIMARY KEY"; }
 
   Status exec(const std::string& sql, const std::vector<Value>& params) override {
@@ -164,6 +167,7 @@ class SqliteConnection final : public Connection {
   }
 
   std::string clustered() const override { return " WITHOUT ROWID"; }
+  std::string double_type() const override { return ""; }
   std::vector<std::string> spatial_schema() const override {
     return {
         "CREATE VIRTUAL TABLE face_tiles USING rtree(id, min_x, max_x, min_y, max_y, min_z, "
