@@ -22,7 +22,7 @@ namespace {
 
 constexpr const char* kUsage =
     "usage: cellforge db save IN --name N [--source FILE] [--object O] [--db DB]\n"
-    "       cellforge db load N -o OUT [--version V] [--db DB]\n"
+    "       cellforge db load N -o OUT [--version V] [--faces CONDITION] [--db DB]\n"
     "       cellforge db list [--db DB]\n"
     "       cellforge db rm N [--db DB]\n"
     "       cellforge db info N [--version V] [--db DB]\n"
@@ -33,8 +33,11 @@ constexpr const char* kUsage =
     "  OUT: a model file by extension (.json keeps everything the topology holds),\n"
     "       or the canonical dump (topo/dump.h) for *.txt and '-' (standard output).\n"
     "  Saving a name again adds a version; load and info take the latest unless\n"
-    "  --version is given. sql runs one read-only statement (tables and views in\n"
-    "  docs/database.md; face_edge_points is seed 004's Table 1).";
+    "  --version is given. load --faces loads only the faces satisfying CONDITION,\n"
+    "  SQL on the face row f and the volume row v (e.g. \"f.group_key = 1\", or a\n"
+    "  spatial query on face_tiles, docs/database.md), as a sheet model. sql runs\n"
+    "  one read-only statement (tables and views in docs/database.md;\n"
+    "  face_edge_points is seed 004's Table 1).";
 
 struct Args {
   std::vector<std::string> positional;
@@ -43,7 +46,8 @@ struct Args {
 };
 
 bool parse(const std::vector<std::string>& argv, Args& out, std::string& error) {
-  static const char* kValued[] = {"--db", "--name", "-o", "--version", "--source", "--object"};
+  static const char* kValued[] = {"--db",     "--name",   "-o",     "--version",
+                                  "--source", "--object", "--faces"};
   for (std::size_t i = 0; i < argv.size(); ++i) {
     const std::string& a = argv[i];
     if (a == "--json") {
@@ -244,7 +248,8 @@ int run(const std::vector<std::string>& argv) {
   if (cmd == "load") {
     const std::string out = option("-o");
     if (out.empty()) return usage_error("load needs -o OUT");
-    auto m = store.get(arg(1), version);
+    auto m = a.options.count("--faces") ? store.get_faces_where(arg(1), option("--faces"), version)
+                                        : store.get(arg(1), version);
     if (!m) return fail(m.error().message);
     const bool dump = out == "-" || (out.size() > 4 && out.substr(out.size() - 4) == ".txt");
     if (!dump) {

@@ -67,6 +67,13 @@ class Connection {
   // SQLite's R*Tree holds 32-bit floats rounded outwards, so the test may keep a
   // little more than the exact one, which the caller adds.
   virtual std::string overlaps(const std::string& alias, int p) const = 0;
+  // A FROM clause joining each row `t` of face_tiles to the rows `f` of its faces,
+  // written so that the planner reads the tiles first.
+  virtual std::string tiles_then_faces() const = 0;
+  // Called in a read transaction before selects that join with key sets: plans
+  // that do not trust row estimates (PostgreSQL's statistics lag behind a bulk
+  // save, and a nested loop planned for one row would be quadratic).
+  virtual Status before_key_set_reads() { return Status::Ok(); }
   // A subquery giving the integers of a key-set parameter (key_set below) as
   // one column: "SELECT value FROM json_each($N)" or "SELECT unnest($N::bigint[])".
   virtual std::string key_set_query(int param) const = 0;

@@ -1,7 +1,8 @@
 // The PostgreSQL backend over libpq. Statements go through PQexecParams (the
 // extended protocol: bound parameters, one statement per call); large results
-// stream through a cursor or, for the store's own reads of a whole volume,
-// COPY (...) TO STDOUT (FORMAT binary); bulk inserts use COPY ... FROM STDIN
+// of the store's own reads stream through COPY (...) TO STDOUT (FORMAT binary);
+// other selects are planned with their parameter values (the unnamed statement),
+// so that a key set bound as an array is planned at its real size; bulk inserts use COPY ... FROM STDIN
 // (FORMAT binary): integers and IEEE doubles travel as their bytes (big-endian),
 // so nothing is formatted or parsed and every double comes back bit for bit.
 // Writers serialize per volume name on a transaction-scoped advisory lock;
@@ -150,8 +151,6 @@ std::string param_text(const Value& v) {
   return std::get<std::string>(v);
 }
 
-bool starts_with_select(const std::string& sql) { return sql.compare(0, 7, "SELECT ") == 0; }
-
 class PgConnection final : public Connection {
  public:
   ~PgConnection() override { PQfinish(conn_); }
@@ -188,20 +187,6 @@ class PgConnection final : public Connection {
 
   Status select(const std::string& sql, const std::vector<Value>& params,
                 const RowFn& fn) override {
-    // Inside a transaction a SELECT streams through a cursor, a batch at a time.
-    if (in_transaction_ && starts_with_select(sql)) {
-      if (Status s = exec("DECLARE cellforge_cursor NO SCROLL CURSOR FOR " + sql, params); !s) {
-        return s;
-      }
-      for (;;) {
-        ResultGuard r{run("FETCH FORWARD 20000 FROM cellforge_cursor", {})};
-        if (Status s = check(r.r, "FETCH"); !s) return s;
-        const int n = PQntuples(r.r);
-        for (int k = 0; k < n; ++k) fn(PgRow(r.r, k));
-        if (n == 0) break;
-      }
-      return exec("CLOSE cellforge_cursor", {});
-    }
     ResultGuard r{run(sql, params)};
     if (Status s = check(r.r, sql); !s) return s;
     for (int k = 0, n = PQntuples(r.r); k < n; ++k) fn(PgRow(r.r, k));
@@ -332,6 +317,13 @@ class PgConnection final : public Connection {
       return out + "]";
     };
     return alias + ".box && cube(" + corner(0) + ", " + corner(3) + ")";
+  }
+  Status before_key_set_reads() override { return exec("SET LOCAL enable_nestloop = off", {}); }
+  std::string tiles_then_faces() const override {
+    // LATERAL ... OFFSET 0 keeps the planner from scanning the faces first (it
+    // cannot know that a tile's key range is small).
+    return "face_tiles t CROSS JOIN LATERAL (SELECT * FROM faces f WHERE f.volume_id = "
+           "t.volume_id AND f.face_key BETWEEN t.first_face AND t.last_face OFFSET 0) f";
   }
   std::string key_set_query(int param) const override {
     return "SELECT unnest($" + std::to_string(param) + "::bigint[])";

@@ -274,12 +274,10 @@ class SqlStore final : public Store {
       for (double c : {box.min.x, box.min.y, box.min.z, box.max.x, box.max.y, box.max.z}) {
         p.emplace_back(c);
       }
-      // The tiles first (CROSS JOIN keeps that order in SQLite), then each face.
+      // The tiles that meet the box, then each of their faces.
       return db_->select(
-          "SELECT f.face_key FROM face_tiles t CROSS JOIN faces f WHERE t.volume_id = $1 AND " +
-              db_->overlaps("t", 2) +
-              " AND f.volume_id = t.volume_id AND f.face_key BETWEEN t.first_face AND t.last_face "
-              "AND " + box_meets("f", 2) + " ORDER BY f.face_key",
+          "SELECT f.face_key FROM " + db_->tiles_then_faces() + " WHERE t.volume_id = $1 AND " +
+              db_->overlaps("t", 2) + " AND " + box_meets("f", 2) + " ORDER BY f.face_key",
           p, [&](const Row& r) { out.push_back(key(r, 0)); });
     });
     if (!s) return s.error();
@@ -306,7 +304,7 @@ class SqlStore final : public Store {
   Result<std::vector<StoredPoint>> get_points(const std::string& name, int version) override {
     std::vector<StoredPoint> out;
     Status s = read(name, version, [&](std::int64_t id) {
-      return db_->select(
+      return db_->bulk_select(
           "SELECT vertex_key, x, y, z FROM vertices WHERE volume_id = $1 ORDER BY vertex_key", {id},
           [&](const Row& r) {
             out.push_back({key(r, 0), {r.d(1), r.d(2), r.d(3)}});
@@ -319,7 +317,7 @@ class SqlStore final : public Store {
   Result<std::vector<StoredEdge>> get_edges(const std::string& name, int version) override {
     std::vector<StoredEdge> out;
     Status s = read(name, version, [&](std::int64_t id) {
-      return db_->select(
+      return db_->bulk_select(
           "SELECT edge_key, start_vertex, end_vertex, uses FROM edges WHERE volume_id = $1 "
           "ORDER BY edge_key",
           {id}, [&](const Row& r) {
@@ -336,7 +334,7 @@ class SqlStore final : public Store {
       auto cell = [](const Row& r, int c) {
         return r.is_null(c) ? std::nullopt : std::optional<std::uint32_t>(key(r, c));
       };
-      Status st = db_->select(
+      Status st = db_->bulk_select(
           "SELECT face_key, front_cell, back_cell, nx, ny, nz, d FROM faces WHERE volume_id = $1 "
           "ORDER BY face_key",
           {id}, [&](const Row& r) {
@@ -345,7 +343,7 @@ class SqlStore final : public Store {
           });
       if (!st) return st;
       std::vector<std::pair<std::uint32_t, std::uint32_t>> loop_at;  // (face, index in loops)
-      st = db_->select(
+      st = db_->bulk_select(
           "SELECT face_key, point_vertex FROM loops WHERE volume_id = $1 ORDER BY loop_key", {id},
           [&](const Row& r) {
             auto& loops = out.at(key(r, 0)).loops;
@@ -354,7 +352,7 @@ class SqlStore final : public Store {
             if (!r.is_null(1)) loops.back().push_back(key(r, 1));
           });
       if (!st) return st;
-      return db_->select(
+      return db_->bulk_select(
           "SELECT u.loop_key, CASE WHEN u.reversed = 0 THEN e.start_vertex ELSE e.end_vertex END "
           "FROM loop_edges u JOIN edges e ON e.volume_id = u.volume_id AND e.edge_key = u.edge_key "
           "WHERE u.volume_id = $1 ORDER BY u.loop_key, u.ord",
@@ -815,6 +813,7 @@ class SqlStore final : public Store {
           r.faces.push_back({key(row, 1), kNone, kNone, opt(row, 2)});
         });
     if (s) s = read_small_tables(id, r);
+    if (s) s = db_->before_key_set_reads();
     const auto in_set = [&](const char* column, int param) {
       return std::string(" AND ") + column + " IN (" + db_->key_set_query(param) + ")";
     };

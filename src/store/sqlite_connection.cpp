@@ -185,6 +185,11 @@ class SqliteConnection final : public Connection {
     }
     return out;
   }
+  std::string tiles_then_faces() const override {
+    // CROSS JOIN: SQLite keeps the tiles as the outer loop.
+    return "face_tiles t CROSS JOIN faces f ON f.volume_id = t.volume_id AND f.face_key BETWEEN "
+           "t.first_face AND t.last_face";
+  }
   std::string key_set_query(int param) const override {
     return "SELECT value FROM json_each($" + std::to_string(param) + ")";
   }

@@ -79,6 +79,19 @@ TEST_P(Cli, SaveListInfoSqlLoadRemove) {
   ASSERT_TRUE(direct.ok());
   EXPECT_NE(r.out.find("inner={["), std::string::npos);
 
+  // A partial load: the top face of the box with a hole (z = 1), its two loops.
+  r = cli({"db", "load", "x'); DROP TABLE volumes;--", "--version", "1", "--faces",
+           "f.nz = 1 AND v.version = 1", "-o", "-", "--db", db_});
+  ASSERT_EQ(r.status, 0) << r.out;
+  std::size_t faces = 0;
+  for (std::size_t at = 0; (at = r.out.find("\nF ", at)) != std::string::npos; ++at) ++faces;
+  EXPECT_EQ(faces + (r.out.rfind("F ", 0) == 0), 1u) << r.out;
+  EXPECT_NE(r.out.find("inner={["), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("front=- back=-"), std::string::npos) << r.out;
+  r = cli({"db", "load", "x'); DROP TABLE volumes;--", "--faces", "1 = 1); DROP TABLE faces; --",
+           "-o", "-", "--db", db_});
+  EXPECT_EQ(r.status, 1);
+
   r = cli({"db", "rm", "x'); DROP TABLE volumes;--", "--db", db_});
   EXPECT_EQ(r.status, 0);
   r = cli({"db", "rm", "x'); DROP TABLE volumes;--", "--db", db_});
