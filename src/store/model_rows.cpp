@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <thread>
 
 #include "cellforge/build/mass.h"
 #include "cellforge/topo/validate.h"
@@ -27,11 +28,12 @@ Vec3 newell(const std::vector<Vec3>& pts, double scale) {
 
 }  // namespace
 
-ModelRows to_rows(const Model& m) {
-  ModelRows r;
-  static_cast<Snapshot&>(r) = snapshot(m);
-  r.planes.reserve(r.faces.size());
-  r.boxes.reserve(r.faces.size());
+namespace {
+
+// The derived columns: each face's plane and box, each edge's use count.
+void add_derived(const Model& m, ModelRows& r) {
+  r.planes.reserve(m.num_faces());
+  r.boxes.reserve(m.num_faces());
   for (FaceId f : m.faces()) {
     const Vec3 first = m.position(m.loop_vertices(m.outer_loop(f)).front());
     QueryBox box{first, first};
@@ -54,8 +56,28 @@ ModelRows to_rows(const Model& m) {
     r.planes.push_back({n, -dot(n, first)});
     r.boxes.push_back(box);
   }
-  r.edge_uses.reserve(r.edges.size());
+  r.edge_uses.reserve(m.num_edges());
   for (EdgeId e : m.edges()) r.edge_uses.push_back(static_cast<std::uint32_t>(m.use_count(e)));
+}
+
+}  // namespace
+
+ModelRows to_rows(const Model& m) {
+  ModelRows r;
+  static_cast<Snapshot&>(r) = snapshot(m);
+  add_derived(m, r);
+  return r;
+}
+
+ModelRows to_rows(const Model& m, VolumeInfo& summary) {
+  ModelRows r;
+  std::thread other([&] {
+    add_derived(m, r);
+    summary = summarize(m);
+  });
+  Snapshot s = snapshot(m);
+  other.join();
+  static_cast<Snapshot&>(r) = std::move(s);
   return r;
 }
 

@@ -34,6 +34,9 @@ struct ModelRows : Snapshot {
 };
 
 ModelRows to_rows(const Model& m);
+// The same, and summarize(m), the derived columns and the summary computed on a
+// second thread while this one takes the snapshot (the model is only read).
+ModelRows to_rows(const Model& m, VolumeInfo& summary);
 // Rebuilds the model; refuses (kDatabase) rows that reference missing keys or
 // that do not form a valid model.
 Result<Model> to_model(const ModelRows& rows);

@@ -231,9 +231,9 @@ class SqlStore final : public Store {
 
   Result<VolumeInfo> put(const std::string& name, const Model& m,
                          const PutOptions& options) override {
-    const ModelRows rows = to_rows(m);
+    VolumeInfo info;
+    const ModelRows rows = to_rows(m, info);
     if (Status s = check_strings(name, rows, options); !s) return s.error();
-    VolumeInfo info = summarize(m);
     info.name = name;
     info.source = options.source;
     info.created = now_utc();
@@ -243,9 +243,7 @@ class SqlStore final : public Store {
       db_->rollback();
       return s.error();
     }
-    auto t0 = std::chrono::steady_clock::now();
     if (Status c = db_->commit(); !c) return c.error();
-    if (std::getenv("CF_TRACE")) std::fprintf(stderr, "  commit %.3f s\n", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
     return info;
   }
 
@@ -551,9 +549,7 @@ class SqlStore final : public Store {
     auto insert = [&](const char* table, int columns, std::size_t n, const FillFn& fill) {
       std::function<void(std::uint64_t)> report;
       if (progress) report = [&, base = done](std::uint64_t k) { progress(base + k); };
-      auto t0 = std::chrono::steady_clock::now();
       Status s = db_->bulk_insert(table, columns, n, fill, report);
-      if (std::getenv("CF_TRACE")) std::fprintf(stderr, "  %s %zu rows %.3f s\n", table, n, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
       done += n;
       return s;
     };
