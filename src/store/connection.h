@@ -62,6 +62,9 @@ class Connection {
   // (docs/database.md): SQLite R*Tree virtual tables; PostgreSQL tables with a
   // GiST index on a cube (the cube extension).
   virtual std::vector<std::string> spatial_schema() const = 0;
+  // The DDL, run after the tables, that lets user SQL read them (PostgreSQL: the
+  // role cellforge_reader and its grants).
+  virtual std::vector<std::string> reader_schema() const { return {}; }
   // An indexed test that the spatial index row `alias` (face_tiles or
   // volume_boxes) meets the box in parameters $p ... $p+5 (min x y z, max x y z).
   // SQLite's R*Tree holds 32-bit floats rounded outwards, so the test may keep a
@@ -108,8 +111,10 @@ class Connection {
                              const FillFn& fill,
                              const std::function<void(std::uint64_t)>& progress) = 0;
 
-  // One statement, refused unless it is read-only, run so that it cannot write.
-  virtual Result<QueryResult> read_only_query(const std::string& sql) = 0;
+  // One user query, refused unless it is read-only, run so that it can read only
+  // the model tables, within options.timeout.
+  virtual Result<QueryResult> read_only_query(const std::string& sql,
+                                              const QueryOptions& options) = 0;
 };
 
 Result<std::unique_ptr<Connection>> open_sqlite(const std::string& path);

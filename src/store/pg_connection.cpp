@@ -9,12 +9,15 @@
 // versions are also UNIQUE.
 #include <libpq-fe.h>
 
+#include <algorithm>
 #include <bit>
+#include <cctype>
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <map>
+#include <memory>
 
 #include "store/connection.h"
 
@@ -289,6 +292,18 @@ class PgConnection final : public Connection {
 
   std::string clustered() const override { return ""; }
   std::string double_type() const override { return "DOUBLE PRECISION"; }
+  std::vector<std::string> reader_schema() const override {
+    // Without the right to create roles the reader is not made; user SQL then
+    // fails with a message naming the role, and everything else works.
+    return {R"(DO $$ BEGIN
+  IF NOT EXISTS (SELECT FROM pg_roles WHERE rolname = 'cellforge_reader') THEN
+    CREATE ROLE cellforge_reader LOGIN NOSUPERUSER NOCREATEDB NOCREATEROLE NOINHERIT;
+  END IF;
+  EXECUTE format('GRANT USAGE ON SCHEMA %I TO cellforge_reader', current_schema());
+  EXECUTE format('GRANT SELECT ON ALL TABLES IN SCHEMA %I TO cellforge_reader', current_schema());
+EXCEPTION WHEN insufficient_privilege THEN NULL;
+END $$)"};
+  }
   std::vector<std::string> spatial_schema() const override {
     auto table = [](const std::string& name, const std::string& extra) {
       return "CREATE TABLE " + name +
@@ -337,12 +352,74 @@ class PgConnection final : public Connection {
     return s + "}";
   }
 
-  Result<QueryResult> read_only_query(const std::string& sql) override {
+  // User SQL runs on a connection of its own, logged in as the role
+  // cellforge_reader (created with the schema, allowed to SELECT the model tables
+  // and views and nothing else), so that nothing in the query — not SET ROLE, not
+  // set_config — can take the rights of the store's role. The text is wrapped as
+  // a subquery, so only a query parses (no COPY, SET or other utility command),
+  // inside a READ ONLY transaction with a statement timeout, rolled back after.
+  Result<QueryResult> read_only_query(const std::string& sql,
+                                      const QueryOptions& options) override {
+    if (!reader_ || PQstatus(reader_->conn_) != CONNECTION_OK) {
+      auto reader = open_reader();
+      if (!reader) return reader.error();
+      reader_ = std::move(reader.value());
+    }
+    return reader_->run_user_query(sql, options);
+  }
+
+ private:
+  static constexpr const char* kReader = "cellforge_reader";
+
+  // This connection's parameters with the user replaced by the reader role.
+  Result<std::unique_ptr<PgConnection>> open_reader() const {
+    char* error = nullptr;
+    PQconninfoOption* options = PQconninfoParse(url_.c_str(), &error);
+    if (!options) {
+      std::string m = error ? error : "cannot parse the connection string";
+      PQfreemem(error);
+      return db_error("postgresql: " + m);
+    }
+    std::string conninfo;
+    for (PQconninfoOption* o = options; o->keyword; ++o) {
+      const bool user = std::strcmp(o->keyword, "user") == 0;
+      if (!o->val && !user) continue;
+      std::string value = user ? kReader : o->val, quoted = "'";
+      for (char c : value) {
+        if (c == '\\' || c == '\'') quoted += '\\';
+        quoted += c;
+      }
+      conninfo += std::string(conninfo.empty() ? "" : " ") + o->keyword + "=" + quoted + "'";
+    }
+    PQconninfoFree(options);
+    auto c = std::make_unique<PgConnection>();
+    if (Status s = c->open(conninfo); !s) {
+      return db_error("user SQL runs as the role " + std::string(kReader) +
+                      ", which cannot connect (docs/database.md, \"User SQL\"): " +
+                      s.error().message);
+    }
+    return c;
+  }
+
+  Result<QueryResult> run_user_query(std::string sql, const QueryOptions& options) {
+    while (!sql.empty() && (std::isspace(static_cast<unsigned char>(sql.back())) || sql.back() == ';')) {
+      sql.pop_back();
+    }
     if (Status s = begin("BEGIN READ ONLY"); !s) return s.error();
-    ResultGuard r{PQexecParams(conn_, sql.c_str(), 0, nullptr, nullptr, nullptr, nullptr, 0)};
-    const ExecStatusType st = PQresultStatus(r.r);
-    if (st != PGRES_TUPLES_OK && st != PGRES_COMMAND_OK) {
-      Status e = result_error(r.r, "query");
+    const long ms = std::max(1L, static_cast<long>(options.timeout * 1000));
+    Status s = exec("SET LOCAL statement_timeout = " + std::to_string(ms), {});
+    if (!s) {
+      rollback();
+      return s.error();
+    }
+    const std::string wrapped = "SELECT * FROM (\n" + sql + "\n) AS cellforge_user_query";
+    ResultGuard r{PQexecParams(conn_, wrapped.c_str(), 0, nullptr, nullptr, nullptr, nullptr, 0)};
+    if (PQresultStatus(r.r) != PGRES_TUPLES_OK) {
+      const char* state = r.r ? PQresultErrorField(r.r, PG_DIAG_SQLSTATE) : nullptr;
+      Status e = state && std::strcmp(state, "57014") == 0
+                     ? db_error("postgresql: the query ran past its time limit of " +
+                                std::to_string(options.timeout) + " s and was cancelled")
+                     : result_error(r.r, "query");
       rollback();
       return e.error();
     }
@@ -364,7 +441,6 @@ class PgConnection final : public Connection {
     return out;
   }
 
- private:
   Status begin(const char* sql) {
     if (Status s = exec(sql, {}); !s) return s;
     in_transaction_ = true;
@@ -432,6 +508,7 @@ class PgConnection final : public Connection {
   PGconn* conn_ = nullptr;
   bool in_transaction_ = false, read_only_ = false;
   std::map<std::string, std::vector<int>> widths_;
+  std::unique_ptr<PgConnection> reader_;  // for user SQL (read_only_query)
 };
 
 }  // namespace

@@ -437,7 +437,9 @@ class SqlStore final : public Store {
     return out;
   }
 
-  Result<QueryResult> query(const std::string& sql) override { return db_->read_only_query(sql); }
+  Result<QueryResult> query(const std::string& sql, const QueryOptions& options) override {
+    return db_->read_only_query(sql, options);
+  }
 
  private:
   static std::uint32_t key(const Row& r, int c) { return static_cast<std::uint32_t>(r.i(c)); }
@@ -475,6 +477,7 @@ class SqlStore final : public Store {
     }
     std::vector<std::string> ddl(std::begin(kSchema), std::end(kSchema));
     for (const std::string& spatial : db_->spatial_schema()) ddl.push_back(spatial);
+    for (const std::string& grant : db_->reader_schema()) ddl.push_back(grant);
     for (std::string& sql : ddl) {
       for (const auto& [from, to] : {std::pair<std::string, std::string>{"{serial}",
                                                                           db_->serial_primary_key()},

@@ -3,6 +3,7 @@
 // the writer) and, for user queries, a second connection opened read-only.
 #include <sqlite3.h>
 
+#include <chrono>
 #include <cstring>
 
 #include "store/connection.h"
@@ -202,12 +203,45 @@ class SqliteConnection final : public Connection {
     return s + "]";
   }
 
-  Result<QueryResult> read_only_query(const std::string& sql) override {
-    if (!readonly_ &&
-        sqlite3_open_v2(path_.c_str(), &readonly_, SQLITE_OPEN_READONLY, nullptr) != SQLITE_OK) {
-      return fail(readonly_, "cannot open " + path_ + " read-only").error();
+  // User SQL: a second connection, opened read-only, refusing every statement
+  // that could write (sqlite3_stmt_readonly) and the functions that reach
+  // outside the database (fts3_tokenizer hands out a heap pointer and, with two
+  // arguments, takes one; load_extension loads code), interrupted at the time
+  // limit.
+  Result<QueryResult> read_only_query(const std::string& sql,
+                                      const QueryOptions& options) override {
+    if (!readonly_) {
+      if (sqlite3_open_v2(path_.c_str(), &readonly_, SQLITE_OPEN_READONLY | SQLITE_OPEN_NOMUTEX,
+                          nullptr) != SQLITE_OK) {
+        Status s = fail(readonly_, "cannot open " + path_ + " read-only");
+        sqlite3_close_v2(readonly_);
+        readonly_ = nullptr;
+        return s.error();
+      }
+      sqlite3_busy_timeout(readonly_, 60000);
+      sqlite3_db_config(readonly_, SQLITE_DBCONFIG_ENABLE_FTS3_TOKENIZER, 0, nullptr);
+      sqlite3_db_config(readonly_, SQLITE_DBCONFIG_ENABLE_LOAD_EXTENSION, 0, nullptr);
+      sqlite3_db_config(readonly_, SQLITE_DBCONFIG_DEFENSIVE, 1, nullptr);
+      sqlite3_set_authorizer(readonly_, authorize_user_sql, nullptr);
     }
-    sqlite3_busy_timeout(readonly_, 60000);
+    const auto deadline = std::chrono::steady_clock::now() +
+                          std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                              std::chrono::duration<double>(options.timeout));
+    sqlite3_progress_handler(
+        readonly_, 10000,
+        [](void* d) {
+          return std::chrono::steady_clock::now() >
+                         *static_cast<const std::chrono::steady_clock::time_point*>(d)
+                     ? 1
+                     : 0;
+        },
+        const_cast<std::chrono::steady_clock::time_point*>(&deadline));
+    auto out = run_user_query(sql, options);
+    sqlite3_progress_handler(readonly_, 0, nullptr, nullptr);
+    return out;
+  }
+
+  Result<QueryResult> run_user_query(const std::string& sql, const QueryOptions& options) {
     Statement st;
     const char* tail = nullptr;
     if (sqlite3_prepare_v2(readonly_, sql.c_str(), static_cast<int>(sql.size()), &st.get(),
@@ -225,6 +259,10 @@ class SqliteConnection final : public Connection {
     for (;;) {
       const int rc = sqlite3_step(st);
       if (rc == SQLITE_DONE) break;
+      if (rc == SQLITE_INTERRUPT) {
+        return db_error("sqlite: the query ran past its time limit of " +
+                        std::to_string(options.timeout) + " s and was interrupted");
+      }
       if (rc != SQLITE_ROW) return fail(readonly_, "query").error();
       auto& row = out.rows.emplace_back();
       for (int c = 0; c < n; ++c) {
@@ -244,6 +282,16 @@ class SqliteConnection final : public Connection {
   }
 
  private:
+  // For SQLITE_FUNCTION the function's name is the second argument.
+  static int authorize_user_sql(void*, int action, const char*, const char* name, const char*,
+                                const char*) {
+    if (action != SQLITE_FUNCTION || !name) return SQLITE_OK;
+    for (const char* refused : {"fts3_tokenizer", "load_extension"}) {
+      if (sqlite3_stricmp(name, refused) == 0) return SQLITE_DENY;
+    }
+    return SQLITE_OK;
+  }
+
   static std::string insert_sql(const std::string& table, int columns, std::size_t rows) {
     std::string one = "(";
     for (int c = 0; c < columns; ++c) one += c ? ", ?" : "?";

@@ -77,6 +77,11 @@ struct QueryBox {
   Vec3 min, max;
 };
 
+// How a user query runs.
+struct QueryOptions {
+  double timeout = 300;  // seconds; a query still running then is cancelled (an error)
+};
+
 // The answer of a read-only SQL query, values as text (nullopt for NULL).
 struct QueryResult {
   std::vector<std::string> columns;
@@ -128,8 +133,9 @@ class Store {
   // The volume names listed in an object (scene), in the order they were added.
   virtual Result<std::vector<std::string>> get_object(const std::string& name) = 0;
 
-  // Runs one SQL statement that must not write (refused otherwise).
-  virtual Result<QueryResult> query(const std::string& sql) = 0;
+  // Runs one SQL query that must not write (refused otherwise), with the rights of
+  // a reader of the model tables only (docs/database.md, "User SQL").
+  virtual Result<QueryResult> query(const std::string& sql, const QueryOptions& options = {}) = 0;
 };
 
 // Opens (creating the schema if needed) the database named by `db`: a
