@@ -26,7 +26,7 @@ constexpr const char* kUsage =
     "       cellforge db list [--db DB]\n"
     "       cellforge db rm N [--db DB]\n"
     "       cellforge db info N [--version V] [--db DB]\n"
-    "       cellforge db sql \"SELECT ...\" [--json] [--db DB]\n"
+    "       cellforge db sql \"SELECT ...\" [--json] [--timeout S] [--limit N] [--db DB]\n"
     "  DB: an SQLite file (default cellforge.db) or a postgresql:// connection string.\n"
     "  IN: a model file (.stl .obj .off .3mf .json) or example:box |\n"
     "      example:box_with_hole | example:nonmanifold (the bundled Euler examples).\n"
@@ -36,8 +36,9 @@ constexpr const char* kUsage =
     "  --version is given. load --faces loads only the faces satisfying CONDITION,\n"
     "  SQL on the face row f and the volume row v (e.g. \"f.group_key = 1\", or a\n"
     "  spatial query on face_tiles, docs/database.md), as a sheet model. sql runs\n"
-    "  one read-only statement (tables and views in docs/database.md;\n"
-    "  face_edge_points is seed 004's Table 1).";
+    "  one read-only query (tables and views in docs/database.md;\n"
+    "  face_edge_points is seed 004's Table 1), cancelled after --timeout seconds\n"
+    "  (default 300), printing at most --limit rows (default 10000; 0: all).";
 
 struct Args {
   std::vector<std::string> positional;
@@ -46,8 +47,8 @@ struct Args {
 };
 
 bool parse(const std::vector<std::string>& argv, Args& out, std::string& error) {
-  static const char* kValued[] = {"--db",     "--name",   "-o",     "--version",
-                                  "--source", "--object", "--faces"};
+  static const char* kValued[] = {"--db",     "--name",  "-o",       "--version", "--source",
+                                  "--object", "--faces", "--timeout", "--limit"};
   for (std::size_t i = 0; i < argv.size(); ++i) {
     const std::string& a = argv[i];
     if (a == "--json") {
@@ -288,9 +289,28 @@ int run(const std::vector<std::string>& argv) {
     return 0;
   }
   if (cmd == "sql") {
-    auto r = store.query(arg(1));
+    QueryOptions q;
+    q.max_rows = 10000;
+    try {
+      std::size_t used = 0;
+      if (const std::string t = option("--timeout"); !t.empty()) {
+        q.timeout = std::stod(t, &used);
+        if (used != t.size() || !(q.timeout > 0)) throw std::invalid_argument(t);
+      }
+      if (const std::string n = option("--limit"); !n.empty()) {
+        q.max_rows = std::stoul(n, &used);
+        if (used != n.size() || n[0] == '-') throw std::invalid_argument(n);
+      }
+    } catch (const std::exception&) {
+      return usage_error("--timeout takes seconds above 0, --limit a count of rows");
+    }
+    auto r = store.query(arg(1), q);
     if (!r) return fail(r.error().message);
     a.json ? print_json(r.value()) : print_table(r.value());
+    if (r->truncated) {
+      std::cerr << "cellforge db: only the first " << q.max_rows
+                << " rows are printed (--limit N for more, 0 for all)\n";
+    }
     return 0;
   }
   return usage_error("unknown db command '" + cmd + "'");

@@ -412,7 +412,9 @@ END $$)"};
       rollback();
       return s.error();
     }
-    const std::string wrapped = "SELECT * FROM (\n" + sql + "\n) AS cellforge_user_query";
+    const std::string wrapped =
+        "SELECT * FROM (\n" + sql + "\n) AS cellforge_user_query" +
+        (options.max_rows ? " LIMIT " + std::to_string(options.max_rows + 1) : std::string());
     ResultGuard r{PQexecParams(conn_, wrapped.c_str(), 0, nullptr, nullptr, nullptr, nullptr, 0)};
     if (PQresultStatus(r.r) != PGRES_TUPLES_OK) {
       const char* state = r.r ? PQresultErrorField(r.r, PG_DIAG_SQLSTATE) : nullptr;
@@ -427,6 +429,10 @@ END $$)"};
     const int n = PQnfields(r.r);
     for (int c = 0; c < n; ++c) out.columns.emplace_back(PQfname(r.r, c));
     for (int k = 0, rows = PQntuples(r.r); k < rows; ++k) {
+      if (options.max_rows && out.rows.size() == options.max_rows) {
+        out.truncated = true;
+        break;
+      }
       auto& row = out.rows.emplace_back();
       for (int c = 0; c < n; ++c) {
         if (PQgetisnull(r.r, k, c)) {

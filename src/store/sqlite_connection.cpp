@@ -264,6 +264,10 @@ class SqliteConnection final : public Connection {
                         std::to_string(options.timeout) + " s and was interrupted");
       }
       if (rc != SQLITE_ROW) return fail(readonly_, "query").error();
+      if (options.max_rows && out.rows.size() == options.max_rows) {
+        out.truncated = true;
+        break;
+      }
       auto& row = out.rows.emplace_back();
       for (int c = 0; c < n; ++c) {
         if (sqlite3_column_type(st, c) == SQLITE_NULL) {

@@ -79,13 +79,15 @@ struct QueryBox {
 
 // How a user query runs.
 struct QueryOptions {
-  double timeout = 300;  // seconds; a query still running then is cancelled (an error)
+  double timeout = 300;       // seconds; a query still running then is cancelled (an error)
+  std::size_t max_rows = 0;   // when not 0, at most this many rows are read
 };
 
 // The answer of a read-only SQL query, values as text (nullopt for NULL).
 struct QueryResult {
   std::vector<std::string> columns;
   std::vector<std::vector<std::optional<std::string>>> rows;
+  bool truncated = false;  // the query had more rows than max_rows
 };
 
 class Store {
