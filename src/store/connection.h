@@ -125,4 +125,16 @@ Result<std::unique_ptr<Store>> make_sql_store(std::unique_ptr<Connection> connec
 
 inline Error db_error(const std::string& what) { return Error{ErrorCode::kDatabase, what}; }
 
+// The test that the box columns (min_x ... max_z) of `alias` meet the closed box
+// in parameters $p ... $p+5 (min x y z, max x y z).
+inline std::string box_test(const std::string& alias, int p) {
+  std::string out;
+  const char* axes[] = {"x", "y", "z"};
+  for (int k = 0; k < 3; ++k) {
+    out += (k ? " AND " : "") + alias + ".max_" + axes[k] + " >= $" + std::to_string(p + k) +
+           " AND " + alias + ".min_" + axes[k] + " <= $" + std::to_string(p + 3 + k);
+  }
+  return out;
+}
+
 }  // namespace cellforge::store

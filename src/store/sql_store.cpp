@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
-#include <cstring>
 #include <ctime>
 #include <map>
 #include <thread>
@@ -275,7 +274,7 @@ class SqlStore final : public Store {
       // The tiles that meet the box, then each of their faces.
       return db_->select(
           "SELECT f.face_key FROM " + db_->tiles_then_faces() + " WHERE t.volume_id = $1 AND " +
-              db_->overlaps("t", 2) + " AND " + box_meets("f", 2) + " ORDER BY f.face_key",
+              db_->overlaps("t", 2) + " AND " + box_test("f", 2) + " ORDER BY f.face_key",
           p, [&](const Row& r) { out.push_back(key(r, 0)); });
     });
     if (!s) return s.error();
@@ -287,15 +286,9 @@ class SqlStore final : public Store {
     for (double c : {box.min.x, box.min.y, box.min.z, box.max.x, box.max.y, box.max.z}) {
       p.emplace_back(c);
     }
-    std::string columns;
-    for (const char* c = kVolumeColumns; *c;) {  // "id, name, ..." as "v.id, v.name, ..."
-      const char* end = std::strchr(c, ',');
-      const std::string column(c, end ? end : c + std::strlen(c));
-      columns += (columns.empty() ? "v." : ", v.") + column;
-      c = end ? end + 2 : c + std::strlen(c);
-    }
-    return volumes("SELECT " + columns + " FROM volume_boxes b CROSS JOIN volumes v WHERE " +
-                       db_->overlaps("b", 1) + " AND v.id = b.id AND " + box_meets("v", 1),
+    return volumes(std::string("SELECT ") + kVolumeColumns +
+                       " FROM volumes WHERE id IN (SELECT b.id FROM volume_boxes b WHERE " +
+                       db_->overlaps("b", 1) + ") AND " + box_test("volumes", 1),
                    p);
   }
 
@@ -444,17 +437,6 @@ class SqlStore final : public Store {
  private:
   static std::uint32_t key(const Row& r, int c) { return static_cast<std::uint32_t>(r.i(c)); }
 
-  // The exact test that the box columns (min_x ... max_z) of `alias` meet the box
-  // in parameters $p ... $p+5 (min x y z, max x y z).
-  static std::string box_meets(const std::string& alias, int p) {
-    std::string out;
-    const char* axes[] = {"x", "y", "z"};
-    for (int k = 0; k < 3; ++k) {
-      out += (k ? " AND " : "") + alias + ".max_" + axes[k] + " >= $" + std::to_string(p + k) +
-             " AND " + alias + ".min_" + axes[k] + " <= $" + std::to_string(p + 3 + k);
-    }
-    return out;
-  }
 
   Status create_schema_locked() {
     if (Status s =

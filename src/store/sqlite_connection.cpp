@@ -177,14 +177,9 @@ class SqliteConnection final : public Connection {
         "max_z)",
     };
   }
+  // The R*Tree answers comparisons on its own columns.
   std::string overlaps(const std::string& alias, int p) const override {
-    std::string out;
-    const char* axes[] = {"x", "y", "z"};
-    for (int k = 0; k < 3; ++k) {
-      out += (k ? " AND " : "") + alias + ".max_" + axes[k] + " >= $" + std::to_string(p + k) +
-             " AND " + alias + ".min_" + axes[k] + " <= $" + std::to_string(p + 3 + k);
-    }
-    return out;
+    return box_test(alias, p);
   }
   std::string tiles_then_faces() const override {
     // CROSS JOIN: SQLite keeps the tiles as the outer loop.
