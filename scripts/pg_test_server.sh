@@ -8,8 +8,10 @@
 # initdb into a fresh temporary directory as an unprivileged user (the `postgres`
 # user, or `nobody`, when run as root; the caller otherwise), trust authentication,
 # no TCP: the server listens only on a Unix socket inside that directory, so runs
-# never collide on a port. Exits non-zero (and says why on stderr) when the server
-# cannot start.
+# never collide on a port. The superuser is `cellforge_admin`; the tests connect as
+# `cellforge`, which is not a superuser: it owns the database `cellforge` and may
+# create roles (the store creates `cellforge_reader`, under which user SQL runs).
+# Exits non-zero (and says why on stderr) when the server cannot start.
 set -euo pipefail
 
 find_bin() {
@@ -46,7 +48,7 @@ start() {
   chmod 755 "$dir"
   mkdir "$dir/data" "$dir/socket"
   [[ $(id -u) -eq 0 ]] && chown "$PG_USER" "$dir/data" "$dir/socket"
-  if ! as_user "$initdb" -D "$dir/data" -U cellforge -A trust -E UTF8 --locale=C.UTF-8 \
+  if ! as_user "$initdb" -D "$dir/data" -U cellforge_admin -A trust -E UTF8 --locale=C.UTF-8 \
     >"$dir/initdb.log" 2>&1; then
     cat "$dir/initdb.log" >&2
     rm -rf "$dir"
@@ -59,9 +61,10 @@ start() {
     rm -rf "$dir"
     exit 1
   fi
-  local url="postgresql:///postgres?host=$dir/socket&user=cellforge"
-  psql "$url" -qAtc "CREATE DATABASE cellforge" >/dev/null \
-    || { echo "pg_test_server: CREATE DATABASE failed" >&2; stop_dir "$dir"; exit 1; }
+  local url="postgresql:///postgres?host=$dir/socket&user=cellforge_admin"
+  { psql "$url" -qAtc "CREATE ROLE cellforge LOGIN CREATEROLE" \
+      && psql "$url" -qAtc "CREATE DATABASE cellforge OWNER cellforge"; } >/dev/null \
+    || { echo "pg_test_server: CREATE ROLE / DATABASE failed" >&2; stop_dir "$dir"; exit 1; }
   echo "export CELLFORGE_PG_DIR='$dir'"
   echo "export CELLFORGE_PG_URL='postgresql:///cellforge?host=$dir/socket&user=cellforge'"
 }

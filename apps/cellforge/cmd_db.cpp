@@ -22,19 +22,23 @@ namespace {
 
 constexpr const char* kUsage =
     "usage: cellforge db save IN --name N [--source FILE] [--object O] [--db DB]\n"
-    "       cellforge db load N -o OUT [--version V] [--db DB]\n"
+    "       cellforge db load N -o OUT [--version V] [--faces CONDITION] [--db DB]\n"
     "       cellforge db list [--db DB]\n"
     "       cellforge db rm N [--db DB]\n"
     "       cellforge db info N [--version V] [--db DB]\n"
-    "       cellforge db sql \"SELECT ...\" [--json] [--db DB]\n"
+    "       cellforge db sql \"SELECT ...\" [--json] [--timeout S] [--limit N] [--db DB]\n"
     "  DB: an SQLite file (default cellforge.db) or a postgresql:// connection string.\n"
     "  IN: a model file (.stl .obj .off .3mf .json) or example:box |\n"
     "      example:box_with_hole | example:nonmanifold (the bundled Euler examples).\n"
     "  OUT: a model file by extension (.json keeps everything the topology holds),\n"
     "       or the canonical dump (topo/dump.h) for *.txt and '-' (standard output).\n"
     "  Saving a name again adds a version; load and info take the latest unless\n"
-    "  --version is given. sql runs one read-only statement (tables and views in\n"
-    "  docs/database.md; face_edge_points is seed 004's Table 1).";
+    "  --version is given. load --faces loads only the faces satisfying CONDITION,\n"
+    "  SQL on the face row f and the volume row v (e.g. \"f.group_key = 1\", or a\n"
+    "  spatial query on face_tiles, docs/database.md), as a sheet model. sql runs\n"
+    "  one read-only query (tables and views in docs/database.md;\n"
+    "  face_edge_points is seed 004's Table 1), cancelled after --timeout seconds\n"
+    "  (default 300), printing at most --limit rows (default 10000; 0: all).";
 
 struct Args {
   std::vector<std::string> positional;
@@ -43,7 +47,8 @@ struct Args {
 };
 
 bool parse(const std::vector<std::string>& argv, Args& out, std::string& error) {
-  static const char* kValued[] = {"--db", "--name", "-o", "--version", "--source", "--object"};
+  static const char* kValued[] = {"--db",     "--name",  "-o",       "--version", "--source",
+                                  "--object", "--faces", "--timeout", "--limit"};
   for (std::size_t i = 0; i < argv.size(); ++i) {
     const std::string& a = argv[i];
     if (a == "--json") {
@@ -244,7 +249,8 @@ int run(const std::vector<std::string>& argv) {
   if (cmd == "load") {
     const std::string out = option("-o");
     if (out.empty()) return usage_error("load needs -o OUT");
-    auto m = store.get(arg(1), version);
+    auto m = a.options.count("--faces") ? store.get_faces_where(arg(1), option("--faces"), version)
+                                        : store.get(arg(1), version);
     if (!m) return fail(m.error().message);
     const bool dump = out == "-" || (out.size() > 4 && out.substr(out.size() - 4) == ".txt");
     if (!dump) {
@@ -283,9 +289,28 @@ int run(const std::vector<std::string>& argv) {
     return 0;
   }
   if (cmd == "sql") {
-    auto r = store.query(arg(1));
+    QueryOptions q;
+    q.max_rows = 10000;
+    try {
+      std::size_t used = 0;
+      if (const std::string t = option("--timeout"); !t.empty()) {
+        q.timeout = std::stod(t, &used);
+        if (used != t.size() || !(q.timeout > 0)) throw std::invalid_argument(t);
+      }
+      if (const std::string n = option("--limit"); !n.empty()) {
+        q.max_rows = std::stoul(n, &used);
+        if (used != n.size() || n[0] == '-') throw std::invalid_argument(n);
+      }
+    } catch (const std::exception&) {
+      return usage_error("--timeout takes seconds above 0, --limit a count of rows");
+    }
+    auto r = store.query(arg(1), q);
     if (!r) return fail(r.error().message);
     a.json ? print_json(r.value()) : print_table(r.value());
+    if (r->truncated) {
+      std::cerr << "cellforge db: only the first " << q.max_rows
+                << " rows are printed (--limit N for more, 0 for all)\n";
+    }
     return 0;
   }
   return usage_error("unknown db command '" + cmd + "'");

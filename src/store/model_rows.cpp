@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <thread>
 
 #include "cellforge/build/mass.h"
 #include "cellforge/topo/validate.h"
@@ -14,11 +15,12 @@ namespace cellforge::store {
 
 namespace {
 
-// Newell vector of a loop: twice its vector area.
-Vec3 newell(const std::vector<Vec3>& pts) {
+// Newell vector of a loop: twice its vector area, of the points times `scale` (a
+// power of two, so that coordinates near the largest double do not overflow).
+Vec3 newell(const std::vector<Vec3>& pts, double scale) {
   Vec3 n;
   for (std::size_t i = 0; i < pts.size(); ++i) {
-    const Vec3 a = pts[i], b = pts[(i + 1) % pts.size()];
+    const Vec3 a = pts[i] * scale, b = pts[(i + 1) % pts.size()] * scale;
     n = n + Vec3{(a.y - b.y) * (a.z + b.z), (a.z - b.z) * (a.x + b.x), (a.x - b.x) * (a.y + b.y)};
   }
   return n;
@@ -26,20 +28,56 @@ Vec3 newell(const std::vector<Vec3>& pts) {
 
 }  // namespace
 
+namespace {
+
+// The derived columns: each face's plane and box, each edge's use count.
+void add_derived(const Model& m, ModelRows& r) {
+  r.planes.reserve(m.num_faces());
+  r.boxes.reserve(m.num_faces());
+  for (FaceId f : m.faces()) {
+    const Vec3 first = m.position(m.loop_vertices(m.outer_loop(f)).front());
+    QueryBox box{first, first};
+    for (LoopId l = m.outer_loop(f); l.is_valid(); l = m.next_loop(l)) {
+      for (const Vec3& p : m.loop_points(l)) {
+        box.min = {std::min(box.min.x, p.x), std::min(box.min.y, p.y), std::min(box.min.z, p.z)};
+        box.max = {std::max(box.max.x, p.x), std::max(box.max.y, p.y), std::max(box.max.z, p.z)};
+      }
+    }
+    double largest = 0;
+    for (double c : {box.min.x, box.min.y, box.min.z, box.max.x, box.max.y, box.max.z}) {
+      largest = std::max(largest, std::abs(c));
+    }
+    const double scale = largest > 0 ? std::ldexp(1.0, -std::ilogb(largest)) : 1.0;
+    Vec3 area;
+    for (LoopId l = m.outer_loop(f); l.is_valid(); l = m.next_loop(l)) {
+      area = area + newell(m.loop_points(l), scale);
+    }
+    const Vec3 n = normalized(area);
+    r.planes.push_back({n, -dot(n, first)});
+    r.boxes.push_back(box);
+  }
+  r.edge_uses.reserve(m.num_edges());
+  for (EdgeId e : m.edges()) r.edge_uses.push_back(static_cast<std::uint32_t>(m.use_count(e)));
+}
+
+}  // namespace
+
 ModelRows to_rows(const Model& m) {
   ModelRows r;
   static_cast<Snapshot&>(r) = snapshot(m);
-  r.planes.reserve(r.faces.size());
-  for (FaceId f : m.faces()) {
-    Vec3 area;
-    for (LoopId l = m.outer_loop(f); l.is_valid(); l = m.next_loop(l)) {
-      area = area + newell(m.loop_points(l));
-    }
-    const Vec3 n = normalized(area);
-    r.planes.push_back({n, -dot(n, m.position(m.loop_vertices(m.outer_loop(f)).front()))});
-  }
-  r.edge_uses.reserve(r.edges.size());
-  for (EdgeId e : m.edges()) r.edge_uses.push_back(static_cast<std::uint32_t>(m.use_count(e)));
+  add_derived(m, r);
+  return r;
+}
+
+ModelRows to_rows(const Model& m, VolumeInfo& summary) {
+  ModelRows r;
+  std::thread other([&] {
+    add_derived(m, r);
+    summary = summarize(m);
+  });
+  Snapshot s = snapshot(m);
+  other.join();
+  static_cast<Snapshot&>(r) = std::move(s);
   return r;
 }
 

@@ -24,6 +24,7 @@ struct ModelRows : Snapshot {
     double d = 0;
   };
   std::vector<Plane> planes;             // per face
+  std::vector<QueryBox> boxes;           // per face: the box of its loops' points
   std::vector<std::uint32_t> edge_uses;  // per edge
 
   std::uint64_t row_count() const {
@@ -33,6 +34,9 @@ struct ModelRows : Snapshot {
 };
 
 ModelRows to_rows(const Model& m);
+// The same, and summarize(m), the derived columns and the summary computed on a
+// second thread while this one takes the snapshot (the model is only read).
+ModelRows to_rows(const Model& m, VolumeInfo& summary);
 // Rebuilds the model; refuses (kDatabase) rows that reference missing keys or
 // that do not form a valid model.
 Result<Model> to_model(const ModelRows& rows);

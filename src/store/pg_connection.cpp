@@ -1,14 +1,23 @@
 // The PostgreSQL backend over libpq. Statements go through PQexecParams (the
 // extended protocol: bound parameters, one statement per call); large results
-// stream through a cursor; bulk inserts use COPY ... FROM STDIN in text format
-// with doubles printed as %.17g (exact round trip). Writers serialize per volume
-// name on a transaction-scoped advisory lock; versions are also UNIQUE.
+// of the store's own reads stream through COPY (...) TO STDOUT (FORMAT binary);
+// other selects are planned with their parameter values (the unnamed statement),
+// so that a key set bound as an array is planned at its real size; bulk inserts use COPY ... FROM STDIN
+// (FORMAT binary): integers and IEEE doubles travel as their bytes (big-endian),
+// so nothing is formatted or parsed and every double comes back bit for bit.
+// Writers serialize per volume name on a transaction-scoped advisory lock;
+// versions are also UNIQUE.
 #include <libpq-fe.h>
 
+#include <algorithm>
+#include <bit>
+#include <cctype>
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <map>
+#include <memory>
 
 #include "store/connection.h"
 
@@ -38,53 +47,101 @@ class PgRow final : public Row {
   int row_;
 };
 
-// COPY text format: tab between columns, \N for NULL, backslash escapes.
-class CopyWriter final : public RowWriter {
+// Big-endian integers of the binary COPY format.
+void put_be(std::string& buf, std::uint64_t v, int bytes) {
+  for (int k = bytes - 1; k >= 0; --k) buf += static_cast<char>((v >> (8 * k)) & 0xFF);
+}
+std::uint64_t get_be(const char* p, int bytes) {
+  std::uint64_t v = 0;
+  for (int k = 0; k < bytes; ++k) v = (v << 8) | static_cast<unsigned char>(p[k]);
+  return v;
+}
+
+constexpr char kCopySignature[] = "PGCOPY\n\377\r\n";  // + its NUL: 11 bytes
+constexpr std::size_t kCopyHeader = 11 + 4 + 4;         // signature, flags, extension length
+
+// One row of COPY (FORMAT binary): per column a 4-byte width (the column's type:
+// int2, int4, int8, float8, text); `widths` gives each column's width, 0 for text.
+class BinaryCopyWriter final : public RowWriter {
  public:
+  explicit BinaryCopyWriter(const std::vector<int>& widths) : widths_(widths) {
+    buf.append(kCopySignature, 11);
+    put_be(buf, 0, 4);
+    put_be(buf, 0, 4);
+  }
   std::string buf;
-  void start_row() { first_ = true; }
-  void end_row() { buf += '\n'; }
-  void null() override { sep(), buf += "\\N"; }
+  void start_row() {
+    col_ = 0;
+    put_be(buf, widths_.size(), 2);
+  }
+  void null() override {
+    put_be(buf, 0xFFFFFFFFu, 4);
+    ++col_;
+  }
   void i(std::int64_t v) override {
-    sep();
-    char tmp[24];
-    const int n = std::snprintf(tmp, sizeof tmp, "%lld", static_cast<long long>(v));
-    buf.append(tmp, static_cast<std::size_t>(n));
+    const int w = col_ < widths_.size() ? widths_[col_] : 8;
+    put_be(buf, static_cast<std::uint64_t>(w), 4);
+    put_be(buf, static_cast<std::uint64_t>(v), w);
+    ++col_;
   }
   void d(double v) override {
-    sep();
-    char tmp[32];
-    const int n = std::snprintf(tmp, sizeof tmp, "%.17g", v);
-    buf.append(tmp, static_cast<std::size_t>(n));
+    put_be(buf, 8, 4);
+    put_be(buf, std::bit_cast<std::uint64_t>(v), 8);
+    ++col_;
   }
   void s(const std::string& v) override {
-    sep();
-    for (char c : v) {
-      switch (c) {
-        case '\\':
-          buf += "\\\\";
-          break;
-        case '\t':
-          buf += "\\t";
-          break;
-        case '\n':
-          buf += "\\n";
-          break;
-        case '\r':
-          buf += "\\r";
-          break;
-        default:
-          buf += c;
-      }
-    }
+    put_be(buf, v.size(), 4);
+    buf += v;
+    ++col_;
   }
 
  private:
-  void sep() {
-    if (!first_) buf += '\t';
-    first_ = false;
+  const std::vector<int>& widths_;
+  std::size_t col_ = 0;
+};
+
+// One row of COPY (FORMAT binary) output, fields by position.
+class BinaryRow final : public Row {
+ public:
+  bool parse(const char* p, std::size_t n) {
+    fields_.clear();
+    if (n < 2) return false;
+    const auto count = static_cast<std::int16_t>(get_be(p, 2));
+    std::size_t at = 2;
+    for (int c = 0; c < count; ++c) {
+      if (at + 4 > n) return false;
+      const auto len = static_cast<std::int32_t>(get_be(p + at, 4));
+      at += 4;
+      if (len > 0 && at + static_cast<std::size_t>(len) > n) return false;
+      fields_.push_back({p + at, len});
+      if (len > 0) at += static_cast<std::size_t>(len);
+    }
+    return at == n;
   }
-  bool first_ = true;
+  bool is_null(int c) const override { return fields_[c].len < 0; }
+  std::int64_t i(int c) const override {
+    const Field& f = fields_[c];
+    if (f.len == 2) return static_cast<std::int16_t>(get_be(f.p, 2));
+    if (f.len == 4) return static_cast<std::int32_t>(get_be(f.p, 4));
+    return f.len == 8 ? static_cast<std::int64_t>(get_be(f.p, 8)) : 0;
+  }
+  double d(int c) const override {
+    const Field& f = fields_[c];
+    if (f.len == 8) return std::bit_cast<double>(get_be(f.p, 8));
+    if (f.len == 4) return std::bit_cast<float>(static_cast<std::uint32_t>(get_be(f.p, 4)));
+    return 0;
+  }
+  std::string s(int c) const override {
+    const Field& f = fields_[c];
+    return f.len > 0 ? std::string(f.p, static_cast<std::size_t>(f.len)) : std::string();
+  }
+
+ private:
+  struct Field {
+    const char* p;
+    std::int32_t len;
+  };
+  std::vector<Field> fields_;
 };
 
 std::string param_text(const Value& v) {
@@ -97,22 +154,31 @@ std::string param_text(const Value& v) {
   return std::get<std::string>(v);
 }
 
-bool starts_with_select(const std::string& sql) { return sql.compare(0, 7, "SELECT ") == 0; }
-
 class PgConnection final : public Connection {
  public:
   ~PgConnection() override { PQfinish(conn_); }
 
   Status open(const std::string& url) {
+    url_ = url;
     conn_ = PQconnectdb(url.c_str());
     if (!conn_ || PQstatus(conn_) != CONNECTION_OK) return fail("cannot connect");
     PQsetNoticeProcessor(
         conn_, [](void*, const char*) {}, nullptr);
     if (PQsetClientEncoding(conn_, "UTF8") != 0) return fail("client encoding");
+    // The cube type and its operators live where the extension was created.
+    if (Status s = exec("SELECT set_config('search_path', current_setting('search_path') || "
+                        "', public', false)",
+                        {});
+        !s) {
+      return s;
+    }
     return exec("SET extra_float_digits = 1", {});  // shortest exact text for doubles
   }
 
   std::string backend() const override { return "postgresql"; }
+  Result<std::unique_ptr<Connection>> open_another() const override {
+    return open_postgresql(url_);
+  }
   std::string serial_primary_key() const override {
     return "BIGINT GENERATED BY DEFAULT AS IDENTITY PRIMARY KEY";
   }
@@ -124,20 +190,6 @@ class PgConnection final : public Connection {
 
   Status select(const std::string& sql, const std::vector<Value>& params,
                 const RowFn& fn) override {
-    // Inside a transaction a SELECT streams through a cursor, a batch at a time.
-    if (in_transaction_ && starts_with_select(sql)) {
-      if (Status s = exec("DECLARE cellforge_cursor NO SCROLL CURSOR FOR " + sql, params); !s) {
-        return s;
-      }
-      for (;;) {
-        ResultGuard r{run("FETCH FORWARD 20000 FROM cellforge_cursor", {})};
-        if (Status s = check(r.r, "FETCH"); !s) return s;
-        const int n = PQntuples(r.r);
-        for (int k = 0; k < n; ++k) fn(PgRow(r.r, k));
-        if (n == 0) break;
-      }
-      return exec("CLOSE cellforge_cursor", {});
-    }
     ResultGuard r{run(sql, params)};
     if (Status s = check(r.r, sql); !s) return s;
     for (int k = 0, n = PQntuples(r.r); k < n; ++k) fn(PgRow(r.r, k));
@@ -150,29 +202,35 @@ class PgConnection final : public Connection {
     if (!s) rollback();
     return s;
   }
-  Status begin_read() override { return begin("BEGIN ISOLATION LEVEL REPEATABLE READ READ ONLY"); }
+  Status begin_read() override {
+    if (Status s = begin("BEGIN ISOLATION LEVEL REPEATABLE READ READ ONLY"); !s) return s;
+    read_only_ = true;
+    return Status::Ok();
+  }
   Status commit() override {
-    in_transaction_ = false;
+    in_transaction_ = read_only_ = false;
     return exec("COMMIT", {});
   }
   void rollback() override {
-    in_transaction_ = false;
+    in_transaction_ = read_only_ = false;
     PQclear(PQexec(conn_, "ROLLBACK"));
   }
 
   Status bulk_insert(const std::string& table, int, std::size_t rows, const FillFn& fill,
                      const std::function<void(std::uint64_t)>& progress) override {
     if (rows == 0) return Status::Ok();
+    auto widths = column_widths(table);
+    if (!widths) return widths.error();
     {
-      ResultGuard r{PQexec(conn_, ("COPY " + table + " FROM STDIN").c_str())};
+      ResultGuard r{PQexec(conn_, ("COPY " + table + " FROM STDIN (FORMAT binary)").c_str())};
       if (PQresultStatus(r.r) != PGRES_COPY_IN) return fail("COPY " + table);
     }
-    CopyWriter w;
+    BinaryCopyWriter w(widths.value());
     constexpr std::size_t kChunk = 1 << 20;
     for (std::size_t k = 0; k < rows; ++k) {
       w.start_row();
       fill(k, w);
-      w.end_row();
+      if (k + 1 == rows) put_be(w.buf, 0xFFFF, 2);  // the trailer
       if (w.buf.size() >= kChunk || k + 1 == rows) {
         if (PQputCopyData(conn_, w.buf.data(), static_cast<int>(w.buf.size())) != 1) {
           return fail("COPY " + table);
@@ -182,20 +240,188 @@ class PgConnection final : public Connection {
       }
     }
     if (PQputCopyEnd(conn_, nullptr) != 1) return fail("COPY " + table);
-    Status s = Status::Ok();
-    while (PGresult* r = PQgetResult(conn_)) {
-      if (s && PQresultStatus(r) != PGRES_COMMAND_OK) s = result_error(r, "COPY " + table);
-      PQclear(r);
+    return copy_result("COPY " + table);
+  }
+
+  Status bulk_select(const std::string& sql, const std::vector<std::int64_t>& params,
+                     const RowFn& fn) override {
+    std::string text = sql;
+    for (std::size_t k = params.size(); k > 0; --k) {  // $10 before $1
+      const std::string marker = "$" + std::to_string(k);
+      for (std::size_t at; (at = text.find(marker)) != std::string::npos;) {
+        text.replace(at, marker.size(), std::to_string(params[k - 1]));
+      }
     }
+    {
+      ResultGuard r{PQexec(conn_, ("COPY (" + text + ") TO STDOUT (FORMAT binary)").c_str())};
+      if (PQresultStatus(r.r) != PGRES_COPY_OUT) return result_error(r.r, "COPY out");
+    }
+    BinaryRow row;
+    bool header = true, ok = true;
+    for (;;) {
+      char* buf = nullptr;
+      const int n = PQgetCopyData(conn_, &buf, 0);
+      if (n < 0) break;  // -1: done; -2: error (reported by the result below)
+      const char* p = buf;
+      std::size_t len = static_cast<std::size_t>(n);
+      if (header) {
+        ok = ok && len >= kCopyHeader && std::memcmp(p, kCopySignature, 11) == 0;
+        const std::size_t ext = ok ? get_be(p + 15, 4) : 0;
+        ok = ok && len >= kCopyHeader + ext;
+        if (ok) p += kCopyHeader + ext, len -= kCopyHeader + ext;
+        header = false;
+      }
+      const bool trailer = len == 2 && get_be(p, 2) == 0xFFFF;
+      if (ok && len > 0 && !trailer) {
+        ok = row.parse(p, len);
+        if (ok) fn(row);
+      }
+      PQfreemem(buf);
+    }
+    Status s = copy_result("COPY out");
+    if (s && !ok) s = db_error("postgresql: COPY out: malformed binary row");
     return s;
   }
 
-  Result<QueryResult> read_only_query(const std::string& sql) override {
+  Status untrusted_select(const std::string& sql, const std::vector<Value>& params,
+                          const RowFn& fn) override {
+    // PQexecParams runs one statement only, and a read transaction is READ ONLY.
+    if (!in_transaction_ || !read_only_) return db_error("a condition runs only in a read");
+    return select(sql, params, fn);
+  }
+
+  std::string clustered() const override { return ""; }
+  std::string double_type() const override { return "DOUBLE PRECISION"; }
+  std::vector<std::string> reader_schema() const override {
+    // Without the right to create roles the reader is not made; user SQL then
+    // fails with a message naming the role, and everything else works.
+    return {R"(DO $$ BEGIN
+  IF NOT EXISTS (SELECT FROM pg_roles WHERE rolname = 'cellforge_reader') THEN
+    CREATE ROLE cellforge_reader LOGIN NOSUPERUSER NOCREATEDB NOCREATEROLE NOINHERIT;
+  END IF;
+  EXECUTE format('GRANT USAGE ON SCHEMA %I TO cellforge_reader', current_schema());
+  EXECUTE format('GRANT SELECT ON ALL TABLES IN SCHEMA %I TO cellforge_reader', current_schema());
+EXCEPTION WHEN insufficient_privilege THEN NULL;
+END $$)"};
+  }
+  std::vector<std::string> spatial_schema() const override {
+    auto table = [](const std::string& name, const std::string& extra) {
+      return "CREATE TABLE " + name +
+             " (\n  id BIGINT PRIMARY KEY,\n"
+             "  min_x DOUBLE PRECISION NOT NULL, max_x DOUBLE PRECISION NOT NULL,\n"
+             "  min_y DOUBLE PRECISION NOT NULL, max_y DOUBLE PRECISION NOT NULL,\n"
+             "  min_z DOUBLE PRECISION NOT NULL, max_z DOUBLE PRECISION NOT NULL,\n" +
+             extra +
+             "  box cube GENERATED ALWAYS AS (cube(ARRAY[min_x, min_y, min_z], "
+             "ARRAY[max_x, max_y, max_z])) STORED)";
+    };
+    return {
+        "CREATE EXTENSION IF NOT EXISTS cube SCHEMA public",
+        table("face_tiles",
+              "  volume_id BIGINT NOT NULL, first_face INTEGER NOT NULL, "
+              "last_face INTEGER NOT NULL,\n"),
+        "CREATE INDEX face_tiles_box ON face_tiles USING gist (box)",
+        table("volume_boxes", ""),
+        "CREATE INDEX volume_boxes_box ON volume_boxes USING gist (box)",
+    };
+  }
+  std::string overlaps(const std::string& alias, int p) const override {
+    auto corner = [p](int first) {
+      std::string out = "ARRAY[";
+      for (int k = 0; k < 3; ++k) out += (k ? ", $" : "$") + std::to_string(p + first + k) + "::float8";
+      return out + "]";
+    };
+    return alias + ".box && cube(" + corner(0) + ", " + corner(3) + ")";
+  }
+  Status before_key_set_reads() override { return exec("SET LOCAL enable_nestloop = off", {}); }
+  std::string tiles_then_faces() const override {
+    // LATERAL ... OFFSET 0 keeps the planner from scanning the faces first (it
+    // cannot know that a tile's key range is small).
+    return "face_tiles t CROSS JOIN LATERAL (SELECT * FROM faces f WHERE f.volume_id = "
+           "t.volume_id AND f.face_key BETWEEN t.first_face AND t.last_face OFFSET 0) f";
+  }
+  std::string key_set_query(int param) const override {
+    return "SELECT unnest($" + std::to_string(param) + "::bigint[])";
+  }
+  Value key_set(const std::vector<std::uint32_t>& keys) const override {
+    std::string s = "{";
+    for (std::size_t k = 0; k < keys.size(); ++k) {
+      if (k) s += ',';
+      s += std::to_string(keys[k]);
+    }
+    return s + "}";
+  }
+
+  // User SQL runs on a connection of its own, logged in as the role
+  // cellforge_reader (created with the schema, allowed to SELECT the model tables
+  // and views and nothing else), so that nothing in the query — not SET ROLE, not
+  // set_config — can take the rights of the store's role. The text is wrapped as
+  // a subquery, so only a query parses (no COPY, SET or other utility command),
+  // inside a READ ONLY transaction with a statement timeout, rolled back after.
+  Result<QueryResult> read_only_query(const std::string& sql,
+                                      const QueryOptions& options) override {
+    if (!reader_ || PQstatus(reader_->conn_) != CONNECTION_OK) {
+      auto reader = open_reader();
+      if (!reader) return reader.error();
+      reader_ = std::move(reader.value());
+    }
+    return reader_->run_user_query(sql, options);
+  }
+
+ private:
+  static constexpr const char* kReader = "cellforge_reader";
+
+  // This connection's parameters with the user replaced by the reader role.
+  Result<std::unique_ptr<PgConnection>> open_reader() const {
+    char* error = nullptr;
+    PQconninfoOption* options = PQconninfoParse(url_.c_str(), &error);
+    if (!options) {
+      std::string m = error ? error : "cannot parse the connection string";
+      PQfreemem(error);
+      return db_error("postgresql: " + m);
+    }
+    std::string conninfo;
+    for (PQconninfoOption* o = options; o->keyword; ++o) {
+      const bool user = std::strcmp(o->keyword, "user") == 0;
+      if (!o->val && !user) continue;
+      std::string value = user ? kReader : o->val, quoted = "'";
+      for (char c : value) {
+        if (c == '\\' || c == '\'') quoted += '\\';
+        quoted += c;
+      }
+      conninfo += std::string(conninfo.empty() ? "" : " ") + o->keyword + "=" + quoted + "'";
+    }
+    PQconninfoFree(options);
+    auto c = std::make_unique<PgConnection>();
+    if (Status s = c->open(conninfo); !s) {
+      return db_error("user SQL runs as the role " + std::string(kReader) +
+                      ", which cannot connect (docs/database.md, \"User SQL\"): " +
+                      s.error().message);
+    }
+    return c;
+  }
+
+  Result<QueryResult> run_user_query(std::string sql, const QueryOptions& options) {
+    while (!sql.empty() && (std::isspace(static_cast<unsigned char>(sql.back())) || sql.back() == ';')) {
+      sql.pop_back();
+    }
     if (Status s = begin("BEGIN READ ONLY"); !s) return s.error();
-    ResultGuard r{PQexecParams(conn_, sql.c_str(), 0, nullptr, nullptr, nullptr, nullptr, 0)};
-    const ExecStatusType st = PQresultStatus(r.r);
-    if (st != PGRES_TUPLES_OK && st != PGRES_COMMAND_OK) {
-      Status e = result_error(r.r, "query");
+    const long ms = std::max(1L, static_cast<long>(options.timeout * 1000));
+    Status s = exec("SET LOCAL statement_timeout = " + std::to_string(ms), {});
+    if (!s) {
+      rollback();
+      return s.error();
+    }
+    const std::string wrapped =
+        "SELECT * FROM (\n" + sql + "\n) AS cellforge_user_query" +
+        (options.max_rows ? " LIMIT " + std::to_string(options.max_rows + 1) : std::string());
+    ResultGuard r{PQexecParams(conn_, wrapped.c_str(), 0, nullptr, nullptr, nullptr, nullptr, 0)};
+    if (PQresultStatus(r.r) != PGRES_TUPLES_OK) {
+      const char* state = r.r ? PQresultErrorField(r.r, PG_DIAG_SQLSTATE) : nullptr;
+      Status e = state && std::strcmp(state, "57014") == 0
+                     ? db_error("postgresql: the query ran past its time limit of " +
+                                std::to_string(options.timeout) + " s and was cancelled")
+                     : result_error(r.r, "query");
       rollback();
       return e.error();
     }
@@ -203,6 +429,10 @@ class PgConnection final : public Connection {
     const int n = PQnfields(r.r);
     for (int c = 0; c < n; ++c) out.columns.emplace_back(PQfname(r.r, c));
     for (int k = 0, rows = PQntuples(r.r); k < rows; ++k) {
+      if (options.max_rows && out.rows.size() == options.max_rows) {
+        out.truncated = true;
+        break;
+      }
       auto& row = out.rows.emplace_back();
       for (int c = 0; c < n; ++c) {
         if (PQgetisnull(r.r, k, c)) {
@@ -217,7 +447,6 @@ class PgConnection final : public Connection {
     return out;
   }
 
- private:
   Status begin(const char* sql) {
     if (Status s = exec(sql, {}); !s) return s;
     in_transaction_ = true;
@@ -256,8 +485,36 @@ class PgConnection final : public Connection {
     return db_error("postgresql: " + what + ": " + m);
   }
 
+  // Bytes per value of each column of `table` as COPY (FORMAT binary) wants them
+  // (0 for text), in column order, generated columns left out.
+  Result<std::vector<int>> column_widths(const std::string& table) {
+    if (const auto it = widths_.find(table); it != widths_.end()) return it->second;
+    std::vector<int> widths;
+    Status s = select(
+        "SELECT a.atttypid::int FROM pg_attribute a WHERE a.attrelid = $1::regclass "
+        "AND a.attnum > 0 AND NOT a.attisdropped AND a.attgenerated = '' ORDER BY a.attnum",
+        {table}, [&](const Row& r) {
+          const std::int64_t type = r.i(0);
+          widths.push_back(type == 21 ? 2 : type == 23 ? 4 : type == 20 || type == 701 ? 8 : 0);
+        });
+    if (!s) return s.error();
+    return widths_[table] = widths;
+  }
+
+  Status copy_result(const std::string& what) {
+    Status s = Status::Ok();
+    while (PGresult* r = PQgetResult(conn_)) {
+      if (s && PQresultStatus(r) != PGRES_COMMAND_OK) s = result_error(r, what);
+      PQclear(r);
+    }
+    return s;
+  }
+
+  std::string url_;
   PGconn* conn_ = nullptr;
-  bool in_transaction_ = false;
+  bool in_transaction_ = false, read_only_ = false;
+  std::map<std::string, std::vector<int>> widths_;
+  std::unique_ptr<PgConnection> reader_;  // for user SQL (read_only_query)
 };
 
 }  // namespace

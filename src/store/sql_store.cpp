@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <ctime>
 #include <map>
+#include <thread>
+#include <cstdlib>
 
 #include "store/connection.h"
 #include "store/model_rows.h"
@@ -13,10 +15,15 @@ namespace cellforge::store {
 
 namespace {
 
-constexpr int kSchemaVersion = 1;
+constexpr int kSchemaVersion = 2;
 
-// {serial} becomes the backend's auto-numbered primary key type. Keep in step
-// with docs/database.md.
+// Faces per entry of the face_tiles spatial index: a tile is a run of
+// consecutive face keys, indexed by the box of their boxes.
+constexpr std::uint32_t kTileFaces = 64;
+
+// {serial} becomes the backend's auto-numbered primary key type, {clustered} what
+// keeps a table's rows in primary-key order, {double} the type of a column that
+// gives back every IEEE double bit for bit. Keep in step with docs/database.md.
 constexpr const char* kSchema[] = {
     R"(CREATE TABLE objects (
   id {serial},
@@ -26,11 +33,11 @@ constexpr const char* kSchema[] = {
   name TEXT NOT NULL,
   version INTEGER NOT NULL,
   type TEXT NOT NULL,
-  cx DOUBLE PRECISION NOT NULL, cy DOUBLE PRECISION NOT NULL, cz DOUBLE PRECISION NOT NULL,
-  volume DOUBLE PRECISION NOT NULL,
-  area DOUBLE PRECISION NOT NULL,
-  min_x DOUBLE PRECISION NOT NULL, min_y DOUBLE PRECISION NOT NULL, min_z DOUBLE PRECISION NOT NULL,
-  max_x DOUBLE PRECISION NOT NULL, max_y DOUBLE PRECISION NOT NULL, max_z DOUBLE PRECISION NOT NULL,
+  cx {double} NOT NULL, cy {double} NOT NULL, cz {double} NOT NULL,
+  volume {double} NOT NULL,
+  area {double} NOT NULL,
+  min_x {double} NOT NULL, min_y {double} NOT NULL, min_z {double} NOT NULL,
+  max_x {double} NOT NULL, max_y {double} NOT NULL, max_z {double} NOT NULL,
   source TEXT NOT NULL,
   created TEXT NOT NULL,
   n_vertices BIGINT NOT NULL, n_edges BIGINT NOT NULL, n_faces BIGINT NOT NULL,
@@ -40,31 +47,31 @@ constexpr const char* kSchema[] = {
   object_id BIGINT NOT NULL,
   ord INTEGER NOT NULL,
   volume_name TEXT NOT NULL,
-  PRIMARY KEY (object_id, ord)))",
+  PRIMARY KEY (object_id, ord)){clustered})",
     R"(CREATE INDEX object_volumes_by_name ON object_volumes (volume_name))",
     R"(CREATE TABLE model_groups (
   volume_id BIGINT NOT NULL,
   group_key INTEGER NOT NULL,
   name TEXT NOT NULL,
-  PRIMARY KEY (volume_id, group_key)))",
+  PRIMARY KEY (volume_id, group_key)){clustered})",
     R"(CREATE TABLE parameters (
   volume_id BIGINT NOT NULL,
   group_key INTEGER NOT NULL,
   ord INTEGER NOT NULL,
   name TEXT NOT NULL,
   value TEXT NOT NULL,
-  PRIMARY KEY (volume_id, group_key, ord)))",
+  PRIMARY KEY (volume_id, group_key, ord)){clustered})",
     R"(CREATE TABLE cells (
   volume_id BIGINT NOT NULL,
   cell_key INTEGER NOT NULL,
   group_key INTEGER NOT NULL,
-  PRIMARY KEY (volume_id, cell_key)))",
+  PRIMARY KEY (volume_id, cell_key)){clustered})",
     R"(CREATE TABLE vertices (
   volume_id BIGINT NOT NULL,
   vertex_key INTEGER NOT NULL,
-  x DOUBLE PRECISION NOT NULL, y DOUBLE PRECISION NOT NULL, z DOUBLE PRECISION NOT NULL,
+  x {double} NOT NULL, y {double} NOT NULL, z {double} NOT NULL,
   group_key INTEGER NOT NULL,
-  PRIMARY KEY (volume_id, vertex_key)))",
+  PRIMARY KEY (volume_id, vertex_key)){clustered})",
     R"(CREATE TABLE edges (
   volume_id BIGINT NOT NULL,
   edge_key INTEGER NOT NULL,
@@ -72,16 +79,16 @@ constexpr const char* kSchema[] = {
   end_vertex INTEGER NOT NULL,
   edge_type INTEGER NOT NULL,
   uses INTEGER NOT NULL,
-  PRIMARY KEY (volume_id, edge_key)))",
+  PRIMARY KEY (volume_id, edge_key)){clustered})",
     R"(CREATE TABLE surfaces (
   volume_id BIGINT NOT NULL,
   surface_key INTEGER NOT NULL,
   kind TEXT NOT NULL,
-  cx DOUBLE PRECISION NOT NULL, cy DOUBLE PRECISION NOT NULL, cz DOUBLE PRECISION NOT NULL,
-  ax DOUBLE PRECISION NOT NULL, ay DOUBLE PRECISION NOT NULL, az DOUBLE PRECISION NOT NULL,
-  radius DOUBLE PRECISION NOT NULL, radius2 DOUBLE PRECISION NOT NULL,
-  height DOUBLE PRECISION NOT NULL, segments INTEGER NOT NULL,
-  PRIMARY KEY (volume_id, surface_key)))",
+  cx {double} NOT NULL, cy {double} NOT NULL, cz {double} NOT NULL,
+  ax {double} NOT NULL, ay {double} NOT NULL, az {double} NOT NULL,
+  radius {double} NOT NULL, radius2 {double} NOT NULL,
+  height {double} NOT NULL, segments INTEGER NOT NULL,
+  PRIMARY KEY (volume_id, surface_key)){clustered})",
     R"(CREATE TABLE faces (
   volume_id BIGINT NOT NULL,
   face_key INTEGER NOT NULL,
@@ -89,9 +96,11 @@ constexpr const char* kSchema[] = {
   front_cell INTEGER,
   back_cell INTEGER,
   surface_key INTEGER,
-  nx DOUBLE PRECISION NOT NULL, ny DOUBLE PRECISION NOT NULL, nz DOUBLE PRECISION NOT NULL,
-  d DOUBLE PRECISION NOT NULL,
-  PRIMARY KEY (volume_id, face_key)))",
+  nx {double} NOT NULL, ny {double} NOT NULL, nz {double} NOT NULL,
+  d {double} NOT NULL,
+  min_x {double} NOT NULL, min_y {double} NOT NULL, min_z {double} NOT NULL,
+  max_x {double} NOT NULL, max_y {double} NOT NULL, max_z {double} NOT NULL,
+  PRIMARY KEY (volume_id, face_key)){clustered})",
     R"(CREATE TABLE loops (
   volume_id BIGINT NOT NULL,
   loop_key INTEGER NOT NULL,
@@ -99,7 +108,7 @@ constexpr const char* kSchema[] = {
   ord INTEGER NOT NULL,
   kind TEXT NOT NULL,
   point_vertex INTEGER,
-  PRIMARY KEY (volume_id, loop_key)))",
+  PRIMARY KEY (volume_id, loop_key)){clustered})",
     R"(CREATE TABLE loop_edges (
   volume_id BIGINT NOT NULL,
   loop_key INTEGER NOT NULL,
@@ -107,8 +116,7 @@ constexpr const char* kSchema[] = {
   edge_key INTEGER NOT NULL,
   reversed INTEGER NOT NULL,
   radial_ord INTEGER NOT NULL,
-  PRIMARY KEY (volume_id, loop_key, ord)))",
-    R"(CREATE INDEX loop_edges_by_edge ON loop_edges (volume_id, edge_key))",
+  PRIMARY KEY (volume_id, loop_key, ord)){clustered})",
     R"(CREATE VIEW latest_volumes AS
 SELECT * FROM volumes v
 WHERE v.version = (SELECT MAX(w.version) FROM volumes w WHERE w.name = v.name))",
@@ -222,9 +230,9 @@ class SqlStore final : public Store {
 
   Result<VolumeInfo> put(const std::string& name, const Model& m,
                          const PutOptions& options) override {
-    const ModelRows rows = to_rows(m);
+    VolumeInfo info;
+    const ModelRows rows = to_rows(m, info);
     if (Status s = check_strings(name, rows, options); !s) return s.error();
-    VolumeInfo info = summarize(m);
     info.name = name;
     info.source = options.source;
     info.created = now_utc();
@@ -246,10 +254,48 @@ class SqlStore final : public Store {
     return to_model(rows);
   }
 
+  Result<Model> get_faces_where(const std::string& name, const std::string& condition,
+                                int version) override {
+    ModelRows rows;
+    Status s = read(name, version,
+                    [&](std::int64_t id) { return read_face_rows(id, condition, rows); });
+    if (!s) return s.error();
+    return to_model(rows);
+  }
+
+  Result<std::vector<std::uint32_t>> faces_in_box(const std::string& name, const QueryBox& box,
+                                                  int version) override {
+    std::vector<std::uint32_t> out;
+    Status s = read(name, version, [&](std::int64_t id) {
+      std::vector<Value> p{id};
+      for (double c : {box.min.x, box.min.y, box.min.z, box.max.x, box.max.y, box.max.z}) {
+        p.emplace_back(c);
+      }
+      // The tiles that meet the box, then each of their faces.
+      return db_->select(
+          "SELECT f.face_key FROM " + db_->tiles_then_faces() + " WHERE t.volume_id = $1 AND " +
+              db_->overlaps("t", 2) + " AND " + box_test("f", 2) + " ORDER BY f.face_key",
+          p, [&](const Row& r) { out.push_back(key(r, 0)); });
+    });
+    if (!s) return s.error();
+    return out;
+  }
+
+  Result<std::vector<VolumeInfo>> volumes_in_box(const QueryBox& box) override {
+    std::vector<Value> p;
+    for (double c : {box.min.x, box.min.y, box.min.z, box.max.x, box.max.y, box.max.z}) {
+      p.emplace_back(c);
+    }
+    return volumes(std::string("SELECT ") + kVolumeColumns +
+                       " FROM volumes WHERE id IN (SELECT b.id FROM volume_boxes b WHERE " +
+                       db_->overlaps("b", 1) + ") AND " + box_test("volumes", 1),
+                   p);
+  }
+
   Result<std::vector<StoredPoint>> get_points(const std::string& name, int version) override {
     std::vector<StoredPoint> out;
     Status s = read(name, version, [&](std::int64_t id) {
-      return db_->select(
+      return db_->bulk_select(
           "SELECT vertex_key, x, y, z FROM vertices WHERE volume_id = $1 ORDER BY vertex_key", {id},
           [&](const Row& r) {
             out.push_back({key(r, 0), {r.d(1), r.d(2), r.d(3)}});
@@ -262,7 +308,7 @@ class SqlStore final : public Store {
   Result<std::vector<StoredEdge>> get_edges(const std::string& name, int version) override {
     std::vector<StoredEdge> out;
     Status s = read(name, version, [&](std::int64_t id) {
-      return db_->select(
+      return db_->bulk_select(
           "SELECT edge_key, start_vertex, end_vertex, uses FROM edges WHERE volume_id = $1 "
           "ORDER BY edge_key",
           {id}, [&](const Row& r) {
@@ -279,7 +325,7 @@ class SqlStore final : public Store {
       auto cell = [](const Row& r, int c) {
         return r.is_null(c) ? std::nullopt : std::optional<std::uint32_t>(key(r, c));
       };
-      Status st = db_->select(
+      Status st = db_->bulk_select(
           "SELECT face_key, front_cell, back_cell, nx, ny, nz, d FROM faces WHERE volume_id = $1 "
           "ORDER BY face_key",
           {id}, [&](const Row& r) {
@@ -288,7 +334,7 @@ class SqlStore final : public Store {
           });
       if (!st) return st;
       std::vector<std::pair<std::uint32_t, std::uint32_t>> loop_at;  // (face, index in loops)
-      st = db_->select(
+      st = db_->bulk_select(
           "SELECT face_key, point_vertex FROM loops WHERE volume_id = $1 ORDER BY loop_key", {id},
           [&](const Row& r) {
             auto& loops = out.at(key(r, 0)).loops;
@@ -297,7 +343,7 @@ class SqlStore final : public Store {
             if (!r.is_null(1)) loops.back().push_back(key(r, 1));
           });
       if (!st) return st;
-      return db_->select(
+      return db_->bulk_select(
           "SELECT u.loop_key, CASE WHEN u.reversed = 0 THEN e.start_vertex ELSE e.end_vertex END "
           "FROM loop_edges u JOIN edges e ON e.volume_id = u.volume_id AND e.edge_key = u.edge_key "
           "WHERE u.volume_id = $1 ORDER BY u.loop_key, u.ord",
@@ -346,6 +392,13 @@ class SqlStore final : public Store {
         if (s) s = db_->exec(std::string("DELETE FROM ") + table + " WHERE volume_id = $1", {id});
       }
     }
+    for (std::int64_t id : ids) {
+      if (s) {
+        s = db_->exec("DELETE FROM face_tiles WHERE id BETWEEN $1 AND $2",
+                      {tile_id(id, 0), tile_id(id + 1, 0) - 1});
+      }
+      if (s) s = db_->exec("DELETE FROM volume_boxes WHERE id = $1", {id});
+    }
     if (s) s = db_->exec("DELETE FROM volumes WHERE name = $1", {name});
     if (s) s = db_->exec("DELETE FROM object_volumes WHERE volume_name = $1", {name});
     if (!s) {
@@ -377,10 +430,13 @@ class SqlStore final : public Store {
     return out;
   }
 
-  Result<QueryResult> query(const std::string& sql) override { return db_->read_only_query(sql); }
+  Result<QueryResult> query(const std::string& sql, const QueryOptions& options) override {
+    return db_->read_only_query(sql, options);
+  }
 
  private:
   static std::uint32_t key(const Row& r, int c) { return static_cast<std::uint32_t>(r.i(c)); }
+
 
   Status create_schema_locked() {
     if (Status s =
@@ -401,10 +457,17 @@ class SqlStore final : public Store {
       return db_error("the database has schema version " + std::to_string(version) +
                       "; this cellforge knows version " + std::to_string(kSchemaVersion));
     }
-    for (const char* ddl : kSchema) {
-      std::string sql = ddl;
-      if (const auto at = sql.find("{serial}"); at != std::string::npos) {
-        sql.replace(at, 8, db_->serial_primary_key());
+    std::vector<std::string> ddl(std::begin(kSchema), std::end(kSchema));
+    for (const std::string& spatial : db_->spatial_schema()) ddl.push_back(spatial);
+    for (const std::string& grant : db_->reader_schema()) ddl.push_back(grant);
+    for (std::string& sql : ddl) {
+      for (const auto& [from, to] : {std::pair<std::string, std::string>{"{serial}",
+                                                                          db_->serial_primary_key()},
+                                     {"{clustered}", db_->clustered()},
+                                     {"{double}", db_->double_type()}}) {
+        for (std::size_t at; (at = sql.find(from)) != std::string::npos;) {
+          sql.replace(at, from.size(), to);
+        }
       }
       if (Status s = db_->exec(sql); !s) return s;
     }
@@ -435,7 +498,7 @@ class SqlStore final : public Store {
          info.cells,      info.groups},
         [&](const Row& r) { info.id = r.i(0); });
     if (!s) return s;
-    if (s = write_rows(info.id, rows, o.progress); !s) return s;
+    if (s = write_rows(info.id, rows, {info.bbox_min, info.bbox_max}, o.progress); !s) return s;
     if (!o.object.empty()) s = add_to_object(o.object, info.name);
     return s;
   }
@@ -465,7 +528,7 @@ class SqlStore final : public Store {
     return s;
   }
 
-  Status write_rows(std::int64_t id, const ModelRows& r,
+  Status write_rows(std::int64_t id, const ModelRows& r, const QueryBox& volume_box,
                     const std::function<void(std::uint64_t)>& progress) {
     std::uint64_t done = 0;
     auto insert = [&](const char* table, int columns, std::size_t n, const FillFn& fill) {
@@ -517,11 +580,13 @@ class SqlStore final : public Store {
       });
     }
     if (s) {
-      s = insert("faces", 10, r.faces.size(), [&](std::size_t i, RowWriter& w) {
+      s = insert("faces", 16, r.faces.size(), [&](std::size_t i, RowWriter& w) {
         const auto& f = r.faces[i];
+        const QueryBox& b = r.boxes[i];
         w.i(id), w.i(static_cast<std::int64_t>(i)), w.i(f.group), w.opt(f.front), w.opt(f.back),
             w.opt(f.surface), w.d(r.planes[i].normal.x), w.d(r.planes[i].normal.y),
-            w.d(r.planes[i].normal.z), w.d(r.planes[i].d);
+            w.d(r.planes[i].normal.z), w.d(r.planes[i].d), w.d(b.min.x), w.d(b.min.y),
+            w.d(b.min.z), w.d(b.max.x), w.d(b.max.y), w.d(b.max.z);
       });
     }
     if (s) {
@@ -538,7 +603,46 @@ class SqlStore final : public Store {
         w.i(id), w.i(u.loop), w.i(u.ord), w.i(u.edge), w.i(u.reversed ? 1 : 0), w.i(u.radial_ord);
       });
     }
+    const std::vector<QueryBox> tiles = tile_boxes(r.boxes);
+    if (s) {
+      s = insert("face_tiles", 10, tiles.size(), [&](std::size_t t, RowWriter& w) {
+        const QueryBox& b = tiles[t];
+        const auto first = static_cast<std::int64_t>(t * kTileFaces);
+        const auto last = static_cast<std::int64_t>(std::min<std::size_t>(
+                              (t + 1) * kTileFaces, r.faces.size())) -
+                          1;
+        w.i(tile_id(id, t)), w.d(b.min.x), w.d(b.max.x), w.d(b.min.y), w.d(b.max.y), w.d(b.min.z),
+            w.d(b.max.z), w.i(id), w.i(first), w.i(last);
+      });
+    }
+    if (s && !r.vertices.empty()) {  // the box of a model without points is empty
+      s = insert("volume_boxes", 7, 1, [&](std::size_t, RowWriter& w) {
+        w.i(id), w.d(volume_box.min.x), w.d(volume_box.max.x), w.d(volume_box.min.y),
+            w.d(volume_box.max.y), w.d(volume_box.min.z), w.d(volume_box.max.z);
+      });
+    }
     return s;
+  }
+
+  // The id of tile t of a stored volume in face_tiles: one range per volume.
+  static std::int64_t tile_id(std::int64_t volume_id, std::size_t t) {
+    return volume_id * (std::int64_t{1} << 32) + static_cast<std::int64_t>(t);
+  }
+
+  // The box of every kTileFaces consecutive faces.
+  static std::vector<QueryBox> tile_boxes(const std::vector<QueryBox>& faces) {
+    std::vector<QueryBox> tiles;
+    for (std::size_t i = 0; i < faces.size(); ++i) {
+      const QueryBox& b = faces[i];
+      if (i % kTileFaces == 0) {
+        tiles.push_back(b);
+        continue;
+      }
+      QueryBox& t = tiles.back();
+      t.min = {std::min(t.min.x, b.min.x), std::min(t.min.y, b.min.y), std::min(t.min.z, b.min.z)};
+      t.max = {std::max(t.max.x, b.max.x), std::max(t.max.y, b.max.y), std::max(t.max.z, b.max.z)};
+    }
+    return tiles;
   }
 
   // Runs `body` on the id of (name, version) inside one read transaction.
@@ -567,8 +671,87 @@ class SqlStore final : public Store {
   }
 
   Status read_rows(std::int64_t id, ModelRows& r) {
-    const std::vector<Value> p{id};
+    const std::vector<std::int64_t> p{id};
     auto opt = [](const Row& row, int c) { return row.is_null(c) ? kNone : row.i(c); };
+    if (!helper_) {
+      if (auto another = db_->open_another()) helper_ = std::move(another.value());
+    }
+    Status helper_status = Status::Ok();
+    std::thread helper;
+    if (helper_) helper = std::thread([&] { helper_status = read_uses_elsewhere(id, r.uses); });
+    Status s = read_small_tables(id, r);
+    if (s) {
+      s = db_->bulk_select("SELECT group_key FROM cells WHERE volume_id = $1 ORDER BY cell_key", p,
+                           [&](const Row& row) { r.cells.push_back(key(row, 0)); });
+    }
+    if (s) {
+      s = db_->bulk_select(
+          "SELECT x, y, z, group_key FROM vertices WHERE volume_id = $1 ORDER BY vertex_key", p,
+          [&](const Row& row) {
+            r.vertices.push_back({{row.d(0), row.d(1), row.d(2)}, key(row, 3)});
+          });
+    }
+    if (s) {
+      s = db_->bulk_select(
+          "SELECT start_vertex, end_vertex, uses FROM edges WHERE volume_id = $1 ORDER BY edge_key",
+          p, [&](const Row& row) {
+            r.edges.push_back({key(row, 0), key(row, 1)});
+            r.edge_uses.push_back(key(row, 2));
+          });
+    }
+    if (s) {
+      s = db_->bulk_select(
+          "SELECT group_key, front_cell, back_cell, surface_key, nx, ny, nz, d FROM faces "
+          "WHERE volume_id = $1 ORDER BY face_key",
+          p, [&](const Row& row) {
+            r.faces.push_back({key(row, 0), opt(row, 1), opt(row, 2), opt(row, 3)});
+            r.planes.push_back({{row.d(4), row.d(5), row.d(6)}, row.d(7)});
+          });
+    }
+    if (s) {
+      s = db_->bulk_select(
+          "SELECT face_key, ord, point_vertex FROM loops WHERE volume_id = $1 ORDER BY loop_key", p,
+          [&](const Row& row) {
+            r.loops.push_back({key(row, 0), key(row, 1), opt(row, 2)});
+          });
+    }
+    if (helper.joinable()) helper.join();
+    if (s) s = helper_status;
+    if (s && !helper_) s = read_uses(*db_, id, r.uses);
+    return s;
+  }
+
+  static Status read_uses(Connection& db, std::int64_t id, std::vector<Snapshot::Use>& uses) {
+    return db.bulk_select(
+        "SELECT loop_key, ord, edge_key, reversed, radial_ord FROM loop_edges "
+        "WHERE volume_id = $1 ORDER BY loop_key, ord",
+        {id}, [&](const Row& row) {
+          uses.push_back({key(row, 0), key(row, 1), key(row, 2), row.i(3) != 0, key(row, 4)});
+        });
+  }
+
+  // The edge uses (nearly half the rows) of stored volume `id`, read on the
+  // second connection in a read transaction of its own. The rows of a committed
+  // version never change, so that snapshot holds the same rows as the first one
+  // if it holds the volume at all.
+  Status read_uses_elsewhere(std::int64_t id, std::vector<Snapshot::Use>& uses) {
+    Connection& db = *helper_;
+    if (Status s = db.begin_read(); !s) return s;
+    bool found = false;
+    Status s = db.select("SELECT id FROM volumes WHERE id = $1", {id},
+                         [&](const Row&) { found = true; });
+    if (s && !found) s = db_error("the volume was removed while it was read");
+    if (s) s = read_uses(db, id, uses);
+    if (!s) {
+      db.rollback();
+      return s;
+    }
+    return db.commit();
+  }
+
+  // Groups, parameters and surfaces: what a partial load keeps whole.
+  Status read_small_tables(std::int64_t id, ModelRows& r) {
+    const std::vector<Value> p{id};
     Status s = db_->select("SELECT name FROM model_groups WHERE volume_id = $1 ORDER BY group_key",
                            p, [&](const Row& row) { r.groups.push_back({row.s(0)}); });
     if (s) {
@@ -577,25 +760,6 @@ class SqlStore final : public Store {
           "ORDER BY group_key, ord",
           p, [&](const Row& row) {
             r.parameters.push_back({key(row, 0), row.s(1), row.s(2)});
-          });
-    }
-    if (s) {
-      s = db_->select("SELECT group_key FROM cells WHERE volume_id = $1 ORDER BY cell_key", p,
-                      [&](const Row& row) { r.cells.push_back(key(row, 0)); });
-    }
-    if (s) {
-      s = db_->select(
-          "SELECT x, y, z, group_key FROM vertices WHERE volume_id = $1 ORDER BY vertex_key", p,
-          [&](const Row& row) {
-            r.vertices.push_back({{row.d(0), row.d(1), row.d(2)}, key(row, 3)});
-          });
-    }
-    if (s) {
-      s = db_->select(
-          "SELECT start_vertex, end_vertex, uses FROM edges WHERE volume_id = $1 ORDER BY edge_key",
-          p, [&](const Row& row) {
-            r.edges.push_back({key(row, 0), key(row, 1)});
-            r.edge_uses.push_back(key(row, 2));
           });
     }
     if (s) {
@@ -612,31 +776,90 @@ class SqlStore final : public Store {
                                   static_cast<int>(row.i(10))});
           });
     }
-    if (s) {
-      s = db_->select(
-          "SELECT group_key, front_cell, back_cell, surface_key, nx, ny, nz, d FROM faces "
-          "WHERE volume_id = $1 ORDER BY face_key",
-          p, [&](const Row& row) {
-            r.faces.push_back({key(row, 0), opt(row, 1), opt(row, 2), opt(row, 3)});
-            r.planes.push_back({{row.d(4), row.d(5), row.d(6)}, row.d(7)});
-          });
-    }
-    if (s) {
-      s = db_->select(
-          "SELECT face_key, ord, point_vertex FROM loops WHERE volume_id = $1 ORDER BY loop_key", p,
-          [&](const Row& row) {
-            r.loops.push_back({key(row, 0), key(row, 1), opt(row, 2)});
-          });
-    }
-    if (s) {
-      s = db_->select(
-          "SELECT loop_key, ord, edge_key, reversed, radial_ord FROM loop_edges "
-          "WHERE volume_id = $1 ORDER BY loop_key, ord",
-          p, [&](const Row& row) {
-            r.uses.push_back({key(row, 0), key(row, 1), key(row, 2), row.i(3) != 0, key(row, 4)});
-          });
-    }
     return s;
+  }
+
+  // The rows of the faces named by `condition` and of what they use, renumbered
+  // densely as a sheet model: no cells, and the stored radial order among the
+  // uses kept (restore sorts each edge's uses by radial_ord).
+  Status read_face_rows(std::int64_t id, const std::string& condition, ModelRows& r) {
+    auto opt = [](const Row& row, int c) { return row.is_null(c) ? kNone : row.i(c); };
+    std::vector<std::uint32_t> face_keys;
+    Status s = db_->untrusted_select(
+        "SELECT f.face_key, f.group_key, f.surface_key FROM faces f JOIN volumes v ON v.id = "
+        "f.volume_id WHERE f.volume_id = $1 AND (" +
+            condition + ") ORDER BY f.face_key",
+        {id}, [&](const Row& row) {
+          face_keys.push_back(key(row, 0));
+          r.faces.push_back({key(row, 1), kNone, kNone, opt(row, 2)});
+        });
+    if (s) s = read_small_tables(id, r);
+    if (s) s = db_->before_key_set_reads();
+    const auto in_set = [&](const char* column, int param) {
+      return std::string(" AND ") + column + " IN (" + db_->key_set_query(param) + ")";
+    };
+    std::vector<std::uint32_t> loop_keys;
+    std::vector<std::int64_t> point_vertices;
+    if (s) {
+      s = db_->select("SELECT loop_key, face_key, ord, point_vertex FROM loops WHERE volume_id = $1" +
+                          in_set("face_key", 2) + " ORDER BY loop_key",
+                      {id, db_->key_set(face_keys)}, [&](const Row& row) {
+                        loop_keys.push_back(key(row, 0));
+                        r.loops.push_back({key(row, 1), key(row, 2), opt(row, 3)});
+                      });
+    }
+    std::vector<std::uint32_t> edge_keys;
+    if (s) {
+      s = db_->select(
+          "SELECT loop_key, ord, edge_key, reversed, radial_ord FROM loop_edges WHERE volume_id = "
+          "$1" + in_set("loop_key", 2) + " ORDER BY loop_key, ord",
+          {id, db_->key_set(loop_keys)}, [&](const Row& row) {
+            r.uses.push_back({key(row, 0), key(row, 1), key(row, 2), row.i(3) != 0, key(row, 4)});
+            edge_keys.push_back(key(row, 2));
+          });
+    }
+    std::sort(edge_keys.begin(), edge_keys.end());
+    edge_keys.erase(std::unique(edge_keys.begin(), edge_keys.end()), edge_keys.end());
+    std::vector<std::uint32_t> vertex_keys;
+    if (s) {
+      s = db_->select("SELECT start_vertex, end_vertex, uses FROM edges WHERE volume_id = $1" +
+                          in_set("edge_key", 2) + " ORDER BY edge_key",
+                      {id, db_->key_set(edge_keys)}, [&](const Row& row) {
+                        r.edges.push_back({key(row, 0), key(row, 1)});
+                        r.edge_uses.push_back(key(row, 2));
+                        vertex_keys.push_back(key(row, 0));
+                        vertex_keys.push_back(key(row, 1));
+                      });
+    }
+    for (const auto& l : r.loops) {
+      if (l.point_vertex != kNone) vertex_keys.push_back(static_cast<std::uint32_t>(l.point_vertex));
+    }
+    std::sort(vertex_keys.begin(), vertex_keys.end());
+    vertex_keys.erase(std::unique(vertex_keys.begin(), vertex_keys.end()), vertex_keys.end());
+    if (s) {
+      s = db_->select("SELECT x, y, z, group_key FROM vertices WHERE volume_id = $1" +
+                          in_set("vertex_key", 2) + " ORDER BY vertex_key",
+                      {id, db_->key_set(vertex_keys)}, [&](const Row& row) {
+                        r.vertices.push_back({{row.d(0), row.d(1), row.d(2)}, key(row, 3)});
+                      });
+    }
+    if (!s) return s;
+    // Stored keys to dense ones; a key the rows name but the set lacks is left
+    // out of range, for restore to refuse.
+    const auto renumber = [](const std::vector<std::uint32_t>& keys, std::uint32_t k) {
+      const auto at = std::lower_bound(keys.begin(), keys.end(), k);
+      return at != keys.end() && *at == k ? static_cast<std::uint32_t>(at - keys.begin())
+                                          : static_cast<std::uint32_t>(keys.size());
+    };
+    for (auto& l : r.loops) {
+      l.face = renumber(face_keys, l.face);
+      if (l.point_vertex != kNone) {
+        l.point_vertex = renumber(vertex_keys, static_cast<std::uint32_t>(l.point_vertex));
+      }
+    }
+    for (auto& u : r.uses) u.loop = renumber(loop_keys, u.loop), u.edge = renumber(edge_keys, u.edge);
+    for (auto& e : r.edges) e.start = renumber(vertex_keys, e.start), e.end = renumber(vertex_keys, e.end);
+    return Status::Ok();
   }
 
   Result<std::vector<VolumeInfo>> volumes(const std::string& sql, const std::vector<Value>& p) {
@@ -656,6 +879,7 @@ class SqlStore final : public Store {
   }
 
   std::unique_ptr<Connection> db_;
+  std::unique_ptr<Connection> helper_;  // reads in parallel with db_ (read_rows)
 };
 
 }  // namespace

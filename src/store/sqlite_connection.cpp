@@ -3,6 +3,7 @@
 // the writer) and, for user queries, a second connection opened read-only.
 #include <sqlite3.h>
 
+#include <chrono>
 #include <cstring>
 
 #include "store/connection.h"
@@ -52,12 +53,11 @@ class SqliteRow final : public Row {
 class SqliteWriter final : public RowWriter {
  public:
   explicit SqliteWriter(sqlite3_stmt* s) : s_(s) {}
-  void reset() { col_ = 0; }
   void null() override { sqlite3_bind_null(s_, ++col_); }
   void i(std::int64_t v) override { sqlite3_bind_int64(s_, ++col_, v); }
   void d(double v) override { sqlite3_bind_double(s_, ++col_, v); }
   void s(const std::string& v) override {
-    sqlite3_bind_text(s_, ++col_, v.data(), static_cast<int>(v.size()), SQLITE_TRANSIENT);
+    sqlite3_bind_text(s_, ++col_, v.data(), static_cast<int>(v.size()), SQLITE_STATIC);
   }
 
  private:
@@ -74,7 +74,9 @@ class SqliteConnection final : public Connection {
   }
 
   Status open() {
-    if (sqlite3_open_v2(path_.c_str(), &db_, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE, nullptr) !=
+    // NOMUTEX: a connection is used by one thread at a time.
+    if (sqlite3_open_v2(path_.c_str(), &db_,
+                        SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE | SQLITE_OPEN_NOMUTEX, nullptr) !=
         SQLITE_OK) {
       return fail(db_, "cannot open " + path_);
     }
@@ -87,6 +89,7 @@ class SqliteConnection final : public Connection {
   }
 
   std::string backend() const override { return "sqlite"; }
+  Result<std::unique_ptr<Connection>> open_another() const override { return open_sqlite(path_); }
   std::string serial_primary_key() const override { return "INTEGER PRIMARY KEY"; }
 
   Status exec(const std::string& sql, const std::vector<Value>& params) override {
@@ -99,14 +102,7 @@ class SqliteConnection final : public Connection {
     if (sqlite3_prepare_v2(db_, to_sqlite(sql).c_str(), -1, &st.get(), nullptr) != SQLITE_OK) {
       return fail(db_, "prepare");
     }
-    for (std::size_t k = 0; k < params.size(); ++k) bind(st, static_cast<int>(k + 1), params[k]);
-    const SqliteRow row(st);
-    for (;;) {
-      const int rc = sqlite3_step(st);
-      if (rc == SQLITE_DONE) return Status::Ok();
-      if (rc != SQLITE_ROW) return fail(db_, "step");
-      fn(row);
-    }
+    return run(st, params, fn);
   }
 
   Status begin_write(const std::string&) override { return exec("BEGIN IMMEDIATE", {}); }
@@ -119,33 +115,128 @@ class SqliteConnection final : public Connection {
     if (!sqlite3_get_autocommit(db_)) sqlite3_exec(db_, "ROLLBACK", nullptr, nullptr, nullptr);
   }
 
+  // Rows go in as multi-row INSERTs of kBatch rows, one prepared statement re-bound
+  // per batch (and one for the remainder): far fewer steps through the VDBE.
   Status bulk_insert(const std::string& table, int columns, std::size_t rows, const FillFn& fill,
                      const std::function<void(std::uint64_t)>& progress) override {
-    std::string sql = "INSERT INTO " + table + " VALUES (";
-    for (int c = 0; c < columns; ++c) sql += c ? ", ?" : "?";
-    sql += ")";
-    Statement st;
-    if (sqlite3_prepare_v2(db_, sql.c_str(), -1, &st.get(), nullptr) != SQLITE_OK) {
-      return fail(db_, "prepare " + table);
-    }
-    SqliteWriter w(st);
-    for (std::size_t r = 0; r < rows; ++r) {
-      w.reset();
-      fill(r, w);
+    constexpr std::size_t kBatch = 64;
+    Statement full, rest;
+    std::size_t r = 0;
+    auto batch = [&](Statement& st, std::size_t n) -> Status {
+      if (!st.get() &&
+          sqlite3_prepare_v2(db_, insert_sql(table, columns, n).c_str(), -1, &st.get(), nullptr) !=
+              SQLITE_OK) {
+        return fail(db_, "prepare " + table);
+      }
+      SqliteWriter w(st);
+      for (std::size_t k = 0; k < n; ++k) fill(r + k, w);
       if (sqlite3_step(st) != SQLITE_DONE) return fail(db_, "insert into " + table);
       sqlite3_reset(st);
-      if (progress && (r + 1) % 65536 == 0) progress(r + 1);
+      r += n;
+      return Status::Ok();
+    };
+    while (rows - r >= kBatch) {
+      if (Status s = batch(full, kBatch); !s) return s;
+      if (progress && r % 65536 == 0) progress(r);
+    }
+    if (r < rows) {
+      if (Status s = batch(rest, rows - r); !s) return s;
     }
     if (progress) progress(rows);
     return Status::Ok();
   }
 
-  Result<QueryResult> read_only_query(const std::string& sql) override {
-    if (!readonly_ &&
-        sqlite3_open_v2(path_.c_str(), &readonly_, SQLITE_OPEN_READONLY, nullptr) != SQLITE_OK) {
-      return fail(readonly_, "cannot open " + path_ + " read-only").error();
+  Status bulk_select(const std::string& sql, const std::vector<std::int64_t>& params,
+                     const RowFn& fn) override {
+    return select(sql, std::vector<Value>(params.begin(), params.end()), fn);
+  }
+
+  Status untrusted_select(const std::string& sql, const std::vector<Value>& params,
+                          const RowFn& fn) override {
+    Statement st;
+    const std::string text = to_sqlite(sql);
+    const char* tail = nullptr;
+    if (sqlite3_prepare_v2(db_, text.c_str(), static_cast<int>(text.size()), &st.get(), &tail) !=
+        SQLITE_OK) {
+      return fail(db_, "condition");
     }
-    sqlite3_busy_timeout(readonly_, 60000);
+    if (!st.get() || (tail && std::strspn(tail, " \t\r\n;") != std::strlen(tail))) {
+      return db_error("the condition must be part of one SQL statement");
+    }
+    if (!sqlite3_stmt_readonly(st)) return db_error("the condition must not write");
+    return run(st, params, fn);
+  }
+
+  std::string clustered() const override { return " WITHOUT ROWID"; }
+  std::string double_type() const override { return ""; }
+  std::vector<std::string> spatial_schema() const override {
+    return {
+        "CREATE VIRTUAL TABLE face_tiles USING rtree(id, min_x, max_x, min_y, max_y, min_z, "
+        "max_z, +volume_id, +first_face, +last_face)",
+        "CREATE VIRTUAL TABLE volume_boxes USING rtree(id, min_x, max_x, min_y, max_y, min_z, "
+        "max_z)",
+    };
+  }
+  // The R*Tree answers comparisons on its own columns.
+  std::string overlaps(const std::string& alias, int p) const override {
+    return box_test(alias, p);
+  }
+  std::string tiles_then_faces() const override {
+    // CROSS JOIN: SQLite keeps the tiles as the outer loop.
+    return "face_tiles t CROSS JOIN faces f ON f.volume_id = t.volume_id AND f.face_key BETWEEN "
+           "t.first_face AND t.last_face";
+  }
+  std::string key_set_query(int param) const override {
+    return "SELECT value FROM json_each($" + std::to_string(param) + ")";
+  }
+  Value key_set(const std::vector<std::uint32_t>& keys) const override {
+    std::string s = "[";
+    for (std::size_t k = 0; k < keys.size(); ++k) {
+      if (k) s += ',';
+      s += std::to_string(keys[k]);
+    }
+    return s + "]";
+  }
+
+  // User SQL: a second connection, opened read-only, refusing every statement
+  // that could write (sqlite3_stmt_readonly) and the functions that reach
+  // outside the database (fts3_tokenizer hands out a heap pointer and, with two
+  // arguments, takes one; load_extension loads code), interrupted at the time
+  // limit.
+  Result<QueryResult> read_only_query(const std::string& sql,
+                                      const QueryOptions& options) override {
+    if (!readonly_) {
+      if (sqlite3_open_v2(path_.c_str(), &readonly_, SQLITE_OPEN_READONLY | SQLITE_OPEN_NOMUTEX,
+                          nullptr) != SQLITE_OK) {
+        Status s = fail(readonly_, "cannot open " + path_ + " read-only");
+        sqlite3_close_v2(readonly_);
+        readonly_ = nullptr;
+        return s.error();
+      }
+      sqlite3_busy_timeout(readonly_, 60000);
+      sqlite3_db_config(readonly_, SQLITE_DBCONFIG_ENABLE_FTS3_TOKENIZER, 0, nullptr);
+      sqlite3_db_config(readonly_, SQLITE_DBCONFIG_ENABLE_LOAD_EXTENSION, 0, nullptr);
+      sqlite3_db_config(readonly_, SQLITE_DBCONFIG_DEFENSIVE, 1, nullptr);
+      sqlite3_set_authorizer(readonly_, authorize_user_sql, nullptr);
+    }
+    const auto deadline = std::chrono::steady_clock::now() +
+                          std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                              std::chrono::duration<double>(options.timeout));
+    sqlite3_progress_handler(
+        readonly_, 10000,
+        [](void* d) {
+          return std::chrono::steady_clock::now() >
+                         *static_cast<const std::chrono::steady_clock::time_point*>(d)
+                     ? 1
+                     : 0;
+        },
+        const_cast<std::chrono::steady_clock::time_point*>(&deadline));
+    auto out = run_user_query(sql, options);
+    sqlite3_progress_handler(readonly_, 0, nullptr, nullptr);
+    return out;
+  }
+
+  Result<QueryResult> run_user_query(const std::string& sql, const QueryOptions& options) {
     Statement st;
     const char* tail = nullptr;
     if (sqlite3_prepare_v2(readonly_, sql.c_str(), static_cast<int>(sql.size()), &st.get(),
@@ -163,7 +254,15 @@ class SqliteConnection final : public Connection {
     for (;;) {
       const int rc = sqlite3_step(st);
       if (rc == SQLITE_DONE) break;
+      if (rc == SQLITE_INTERRUPT) {
+        return db_error("sqlite: the query ran past its time limit of " +
+                        std::to_string(options.timeout) + " s and was interrupted");
+      }
       if (rc != SQLITE_ROW) return fail(readonly_, "query").error();
+      if (options.max_rows && out.rows.size() == options.max_rows) {
+        out.truncated = true;
+        break;
+      }
       auto& row = out.rows.emplace_back();
       for (int c = 0; c < n; ++c) {
         if (sqlite3_column_type(st, c) == SQLITE_NULL) {
@@ -182,6 +281,36 @@ class SqliteConnection final : public Connection {
   }
 
  private:
+  // For SQLITE_FUNCTION the function's name is the second argument.
+  static int authorize_user_sql(void*, int action, const char*, const char* name, const char*,
+                                const char*) {
+    if (action != SQLITE_FUNCTION || !name) return SQLITE_OK;
+    for (const char* refused : {"fts3_tokenizer", "load_extension"}) {
+      if (sqlite3_stricmp(name, refused) == 0) return SQLITE_DENY;
+    }
+    return SQLITE_OK;
+  }
+
+  static std::string insert_sql(const std::string& table, int columns, std::size_t rows) {
+    std::string one = "(";
+    for (int c = 0; c < columns; ++c) one += c ? ", ?" : "?";
+    one += ")";
+    std::string sql = "INSERT INTO " + table + " VALUES ";
+    for (std::size_t r = 0; r < rows; ++r) sql += (r ? ", " : "") + one;
+    return sql;
+  }
+
+  Status run(sqlite3_stmt* st, const std::vector<Value>& params, const RowFn& fn) {
+    for (std::size_t k = 0; k < params.size(); ++k) bind(st, static_cast<int>(k + 1), params[k]);
+    const SqliteRow row(st);
+    for (;;) {
+      const int rc = sqlite3_step(st);
+      if (rc == SQLITE_DONE) return Status::Ok();
+      if (rc != SQLITE_ROW) return fail(db_, "step");
+      fn(row);
+    }
+  }
+
   static void bind(sqlite3_stmt* st, int k, const Value& v) {
     if (const auto* i = std::get_if<std::int64_t>(&v)) {
       sqlite3_bind_int64(st, k, *i);

@@ -72,12 +72,38 @@ TEST_P(Cli, SaveListInfoSqlLoadRemove) {
   EXPECT_EQ(r.out, "[\n {\"n\": 2}\n]\n");
   r = cli({"db", "sql", "DROP TABLE volumes", "--db", db_});
   EXPECT_EQ(r.status, 1);
+  // A row limit for printing, and a time limit.
+  r = cli({"db", "sql", "SELECT vertex_key FROM vertices ORDER BY volume_id, vertex_key",
+           "--limit", "3", "--db", db_});
+  ASSERT_EQ(r.status, 0);
+  EXPECT_NE(r.out.find("(3 rows)"), std::string::npos) << r.out;
+  const std::string slow =
+      GetParam() == "postgresql"
+          ? "SELECT pg_sleep(30)"
+          : "WITH RECURSIVE n(i) AS (SELECT 1 UNION ALL SELECT i + 1 FROM n) SELECT COUNT(*) FROM n";
+  r = cli({"db", "sql", slow, "--timeout", "0.5", "--db", db_});
+  EXPECT_EQ(r.status, 1);
+  r = cli({"db", "sql", "SELECT 1", "--timeout", "soon", "--db", db_});
+  EXPECT_EQ(r.status, 2);
 
   r = cli({"db", "load", "x'); DROP TABLE volumes;--", "-o", "-", "--version", "1", "--db", db_});
   ASSERT_EQ(r.status, 0);
   auto direct = store_->get("x'); DROP TABLE volumes;--", 1);
   ASSERT_TRUE(direct.ok());
   EXPECT_NE(r.out.find("inner={["), std::string::npos);
+
+  // A partial load: the top face of the box with a hole (z = 1), its two loops.
+  r = cli({"db", "load", "x'); DROP TABLE volumes;--", "--version", "1", "--faces",
+           "f.nz = 1 AND v.version = 1", "-o", "-", "--db", db_});
+  ASSERT_EQ(r.status, 0) << r.out;
+  std::size_t faces = 0;
+  for (std::size_t at = 0; (at = r.out.find("\nF ", at)) != std::string::npos; ++at) ++faces;
+  EXPECT_EQ(faces + (r.out.rfind("F ", 0) == 0), 1u) << r.out;
+  EXPECT_NE(r.out.find("inner={["), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("front=- back=-"), std::string::npos) << r.out;
+  r = cli({"db", "load", "x'); DROP TABLE volumes;--", "--faces", "1 = 1); DROP TABLE faces; --",
+           "-o", "-", "--db", db_});
+  EXPECT_EQ(r.status, 1);
 
   r = cli({"db", "rm", "x'); DROP TABLE volumes;--", "--db", db_});
   EXPECT_EQ(r.status, 0);

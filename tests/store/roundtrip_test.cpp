@@ -3,6 +3,7 @@
 // parameters and surfaces, and seeded random non-manifold assemblies.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 
 #include "cellforge/topo/builder.h"
@@ -130,6 +131,23 @@ TEST_P(RoundTrip, SeededRandomAssemblies) {
   auto first = store_->get("random", 1);
   ASSERT_OK(first);
   expect_same_model(random_assembly(1), first.value());
+}
+
+// Bit for bit: negative zero, subnormals and extremes come back as stored
+// (expect_same_model compares the bytes of every coordinate).
+TEST_P(RoundTrip, SignedZeroSubnormalsAndExtremes) {
+  MeshInput in;
+  const std::uint32_t a = add_point(in, {-0.0, -0.0, -0.0}), b = add_point(in, {1e308, 5e-324, 0.0});
+  const std::uint32_t c = add_point(in, {-1e308, -2.2250738585072014e-308, 0.1 + 0.2});
+  const std::uint32_t d = add_point(in, {-0.0, 1.0 / 3.0, -5e-324});
+  in.faces.push_back({{{a, b, c}}});
+  in.faces.push_back({{{a, c, d}}});
+  const Model m = build(in);
+  round_trip(*store_, "extremes", m);
+  auto got = store_->get("extremes");
+  ASSERT_OK(got);
+  EXPECT_TRUE(std::signbit(got->position(VertexId(0)).x));
+  EXPECT_TRUE(std::signbit(got->position(VertexId(3)).x));
 }
 
 TEST_P(RoundTrip, EmptyModel) { round_trip(*store_, "nothing", Model()); }

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <thread>
 
 #include "store/store_fixture.h"
@@ -169,6 +170,60 @@ TEST_P(StoreOps, QueriesAreReadOnly) {
   EXPECT_EQ(*r->rows[0][0], "cube");
   EXPECT_EQ(*r->rows[0][1], "6");
   EXPECT_FALSE(store_->query("SELECT * FROM no_such_table").ok());
+}
+
+// Issue 18: user SQL reaches nothing but the model tables. PostgreSQL: no COPY
+// (to a program, a file or the client), no server files, no signals to other
+// backends, no configuration reloads or checkpoints, whatever the connection's
+// role may do. SQLite: no fts3_tokenizer (its one-argument form hands out a heap
+// pointer), no load_extension.
+TEST_P(StoreOps, UserSqlReachesOnlyTheModel) {
+  ASSERT_OK(store_->put("cube", build(unit_cube())));
+  const std::vector<std::string> refused =
+      GetParam() == "postgresql"
+          ? std::vector<std::string>{"COPY (SELECT 1) TO PROGRAM 'id'",
+                                     "COPY (SELECT 1) TO '/tmp/cellforge_copy_test'",
+                                     "COPY (SELECT 1) TO STDOUT",
+                                     "COPY volumes TO STDOUT",
+                                     "SELECT pg_read_file('PG_VERSION')",
+                                     "SELECT * FROM pg_ls_dir('.')",
+                                     "SELECT pg_terminate_backend(pg_backend_pid())",
+                                     "SELECT pg_reload_conf()",
+                                     "CHECKPOINT",
+                                     "SET ROLE NONE",
+                                     "SELECT set_config('role', 'none', true), "
+                                     "pg_read_file('PG_VERSION')",
+                                     "SELECT 1) q; SELECT pg_read_file('PG_VERSION') --"}
+          : std::vector<std::string>{"SELECT fts3_tokenizer('simple')",
+                                     "SELECT hex(fts3_tokenizer('porter'))",
+                                     "SELECT load_extension('/nonexistent')"};
+  for (const std::string& sql : refused) {
+    auto r = store_->query(sql);
+    EXPECT_FALSE(r.ok()) << sql << " ran: " << (r ? std::to_string(r->rows.size()) + " rows" : "");
+  }
+  EXPECT_EQ(scalar(*store_, "SELECT COUNT(*) FROM faces"), "6");
+  EXPECT_EQ(scalar(*store_, "SELECT COUNT(*) FROM face_edge_points WHERE volume = 'cube'"), "48");
+  // The store itself still works after every refusal.
+  ASSERT_OK(store_->put("cube", build(unit_cube())));
+}
+
+// A query that runs too long is cancelled and reported, and the store goes on.
+TEST_P(StoreOps, QueriesHaveATimeLimit) {
+  const std::string slow =
+      GetParam() == "postgresql"
+          ? "SELECT pg_sleep(30)"
+          : "WITH RECURSIVE n(i) AS (SELECT 1 UNION ALL SELECT i + 1 FROM n) "
+            "SELECT COUNT(*) FROM n";
+  QueryOptions o;
+  o.timeout = 0.5;
+  const auto t0 = std::chrono::steady_clock::now();
+  auto r = store_->query(slow, o);
+  const double took =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.error().message.find("time limit"), std::string::npos) << r.error().message;
+  EXPECT_LT(took, 10.0);
+  EXPECT_EQ(scalar(*store_, "SELECT 1 + 1"), "2");
 }
 
 TEST_P(StoreOps, HostileNamesAreDataOrRefused) {

@@ -71,10 +71,23 @@ struct StoredFace {
   double d = 0;
 };
 
+// An axis-aligned box, closed: a face or volume box meets it when the two
+// overlap or touch on every axis.
+struct QueryBox {
+  Vec3 min, max;
+};
+
+// How a user query runs.
+struct QueryOptions {
+  double timeout = 300;       // seconds; a query still running then is cancelled (an error)
+  std::size_t max_rows = 0;   // when not 0, at most this many rows are read
+};
+
 // The answer of a read-only SQL query, values as text (nullopt for NULL).
 struct QueryResult {
   std::vector<std::string> columns;
   std::vector<std::vector<std::optional<std::string>>> rows;
+  bool truncated = false;  // the query had more rows than max_rows
 };
 
 class Store {
@@ -94,6 +107,23 @@ class Store {
   virtual Result<std::vector<StoredPoint>> get_points(const std::string& name, int version = 0) = 0;
   virtual Result<std::vector<StoredEdge>> get_edges(const std::string& name, int version = 0) = 0;
   virtual Result<std::vector<StoredFace>> get_faces(const std::string& name, int version = 0) = 0;
+  // A partial load: the faces of a version that satisfy `condition`, an SQL
+  // condition on the row `f` of table faces and the row `v` of table volumes
+  // (e.g. "f.group_key = 1", or a spatial query on face_tiles, docs/database.md),
+  // with their loops, edges and vertices, as a sheet model (no 3-cells, no wires,
+  // no isolated points; every group and surface kept), validated. Edge directions,
+  // loop starts and radial order are the stored ones. The condition runs
+  // read-only; a condition that is not one read-only SQL expression is refused.
+  virtual Result<Model> get_faces_where(const std::string& name, const std::string& condition,
+                                        int version = 0) = 0;
+  // The keys of the faces of a version whose bounding boxes meet `box`, in key
+  // order: an indexed query (the face_tiles spatial index, then each face's box).
+  virtual Result<std::vector<std::uint32_t>> faces_in_box(const std::string& name,
+                                                          const QueryBox& box,
+                                                          int version = 0) = 0;
+  // Every stored version whose bounding box meets `box` (volume_boxes), by name
+  // and version.
+  virtual Result<std::vector<VolumeInfo>> volumes_in_box(const QueryBox& box) = 0;
 
   virtual Result<VolumeInfo> info(const std::string& name, int version = 0) = 0;
   // The latest version of every name, by name.
@@ -105,8 +135,9 @@ class Store {
   // The volume names listed in an object (scene), in the order they were added.
   virtual Result<std::vector<std::string>> get_object(const std::string& name) = 0;
 
-  // Runs one SQL statement that must not write (refused otherwise).
-  virtual Result<QueryResult> query(const std::string& sql) = 0;
+  // Runs one SQL query that must not write (refused otherwise), with the rights of
+  // a reader of the model tables only (docs/database.md, "User SQL").
+  virtual Result<QueryResult> query(const std::string& sql, const QueryOptions& options = {}) = 0;
 };
 
 // Opens (creating the schema if needed) the database named by `db`: a
