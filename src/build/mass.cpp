@@ -7,6 +7,8 @@
 #include <cmath>
 #include <vector>
 
+#include "cellforge/geom/polygon.h"
+
 namespace cellforge::build {
 
 namespace {
@@ -36,11 +38,7 @@ std::vector<std::vector<Vec3>> face_loops(const Model& m, FaceId f, Vec3 ref) {
 void add_face(const Model& m, FaceId f, int sign, Vec3 ref, Sums& s) {
   const auto loops = face_loops(m, f, ref);
   Vec3 normal;
-  for (const auto& loop : loops) {
-    for (std::size_t i = 0; i < loop.size(); ++i) {
-      normal = normal + cross(loop[i], loop[(i + 1) % loop.size()]);
-    }
-  }
+  for (const auto& loop : loops) normal = newell_normal(loop, normal);
   const double len = length(normal);
   if (len == 0) return;
   const Vec3 unit = normal / len;

@@ -7,6 +7,7 @@
 #include "build/draft.h"
 #include "cellforge/build/primitives.h"
 #include "cellforge/geom/predicates.h"
+#include "cellforge/geom/volume.h"
 
 namespace cellforge::build {
 
@@ -90,16 +91,6 @@ Status check_closed(const std::vector<Loop>& faces) {
   return Status::Ok();
 }
 
-double signed_volume(const std::vector<Vec3>& p, const std::vector<Loop>& faces) {
-  double v = 0;
-  for (const Loop& f : faces) {
-    for (std::size_t i = 1; i + 1 < f.size(); ++i) {
-      v += dot(p[f[0]] - p[0], cross(p[f[i]] - p[0], p[f[i + 1]] - p[0]));
-    }
-  }
-  return v / 6;
-}
-
 }  // namespace
 
 Result<GroupId> make_polyhedron(Model& m, const PolyhedronOptions& o) {
@@ -110,7 +101,7 @@ Result<GroupId> make_polyhedron(Model& m, const PolyhedronOptions& o) {
     for (Loop& f : faces) std::reverse(f.begin(), f.end());
   }
   if (Status s = check_closed(faces); !s) return s.error();
-  if (signed_volume(o.points, faces) <= 0) {
+  if (volume_sign(o.points, faces) <= 0) {
     return invalid(std::string("the faces point inward (the enclosed volume is not positive); ") +
                    (o.clockwise ? "list each face clockwise seen from outside"
                                 : "list each face counterclockwise seen from outside"));

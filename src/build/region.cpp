@@ -5,6 +5,8 @@
 #include <cmath>
 #include <string>
 
+#include "cellforge/geom/intersect.h"
+#include "cellforge/geom/polygon.h"
 #include "build/draft.h"
 
 namespace cellforge::build {
@@ -19,37 +21,13 @@ std::string loop_name(std::size_t loop) {
   return loop == 0 ? std::string("outer loop") : "hole " + std::to_string(loop - 1);
 }
 
-// p lies on the closed segment ab, given that a, b, p are collinear.
-bool within(Vec2 a, Vec2 b, Vec2 p) {
-  return std::min(a.x, b.x) <= p.x && p.x <= std::max(a.x, b.x) && std::min(a.y, b.y) <= p.y &&
-         p.y <= std::max(a.y, b.y);
-}
-
-// Closed segments ab and cd share a point.
-bool segments_meet(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
-  const int o1 = orient2d(a, b, c), o2 = orient2d(a, b, d);
-  const int o3 = orient2d(c, d, a), o4 = orient2d(c, d, b);
-  if (o1 * o2 < 0 && o3 * o4 < 0) return true;
-  return (o1 == 0 && within(a, b, c)) || (o2 == 0 && within(a, b, d)) ||
-         (o3 == 0 && within(c, d, a)) || (o4 == 0 && within(c, d, b));
-}
-
-// Edges ab and bc of one loop meet in more than b: c folds back onto ab.
+// Edges ab and bc of one loop meet in more than b: c folds back onto ab (the turn at
+// b is a reversal, or one edge covers the other's far end).
 bool folds_back(Vec2 a, Vec2 b, Vec2 c) {
   if (orient2d(a, b, c) != 0) return false;
-  return (b.x - a.x) * (c.x - b.x) + (b.y - a.y) * (c.y - b.y) < 0 || within(a, b, c) ||
-         within(b, c, a);
-}
-
-// Winding number of the loop about p (p not on the loop), exactly.
-int winding(const std::vector<Vec2>& loop, Vec2 p) {
-  int w = 0;
-  for (std::size_t i = 0; i < loop.size(); ++i) {
-    const Vec2 a = loop[i], b = loop[(i + 1) % loop.size()];
-    if (a.y <= p.y && p.y < b.y && orient2d(a, b, p) > 0) ++w;
-    if (b.y <= p.y && p.y < a.y && orient2d(a, b, p) < 0) --w;
-  }
-  return w;
+  const auto lift = [](Vec2 p) { return Vec3{p.x, p.y, 0}; };
+  return dot_sign(lift(a), lift(b), lift(b), lift(c)) < 0 || point_on_segment(a, b, c) ||
+         point_on_segment(b, c, a);
 }
 
 // +1 counterclockwise, -1 clockwise, 0 degenerate; for a loop without crossings the
@@ -170,11 +148,11 @@ Result<Region> polygon(std::vector<Vec2> outer, std::vector<std::vector<Vec2>> h
     if ((l == 0) != (o > 0)) std::reverse(region.loops[l].begin(), region.loops[l].end());
   }
   for (std::size_t l = 1; l < region.loops.size(); ++l) {
-    if (winding(region.loops[0], region.loops[l][0]) == 0) {
+    if (winding_number(region.loops[0], region.loops[l][0]) == 0) {
       return invalid(loop_name(l) + " lies outside the outer loop");
     }
     for (std::size_t k = 1; k < region.loops.size(); ++k) {
-      if (k != l && winding(region.loops[k], region.loops[l][0]) != 0) {
+      if (k != l && winding_number(region.loops[k], region.loops[l][0]) != 0) {
         return invalid(loop_name(l) + " lies inside " + loop_name(k));
       }
     }
@@ -184,12 +162,7 @@ Result<Region> polygon(std::vector<Vec2> outer, std::vector<std::vector<Vec2>> h
 
 double area(const Region& region) {
   double a = 0;
-  for (const auto& loop : region.loops) {
-    for (std::size_t i = 0; i < loop.size(); ++i) {
-      const Vec2 p = loop[i], q = loop[(i + 1) % loop.size()];
-      a += p.x * q.y - q.x * p.y;
-    }
-  }
+  for (const auto& loop : region.loops) a += signed_area2(loop);
   return a / 2;
 }
 

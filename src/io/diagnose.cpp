@@ -8,10 +8,11 @@
 #include <numeric>
 
 #include "cellforge/build/mass.h"
+#include "cellforge/geom/predicates.h"
+#include "cellforge/geom/union_find.h"
 #include "cellforge/io/triangulate.h"
 #include "cellforge/topo/queries.h"
 #include "cellforge/topo/validate.h"
-#include "io/exact.h"
 #include "io/intersect.h"
 
 namespace cellforge::io {
@@ -22,17 +23,14 @@ namespace {
 bool degenerate(const Model& m, FaceId f) {
   const std::vector<Vec3> p = m.loop_points(m.outer_loop(f));
   if (p.size() < 3) return true;
-  for (int drop = 0; drop < 3; ++drop) {
-    const auto q = [&](Vec3 v) { return Point2{v[(drop + 1) % 3], v[(drop + 2) % 3]}; };
-    for (std::size_t k = 2; k < p.size(); ++k)
-      if (orient2d(q(p[0]), q(p[1]), q(p[k])) != 0) return false;
-  }
+  for (std::size_t k = 2; k < p.size(); ++k)
+    if (!collinear3d(p[0], p[1], p[k])) return false;
   return true;
 }
 
 // Faces around v that form separate fans (joined across the edges at v).
 std::size_t fans_at(const Model& m, VertexId v, std::vector<FaceId>& faces,
-                    std::vector<std::uint32_t>& parent) {
+                    UnionFind& fans_of) {
   faces.clear();
   std::vector<EdgeId> edges;
   edges_of(m, v, edges);
@@ -43,25 +41,16 @@ std::size_t fans_at(const Model& m, VertexId v, std::vector<FaceId>& faces,
   }
   std::sort(faces.begin(), faces.end());
   faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
-  parent.resize(faces.size());
-  std::iota(parent.begin(), parent.end(), 0);
+  fans_of.reset(faces.size());
   const auto index = [&](FaceId f) {
     return static_cast<std::uint32_t>(std::lower_bound(faces.begin(), faces.end(), f) -
                                       faces.begin());
-  };
-  const auto root = [&](std::uint32_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
   };
   std::size_t fans = faces.size();
   for (EdgeId e : edges) {
     faces_of(m, e, around);
     for (std::size_t k = 1; k < around.size(); ++k) {
-      const std::uint32_t a = root(index(around[0])), b = root(index(around[k]));
-      if (a != b) {
-        parent[a] = b;
-        --fans;
-      }
+      if (fans_of.unite(index(around[k]), index(around[0]))) --fans;
     }
   }
   return fans;
@@ -134,7 +123,7 @@ Diagnosis diagnose(const Model& m, const DiagnoseOptions& options) {
     }
   }
   std::vector<FaceId> faces;
-  std::vector<std::uint32_t> parent;
+  UnionFind parent;
   for (VertexId v : m.vertices()) {
     if (!m.first_end(v).edge.is_valid()) {
       if (!m.point_loop(v).is_valid()) ++d.isolated_vertices;

@@ -8,23 +8,10 @@
 #include <numeric>
 
 #include "cellforge/build/mass.h"
+#include "cellforge/geom/polygon.h"
 #include "cellforge/topo/validate.h"
 
 namespace cellforge::store {
-
-namespace {
-
-// Newell vector of a loop: twice its vector area.
-Vec3 newell(const std::vector<Vec3>& pts) {
-  Vec3 n;
-  for (std::size_t i = 0; i < pts.size(); ++i) {
-    const Vec3 a = pts[i], b = pts[(i + 1) % pts.size()];
-    n = n + Vec3{(a.y - b.y) * (a.z + b.z), (a.z - b.z) * (a.x + b.x), (a.x - b.x) * (a.y + b.y)};
-  }
-  return n;
-}
-
-}  // namespace
 
 ModelRows to_rows(const Model& m) {
   ModelRows r;
@@ -33,7 +20,7 @@ ModelRows to_rows(const Model& m) {
   for (FaceId f : m.faces()) {
     Vec3 area;
     for (LoopId l = m.outer_loop(f); l.is_valid(); l = m.next_loop(l)) {
-      area = area + newell(m.loop_points(l));
+      area = newell_normal(m.loop_points(l), area);
     }
     const Vec3 n = normalized(area);
     r.planes.push_back({n, -dot(n, m.position(m.loop_vertices(m.outer_loop(f)).front()))});

@@ -11,7 +11,7 @@
 #include <map>
 #include <sstream>
 
-namespace cellforge {
+namespace cellforge::inline topo {
 
 namespace {
 
@@ -159,4 +159,4 @@ std::string raw_dump(const Model& m) {
   return os.str();
 }
 
-}  // namespace cellforge
+}  // namespace cellforge::inline topo

@@ -4,7 +4,9 @@
 #include <algorithm>
 #include <iterator>
 
-namespace cellforge {
+#include "cellforge/geom/polygon.h"
+
+namespace cellforge::inline topo {
 
 namespace {
 
@@ -148,10 +150,7 @@ std::vector<Vec3> Model::loop_points(LoopId l) const {
 }
 
 Vec3 Model::face_normal(FaceId f) const {
-  Vec3 n;
-  const std::vector<Vec3> pts = loop_points(outer_loop(f));
-  for (std::size_t i = 0; i < pts.size(); ++i) n = n + cross(pts[i], pts[(i + 1) % pts.size()]);
-  return n;
+  return newell_normal(loop_points(outer_loop(f)));
 }
 
 std::size_t Model::spare_pairs() const {
@@ -214,4 +213,4 @@ bool Model::is_smooth(EdgeId e) const {
   return true;
 }
 
-}  // namespace cellforge
+}  // namespace cellforge::inline topo

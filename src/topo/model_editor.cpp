@@ -9,7 +9,7 @@
 #include "cellforge/topo/dedupe.h"
 #include "topo/operators_common.h"
 
-namespace cellforge {
+namespace cellforge::inline topo {
 
 // A slot from kind's free list (whose links `link(i)` reads), or a new one that
 // `grow()` appends.
@@ -571,4 +571,4 @@ void ModelEditor::set_sides(FaceId f, VolumeId front, VolumeId back) {
   rec(f).sides = intern_sides(front, back, m_.group_of(f)) | (rec(f).sides & Model::kFaceMarks);
 }
 
-}  // namespace cellforge
+}  // namespace cellforge::inline topo

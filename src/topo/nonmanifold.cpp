@@ -9,7 +9,7 @@
 #include "topo/model_editor.h"
 #include "topo/operators_common.h"
 
-namespace cellforge {
+namespace cellforge::inline topo {
 
 using ops::require_live;
 
@@ -527,4 +527,4 @@ Status merge_vertices(Model& m, VertexId keep, VertexId dying) {
   return Status::Ok();
 }
 
-}  // namespace cellforge
+}  // namespace cellforge::inline topo

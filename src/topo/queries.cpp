@@ -6,7 +6,7 @@
 
 #include "cellforge/topo/dedupe.h"
 
-namespace cellforge {
+namespace cellforge::inline topo {
 
 namespace {
 
@@ -96,4 +96,4 @@ void faces_of(const Model& m, FaceId f, std::vector<FaceId>& out) {
   dedupe_stable(out);
 }
 
-}  // namespace cellforge
+}  // namespace cellforge::inline topo

@@ -10,7 +10,7 @@
 #include "cellforge/topo/validate.h"
 #include "topo/model_editor.h"
 
-namespace cellforge {
+namespace cellforge::inline topo {
 
 namespace {
 
@@ -253,4 +253,4 @@ Result<Model> restore(const Snapshot& r) {
   return m;
 }
 
-}  // namespace cellforge
+}  // namespace cellforge::inline topo

@@ -24,28 +24,13 @@
 #include <algorithm>
 #include <numeric>
 
+#include "cellforge/geom/union_find.h"
 #include "topo/operators_common.h"
 #include "topo/validate_checks.h"
 
-namespace cellforge {
+namespace cellforge::inline topo {
 
 namespace {
-
-struct UnionFind {
-  explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0u); }
-  std::uint32_t find(std::uint32_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  }
-  bool unite(std::uint32_t a, std::uint32_t b) {
-    a = find(a);
-    b = find(b);
-    if (a == b) return false;
-    parent[b] = a;
-    return true;
-  }
-  std::vector<std::uint32_t> parent;
-};
 
 template <class Fn>
 void for_each_use(const Model& m, FaceId f, Fn fn) {
@@ -313,4 +298,4 @@ void euler(const Model& m, Violations& out) {
 
 }  // namespace checks
 
-}  // namespace cellforge
+}  // namespace cellforge::inline topo

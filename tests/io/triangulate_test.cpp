@@ -9,8 +9,8 @@
 #include <filesystem>
 #include <fstream>
 
+#include "cellforge/geom/predicates.h"
 #include "cellforge/io/diagnose.h"
-#include "io/exact.h"
 #include "io_test_util.h"
 #include "support/checks.h"
 #include "support/fixtures.h"
@@ -28,10 +28,10 @@ void expect_good_triangulation(const Loops& loops, double area) {
   for (const auto& l : loops) all.insert(all.end(), l.begin(), l.end());
   double sum = 0;
   for (const auto& t : tris) {
-    const io::Point2 a{all[t[0]].x, all[t[0]].y}, b{all[t[1]].x, all[t[1]].y},
+    const Vec2 a{all[t[0]].x, all[t[0]].y}, b{all[t[1]].x, all[t[1]].y},
         c{all[t[2]].x, all[t[2]].y};
-    EXPECT_EQ(io::orient2d(a, b, c), 1) << t[0] << " " << t[1] << " " << t[2];
-    sum += ((b.u - a.u) * (c.v - a.v) - (b.v - a.v) * (c.u - a.u)) / 2;
+    EXPECT_EQ(orient2d(a, b, c), 1) << t[0] << " " << t[1] << " " << t[2];
+    sum += ((b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x)) / 2;
   }
   EXPECT_DOUBLE_EQ(sum, area);
   std::size_t corners = 0;

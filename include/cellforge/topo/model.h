@@ -81,7 +81,7 @@
 #include "cellforge/geom/vec.h"
 #include "cellforge/ids.h"
 
-namespace cellforge {
+namespace cellforge::inline topo {
 
 class ModelEditor;  // src/topo: the only code that writes records
 
@@ -627,4 +627,4 @@ class Model {
   std::size_t live_[kKinds] = {};
 };
 
-}  // namespace cellforge
+}  // namespace cellforge::inline topo

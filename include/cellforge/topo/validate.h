@@ -22,7 +22,7 @@
 
 #include "cellforge/topo/model.h"
 
-namespace cellforge {
+namespace cellforge::inline topo {
 
 struct Violation {
   std::string check;    // "vertex", "radial", "loop", ...
@@ -44,4 +44,4 @@ struct EulerFigures {
 };
 EulerFigures euler_figures(const Model& m);
 
-}  // namespace cellforge
+}  // namespace cellforge::inline topo
