@@ -1,13 +1,13 @@
 // diagnose(): what a model is as a mesh (diagnose.h). Every count walks the local
 // cycles of the structure once; degeneracy and duplicates use exact tests on the
-// vertices; mass properties are build/'s (divergence theorem over the faces).
+// vertices; mass properties are shape/'s (divergence theorem over the faces).
 #include "cellforge/io/diagnose.h"
 
 #include <algorithm>
 #include <cstdio>
 #include <numeric>
 
-#include "cellforge/build/mass.h"
+#include "cellforge/shape/mass.h"
 #include "cellforge/geom/predicates.h"
 #include "cellforge/geom/union_find.h"
 #include "cellforge/io/triangulate.h"
@@ -153,7 +153,7 @@ Diagnosis diagnose(const Model& m, const DiagnoseOptions& options) {
   d.closed = d.faces > 0 && d.boundary_edges.empty();
   d.manifold = d.non_manifold_edges.empty() && d.non_manifold_vertices.empty() &&
                d.wire_edges == 0 && d.isolated_vertices == 0;
-  d.mass = build::mass_properties(m);
+  d.mass = shape::mass_properties(m);
   return d;
 }
 

@@ -7,7 +7,7 @@
 #include <limits>
 #include <numeric>
 
-#include "cellforge/build/mass.h"
+#include "cellforge/shape/mass.h"
 #include "cellforge/geom/polygon.h"
 #include "cellforge/topo/validate.h"
 
@@ -55,7 +55,7 @@ VolumeInfo summarize(const Model& m) {
   for (FaceId f : m.faces()) {
     (m.back_volume(f).is_valid() || m.front_volume(f).is_valid() ? solid : sheet) = true;
   }
-  const build::MassProperties mass = build::mass_properties(m);
+  const shape::MassProperties mass = shape::mass_properties(m);
   info.volume = mass.volume;
   info.area = mass.area;
   info.centroid = mass.centroid;

@@ -1,6 +1,6 @@
 #include "topo/operators_common.h"
 
-namespace cellforge::topo::ops {
+namespace cellforge::inline topo::ops {
 
 EdgeUseId first_use_from(const Model& m, LoopId l, VertexId v) {
   for (EdgeUseId u : loop_uses(m, l)) {
@@ -87,4 +87,4 @@ EdgeUseId inconsistent_wedge(const Model& m, const std::vector<EdgeUseId>& cycle
   return {};
 }
 
-}  // namespace cellforge::topo::ops
+}  // namespace cellforge::inline topo::ops

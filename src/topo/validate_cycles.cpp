@@ -4,7 +4,7 @@
 #include "topo/model_editor.h"
 #include "topo/validate_checks.h"
 
-namespace cellforge::topo::checks {
+namespace cellforge::inline topo::checks {
 
 void vertex_cycles(const Model& m, Violations& out) {
   auto fail = [&](std::string msg) { out.push_back({"vertex", std::move(msg)}); };
@@ -108,4 +108,4 @@ void loops(const Model& m, Violations& out) {
   }
 }
 
-}  // namespace cellforge::topo::checks
+}  // namespace cellforge::inline topo::checks

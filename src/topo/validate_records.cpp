@@ -5,7 +5,7 @@
 #include "cellforge/topo/dedupe.h"
 #include "topo/validate_checks.h"
 
-namespace cellforge::topo::checks {
+namespace cellforge::inline topo::checks {
 
 void records(const Model& m, Violations& out) {
   auto fail = [&](std::string msg) { out.push_back({"records", std::move(msg)}); };
@@ -139,4 +139,4 @@ void face_marks(const Model& m, Violations& out) {
   }
 }
 
-}  // namespace cellforge::topo::checks
+}  // namespace cellforge::inline topo::checks

@@ -12,7 +12,7 @@
 
 #include <string>
 
-namespace cellforge::build {
+namespace cellforge::shape {
 
 // OpenSCAD's GRID_FINE: radii below it get the minimum of 3 fragments.
 inline constexpr double kGridFine = 0.00000095367431640625;
@@ -41,4 +41,4 @@ double cos_degrees(double degrees);
 // The shortest decimal text that reads back as the same double ("0.1", "3", "1e-07").
 std::string format_number(double x);
 
-}  // namespace cellforge::build
+}  // namespace cellforge::shape

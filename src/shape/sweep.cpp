@@ -2,16 +2,16 @@
 // a region, or one open polyline — and make one ring of vertices per slice (per
 // section of the revolution), side faces between consecutive rings, and caps where
 // the profile is closed and the sweep is not.
-#include "cellforge/build/sweep.h"
+#include "cellforge/shape/sweep.h"
 
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <string>
 
-#include "build/sweep_draft.h"
+#include "shape/sweep_draft.h"
 
-namespace cellforge::build {
+namespace cellforge::shape {
 
 namespace {
 
@@ -428,4 +428,4 @@ Result<GroupId> rotate_extrude(Model& m, Vec2 point, const RotateExtrudeOptions&
   return commit(m, d);
 }
 
-}  // namespace cellforge::build
+}  // namespace cellforge::shape

@@ -1,14 +1,14 @@
 // 2D regions (exact checks of polygon()) and mass properties of sheets and cells.
 #include <gtest/gtest.h>
 
-#include "build/build_test_util.h"
-#include "cellforge/build/mass.h"
-#include "cellforge/build/primitives.h"
-#include "cellforge/build/region.h"
+#include "shape/shape_test_util.h"
+#include "cellforge/shape/mass.h"
+#include "cellforge/shape/primitives.h"
+#include "cellforge/shape/region.h"
 #include "cellforge/topo/builder.h"
 #include "support/checks.h"
 
-namespace cellforge::build {
+namespace cellforge::shape {
 namespace {
 
 TEST(Region, PolygonOrientsLoops) {
@@ -115,4 +115,4 @@ TEST(Mass, FarFromOriginKeepsPrecision) {
 }
 
 }  // namespace
-}  // namespace cellforge::build
+}  // namespace cellforge::shape

@@ -1,12 +1,12 @@
 // OpenSCAD's fragment rule and degree trigonometry (see faceting.h).
-#include "cellforge/build/faceting.h"
+#include "cellforge/shape/faceting.h"
 
 #include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <numbers>
 
-namespace cellforge::build {
+namespace cellforge::shape {
 
 namespace {
 
@@ -78,4 +78,4 @@ std::string format_number(double x) {
   return std::string(buf, r.ptr);
 }
 
-}  // namespace cellforge::build
+}  // namespace cellforge::shape

@@ -1,18 +1,18 @@
 // Transforms: exact OpenSCAD rotations, mirror keeps faces outward and volume
 // positive, non-uniform scale, surfaces follow similarities, singular matrices fail.
-#include "cellforge/build/transform.h"
+#include "cellforge/shape/transform.h"
 
 #include <gtest/gtest.h>
 
 #include <set>
 #include <tuple>
 
-#include "build/build_test_util.h"
-#include "cellforge/build/mass.h"
-#include "cellforge/build/primitives.h"
+#include "shape/shape_test_util.h"
+#include "cellforge/shape/mass.h"
+#include "cellforge/shape/primitives.h"
 #include "support/checks.h"
 
-namespace cellforge::build {
+namespace cellforge::shape {
 namespace {
 
 using testing::rel_err;
@@ -144,4 +144,4 @@ TEST(Transform, SingularMatrixIsAnError) {
 }
 
 }  // namespace
-}  // namespace cellforge::build
+}  // namespace cellforge::shape

@@ -1,17 +1,17 @@
 // Sweeps: twist / scale / partial-angle volumes against closed forms, profiles on the
 // axis, the dimension cases (polyline -> sheet, point -> wire), and errors.
-#include "cellforge/build/sweep.h"
+#include "cellforge/shape/sweep.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
 
-#include "build/build_test_util.h"
-#include "cellforge/build/mass.h"
+#include "shape/shape_test_util.h"
+#include "cellforge/shape/mass.h"
 #include "support/checks.h"
 
-namespace cellforge::build {
+namespace cellforge::shape {
 namespace {
 
 using testing::counts;
@@ -300,4 +300,4 @@ TEST(RotateExtrude, AngleErrors) {
 }
 
 }  // namespace
-}  // namespace cellforge::build
+}  // namespace cellforge::shape

@@ -7,12 +7,12 @@
 #include <string>
 #include <vector>
 
-#include "cellforge/build/faceting.h"
-#include "cellforge/build/region.h"
+#include "cellforge/shape/faceting.h"
+#include "cellforge/shape/region.h"
 #include "cellforge/result.h"
 #include "cellforge/topo/builder.h"
 
-namespace cellforge::build {
+namespace cellforge::shape {
 
 using Loop = std::vector<std::uint32_t>;
 
@@ -50,4 +50,4 @@ inline Error invalid(std::string message) {
 // The region checked by polygon() and oriented (outer counterclockwise, holes clockwise).
 Result<Region> checked(const Region& region);
 
-}  // namespace cellforge::build
+}  // namespace cellforge::shape

@@ -2,12 +2,12 @@
 // (make_prism, make_torus). The region must already be checked and oriented.
 #pragma once
 
-#include "build/draft.h"
-#include "cellforge/build/sweep.h"
+#include "shape/draft.h"
+#include "cellforge/shape/sweep.h"
 
-namespace cellforge::build {
+namespace cellforge::shape {
 
 Result<Draft> extrude_draft(const Region& region, const LinearExtrudeOptions& options);
 Result<Draft> revolve_draft(const Region& region, const RotateExtrudeOptions& options);
 
-}  // namespace cellforge::build
+}  // namespace cellforge::shape

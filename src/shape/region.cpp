@@ -1,5 +1,5 @@
 // 2D regions: constructors, and the exact checks of polygon() (region.h).
-#include "cellforge/build/region.h"
+#include "cellforge/shape/region.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,9 +7,9 @@
 
 #include "cellforge/geom/intersect.h"
 #include "cellforge/geom/polygon.h"
-#include "build/draft.h"
+#include "shape/draft.h"
 
-namespace cellforge::build {
+namespace cellforge::shape {
 
 namespace {
 
@@ -186,4 +186,4 @@ Result<GroupId> make_region_face(Model& m, const Region& region) {
   return commit(m, d);
 }
 
-}  // namespace cellforge::build
+}  // namespace cellforge::shape

@@ -4,12 +4,12 @@
 #include <map>
 #include <string>
 
-#include "build/draft.h"
-#include "cellforge/build/primitives.h"
+#include "shape/draft.h"
+#include "cellforge/shape/primitives.h"
 #include "cellforge/geom/predicates.h"
 #include "cellforge/geom/volume.h"
 
-namespace cellforge::build {
+namespace cellforge::shape {
 
 namespace {
 
@@ -121,4 +121,4 @@ Result<GroupId> make_polyhedron(Model& m, const PolyhedronOptions& o) {
   return commit(m, d);
 }
 
-}  // namespace cellforge::build
+}  // namespace cellforge::shape

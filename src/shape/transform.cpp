@@ -1,17 +1,17 @@
 // Affine transforms (transform.h). Matrices follow OpenSCAD's formulas
 // (src/core/TransformNode.cc, src/utils/degree_trig.cc) so that transformed
 // primitives agree with OpenSCAD's vertex for vertex.
-#include "cellforge/build/transform.h"
+#include "cellforge/shape/transform.h"
 
 #include <algorithm>
 #include <cmath>
 #include <string>
 #include <unordered_map>
 
-#include "build/draft.h"
-#include "cellforge/build/faceting.h"
+#include "shape/draft.h"
+#include "cellforge/shape/faceting.h"
 
-namespace cellforge::build {
+namespace cellforge::shape {
 
 namespace {
 
@@ -213,4 +213,4 @@ Result<GroupId> transformed(Model& m, GroupId g, const Transform& t) {
   return commit(m, d);
 }
 
-}  // namespace cellforge::build
+}  // namespace cellforge::shape

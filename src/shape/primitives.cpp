@@ -1,18 +1,18 @@
 // The solid primitives of primitives.h, each drafted as polygons and built through
 // build_mesh (draft.h). Vertex positions follow OpenSCAD's formulas exactly.
-#include "cellforge/build/primitives.h"
+#include "cellforge/shape/primitives.h"
 
 #include <algorithm>
 #include <cmath>
 #include <map>
 #include <string>
 
-#include "build/draft.h"
-#include "build/sweep_draft.h"
-#include "cellforge/build/mass.h"
+#include "shape/draft.h"
+#include "shape/sweep_draft.h"
+#include "cellforge/shape/mass.h"
 #include "cellforge/geom/predicates.h"
 
-namespace cellforge::build {
+namespace cellforge::shape {
 
 namespace {
 
@@ -216,4 +216,4 @@ Result<GroupId> make_prism(Model& m, const Region& base, double h, bool center) 
   return commit(m, *d);
 }
 
-}  // namespace cellforge::build
+}  // namespace cellforge::shape

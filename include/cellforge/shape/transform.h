@@ -17,7 +17,7 @@
 #include "cellforge/result.h"
 #include "cellforge/topo/model.h"
 
-namespace cellforge::build {
+namespace cellforge::shape {
 
 struct Transform {
   std::array<std::array<double, 4>, 3> m{{{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}}};
@@ -43,4 +43,4 @@ struct Transform {
 
 Result<GroupId> transformed(Model& m, GroupId g, const Transform& t);
 
-}  // namespace cellforge::build
+}  // namespace cellforge::shape

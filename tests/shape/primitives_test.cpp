@@ -1,7 +1,7 @@
 // Primitives: counts, Euler characteristic, closed-form volumes computed from the
 // vertex layout independently of the builder, OpenSCAD vertex positions, attributes,
 // surfaces, and the errors of bad parameters.
-#include "cellforge/build/primitives.h"
+#include "cellforge/shape/primitives.h"
 
 #include <gtest/gtest.h>
 
@@ -10,11 +10,11 @@
 #include <set>
 #include <tuple>
 
-#include "build/build_test_util.h"
-#include "cellforge/build/mass.h"
+#include "shape/shape_test_util.h"
+#include "cellforge/shape/mass.h"
 #include "support/checks.h"
 
-namespace cellforge::build {
+namespace cellforge::shape {
 namespace {
 
 using testing::counts;
@@ -356,9 +356,9 @@ TEST(Polyhedron, ErrorsNameTheFace) {
 }
 
 }  // namespace
-}  // namespace cellforge::build
+}  // namespace cellforge::shape
 
-namespace cellforge::build {
+namespace cellforge::shape {
 namespace {
 
 // Every segment count from 3 to 40: valid, Euler 2 (genus 0) or 0 (torus), volume as
@@ -384,4 +384,4 @@ TEST(Primitives, EverySegmentCountValidates) {
 }
 
 }  // namespace
-}  // namespace cellforge::build
+}  // namespace cellforge::shape

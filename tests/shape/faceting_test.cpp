@@ -1,12 +1,12 @@
 // Segment counts against OpenSCAD's get_fragments_from_r, and degree trigonometry.
-#include "cellforge/build/faceting.h"
+#include "cellforge/shape/faceting.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
 
-namespace cellforge::build {
+namespace cellforge::shape {
 namespace {
 
 struct Case {
@@ -83,4 +83,4 @@ TEST(Faceting, FormatNumberRoundTrips) {
 }
 
 }  // namespace
-}  // namespace cellforge::build
+}  // namespace cellforge::shape

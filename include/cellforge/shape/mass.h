@@ -8,7 +8,7 @@
 #include "cellforge/geom/vec.h"
 #include "cellforge/topo/model.h"
 
-namespace cellforge::build {
+namespace cellforge::shape {
 
 struct MassProperties {
   bool solid = false;  // some face bounds a cell; else volume is 0 and the centroid is
@@ -24,4 +24,4 @@ MassProperties mass_properties(const Model& m);
 MassProperties mass_properties(const Model& m, GroupId g);
 MassProperties mass_properties(const Model& m, VolumeId c);
 
-}  // namespace cellforge::build
+}  // namespace cellforge::shape

@@ -1,6 +1,6 @@
-#include "build/draft.h"
+#include "shape/draft.h"
 
-namespace cellforge::build {
+namespace cellforge::shape {
 
 Draft Draft::solid(std::string kind) {
   Draft d;
@@ -78,4 +78,4 @@ Result<GroupId> commit(Model& m, const Draft& d) {
   return g;
 }
 
-}  // namespace cellforge::build
+}  // namespace cellforge::shape

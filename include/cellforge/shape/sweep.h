@@ -24,12 +24,12 @@
 
 #include <optional>
 
-#include "cellforge/build/faceting.h"
-#include "cellforge/build/region.h"
+#include "cellforge/shape/faceting.h"
+#include "cellforge/shape/region.h"
 #include "cellforge/result.h"
 #include "cellforge/topo/model.h"
 
-namespace cellforge::build {
+namespace cellforge::shape {
 
 struct LinearExtrudeOptions {
   double height = 1;
@@ -62,4 +62,4 @@ Result<GroupId> rotate_extrude(Model& m, Vec2 point, const RotateExtrudeOptions&
 // The number of slices linear_extrude uses for these options (OpenSCAD's rule).
 int extrude_slices(const Region& profile, const LinearExtrudeOptions& options);
 
-}  // namespace cellforge::build
+}  // namespace cellforge::shape

@@ -9,12 +9,12 @@
 
 #include <vector>
 
-#include "cellforge/build/faceting.h"
+#include "cellforge/shape/faceting.h"
 #include "cellforge/geom/predicates.h"
 #include "cellforge/result.h"
 #include "cellforge/topo/model.h"
 
-namespace cellforge::build {
+namespace cellforge::shape {
 
 struct Region {
   std::vector<std::vector<Vec2>> loops;
@@ -44,4 +44,4 @@ double area(const Region& region);
 // The region as one sheet face in the plane z = 0 (normal +z), in a new group.
 Result<GroupId> make_region_face(Model& m, const Region& region);
 
-}  // namespace cellforge::build
+}  // namespace cellforge::shape

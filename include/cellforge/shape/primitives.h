@@ -15,12 +15,12 @@
 #include <cstdint>
 #include <vector>
 
-#include "cellforge/build/faceting.h"
-#include "cellforge/build/region.h"
+#include "cellforge/shape/faceting.h"
+#include "cellforge/shape/region.h"
 #include "cellforge/result.h"
 #include "cellforge/topo/model.h"
 
-namespace cellforge::build {
+namespace cellforge::shape {
 
 // OpenSCAD's cube(size, center): corner at the origin, or centred on it.
 struct CubeOptions {
@@ -106,4 +106,4 @@ struct PolyhedronOptions {
 };
 Result<GroupId> make_polyhedron(Model& m, const PolyhedronOptions& options);
 
-}  // namespace cellforge::build
+}  // namespace cellforge::shape

@@ -6,12 +6,12 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "build/build_test_util.h"
-#include "cellforge/build/mass.h"
+#include "shape/shape_test_util.h"
+#include "cellforge/shape/mass.h"
 #include "cellforge/io/mesh_io.h"
 #include "support/cli.h"
 
-namespace cellforge::build {
+namespace cellforge::shape {
 namespace {
 
 using cellforge::testing::CliRun;
@@ -76,4 +76,4 @@ TEST(MakeCli, ErrorsListValidChoices) {
 }
 
 }  // namespace
-}  // namespace cellforge::build
+}  // namespace cellforge::shape

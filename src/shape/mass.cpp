@@ -1,7 +1,7 @@
 // Mass properties by the divergence theorem (mass.h). Positions are taken relative to
 // the centre of the body's bounding box, so a body far from the origin loses no
 // precision to cancellation (and a symmetric one sums symmetric terms).
-#include "cellforge/build/mass.h"
+#include "cellforge/shape/mass.h"
 
 #include <algorithm>
 #include <cmath>
@@ -9,7 +9,7 @@
 
 #include "cellforge/geom/polygon.h"
 
-namespace cellforge::build {
+namespace cellforge::shape {
 
 namespace {
 
@@ -128,4 +128,4 @@ MassProperties mass_properties(const Model& m, VolumeId c) {
   return finish(s, true, ref);
 }
 
-}  // namespace cellforge::build
+}  // namespace cellforge::shape

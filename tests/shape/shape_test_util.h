@@ -1,14 +1,14 @@
-// Helpers shared by the build tests: Euler counts of a group and independent
+// Helpers shared by the shape tests: Euler counts of a group and independent
 // closed-form volumes of faceted solids.
 #pragma once
 
 #include <cmath>
 #include <numbers>
 
-#include "cellforge/build/faceting.h"
+#include "cellforge/shape/faceting.h"
 #include "cellforge/topo/model.h"
 
-namespace cellforge::build::testing {
+namespace cellforge::shape::testing {
 
 struct Counts {
   long v = 0, e = 0, f = 0;
@@ -36,4 +36,4 @@ inline double frustum_volume(int n, double r1, double r2, double h) {
 
 inline double rel_err(double got, double want) { return std::fabs(got - want) / std::fabs(want); }
 
-}  // namespace cellforge::build::testing
+}  // namespace cellforge::shape::testing
