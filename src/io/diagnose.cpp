@@ -137,7 +137,7 @@ Diagnosis diagnose(const Model& m, const DiagnoseOptions& options) {
   for (FaceId f : m.faces()) {
     if (degenerate(m, f)) d.degenerate_faces.push_back(f);
     std::vector<std::uint32_t> key;
-    for (LoopId l = m.outer_loop(f); l.is_valid(); l = m.next_loop(l))
+    for (LoopId l : m.loops_of(f))
       for (VertexId v : m.loop_vertices(l)) key.push_back(v.value);
     std::sort(key.begin(), key.end());
     keys.push_back({std::move(key), f});

@@ -160,7 +160,7 @@ std::vector<Tri> triangulate_polygon(const std::vector<std::vector<Vec3>>& loops
 std::vector<std::array<VertexId, 3>> triangulate_face(const Model& m, FaceId f) {
   std::vector<VertexId> ids;
   std::vector<std::vector<Vec3>> loops;
-  for (LoopId l = m.outer_loop(f); l.is_valid(); l = m.next_loop(l)) {
+  for (LoopId l : m.loops_of(f)) {
     if (m.is_point_loop(l)) continue;
     const std::vector<VertexId> vs = m.loop_vertices(l);
     ids.insert(ids.end(), vs.begin(), vs.end());

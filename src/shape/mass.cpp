@@ -26,7 +26,7 @@ struct Sums {
 
 std::vector<std::vector<Vec3>> face_loops(const Model& m, FaceId f, Vec3 ref) {
   std::vector<std::vector<Vec3>> loops;
-  for (LoopId l = m.outer_loop(f); l.is_valid(); l = m.next_loop(l)) {
+  for (LoopId l : m.loops_of(f)) {
     loops.push_back(m.loop_points(l));
     for (Vec3& p : loops.back()) p = p - ref;
   }
@@ -115,7 +115,7 @@ MassProperties mass_properties(const Model& m, VolumeId c) {
   auto bounds = [&](FaceId f) { return m.back_volume(f) == c || m.front_volume(f) == c; };
   for (FaceId f : m.faces()) {
     if (!bounds(f)) continue;
-    for (LoopId l = m.outer_loop(f); l.is_valid(); l = m.next_loop(l)) {
+    for (LoopId l : m.loops_of(f)) {
       for (Vec3 p : m.loop_points(l)) add_vertex(p, s);
     }
   }

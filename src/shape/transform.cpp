@@ -171,7 +171,7 @@ Result<GroupId> transformed(Model& m, GroupId g, const Transform& t) {
   for (FaceId f : m.faces()) {
     if (m.group_of(f) != g) continue;
     MeshFace face;
-    for (LoopId l = m.outer_loop(f); l.is_valid(); l = m.next_loop(l)) {
+    for (LoopId l : m.loops_of(f)) {
       if (m.is_point_loop(l)) {
         return Error{ErrorCode::kUnsupported,
                      "face " + f.str() + " has a point loop, which transformed() cannot copy"};

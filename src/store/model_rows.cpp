@@ -19,7 +19,7 @@ ModelRows to_rows(const Model& m) {
   r.planes.reserve(r.faces.size());
   for (FaceId f : m.faces()) {
     Vec3 area;
-    for (LoopId l = m.outer_loop(f); l.is_valid(); l = m.next_loop(l)) {
+    for (LoopId l : m.loops_of(f)) {
       area = newell_normal(m.loop_points(l), area);
     }
     const Vec3 n = normalized(area);

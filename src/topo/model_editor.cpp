@@ -478,13 +478,8 @@ void ModelEditor::unlink_end(VertexId v, EdgeEnd end) {
 
 void ModelEditor::move_end(EdgeEnd end, VertexId to) {
   // The faces along the edge may now meet `to` twice.
-  if (const EdgeUseId first = m_.first_use(end.edge); first.is_valid()) {
-    std::uint32_t u = first.value;
-    do {
-      if (const FaceId f = m_.face_of(EdgeUseId(u)); m_.is_live(f)) touch(f);
-      u = radial(u);
-    } while (u != first.value);
-  }
+  for (EdgeUseId u : m_.radial(end.edge))
+    if (const FaceId f = m_.face_of(u); m_.is_live(f)) touch(f);
   unlink_end(VertexId(end_rec(end).vertex), end);
   end_rec(end).vertex = to.value;
   link_end(to, end);

@@ -13,13 +13,7 @@ namespace {
 // The radial cycle of e, from its first use round to it.
 template <class Fn>
 void for_each_radial(const Model& m, EdgeId e, Fn fn) {
-  const EdgeUseId first = m.first_use(e);
-  if (!first.is_valid()) return;
-  EdgeUseId u = first;
-  do {
-    fn(u);
-    u = m.radial_next(u);
-  } while (u != first);
+  for (EdgeUseId u : m.radial(e)) fn(u);
 }
 
 }  // namespace

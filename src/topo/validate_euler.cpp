@@ -34,7 +34,7 @@ namespace {
 
 template <class Fn>
 void for_each_use(const Model& m, FaceId f, Fn fn) {
-  for (LoopId l = m.outer_loop(f); l.is_valid(); l = m.next_loop(l)) {
+  for (LoopId l : m.loops_of(f)) {
     for (EdgeUseId u : ops::loop_uses(m, l)) fn(u);
   }
 }
@@ -96,7 +96,7 @@ Analysis analyse(const Model& m) {
     p.r += static_cast<long>(m.inner_loop_count(f));
     p.volume_front |= m.front_volume(f).is_valid();
     p.volume_back |= m.back_volume(f).is_valid();
-    for (LoopId l = m.outer_loop(f); l.is_valid(); l = m.next_loop(l)) {
+    for (LoopId l : m.loops_of(f)) {
       if (m.is_point_loop(l)) touch(m.point_loop_vertex(l), shell_piece[f.value]);
     }
   }

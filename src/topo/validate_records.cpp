@@ -104,7 +104,7 @@ void face_marks(const Model& m, Violations& out) {
     edges.clear();
     vertices.clear();
     bool unplaced = false, overflow = false;
-    for (LoopId l = m.outer_loop(f); l.is_valid(); l = m.next_loop(l)) {
+    for (LoopId l : m.loops_of(f)) {
       if (m.is_point_loop(l)) {
         vertices.push_back(m.point_loop_vertex(l).value);
         continue;
