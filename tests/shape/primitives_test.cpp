@@ -12,6 +12,7 @@
 
 #include "shape/shape_test_util.h"
 #include "cellforge/shape/mass.h"
+#include "cellforge/topo/validate.h"
 #include "support/checks.h"
 
 namespace cellforge::shape {
@@ -187,6 +188,20 @@ TEST(Sphere, OpenScadLayout) {
     }
     EXPECT_FALSE(pos.count({0, 0, 10}));  // no pole vertex
   }
+}
+
+// The geometry check on faceted solids: no loop crosses itself; a sphere's quads may
+// be off their plane in doubles (a finding, not an error); a cube's faces are planar.
+TEST(Sphere, GeometryFindingsAreOnlyPlanarity) {
+  Model m;
+  ASSERT_TRUE(make_sphere(m, {.r = 10, .faceting = {.fn = 32}}));
+  const GeometryFindings g = check_geometry(m);
+  EXPECT_TRUE(g.crossings.empty()) << to_string(g.crossings);
+  for (const Violation& v : g.non_planar) EXPECT_EQ(v.check, "planarity");
+  Model cube;
+  ASSERT_TRUE(make_cube(cube, {.size = {1, 2, 3}}));
+  EXPECT_TRUE(check_geometry(cube).non_planar.empty());
+  EXPECT_TRUE(check_geometry(cube).crossings.empty());
 }
 
 TEST(Sphere, DefaultFacetingAndCentroid) {
