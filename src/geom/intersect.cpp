@@ -41,6 +41,13 @@ bool segments_meet(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
          (o3 == 0 && in_box(c, d, a)) || (o4 == 0 && in_box(c, d, b));
 }
 
+bool edges_fold_back(Vec2 a, Vec2 b, Vec2 c) {
+  if (orient2d(a, b, c) != 0) return false;
+  const auto lift = [](Vec2 p) { return Vec3{p.x, p.y, 0}; };
+  return dot_sign(lift(a), lift(b), lift(b), lift(c)) < 0 || point_on_segment(a, b, c) ||
+         point_on_segment(b, c, a);
+}
+
 bool point_in_triangle(const Vec2 t[3], Vec2 p) {
   const int a = orient2d(t[0], t[1], p), b = orient2d(t[1], t[2], p), c = orient2d(t[2], t[0], p);
   return (a >= 0 && b >= 0 && c >= 0) || (a <= 0 && b <= 0 && c <= 0);

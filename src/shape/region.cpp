@@ -21,15 +21,6 @@ std::string loop_name(std::size_t loop) {
   return loop == 0 ? std::string("outer loop") : "hole " + std::to_string(loop - 1);
 }
 
-// Edges ab and bc of one loop meet in more than b: c folds back onto ab (the turn at
-// b is a reversal, or one edge covers the other's far end).
-bool folds_back(Vec2 a, Vec2 b, Vec2 c) {
-  if (orient2d(a, b, c) != 0) return false;
-  const auto lift = [](Vec2 p) { return Vec3{p.x, p.y, 0}; };
-  return dot_sign(lift(a), lift(b), lift(b), lift(c)) < 0 || point_on_segment(a, b, c) ||
-         point_on_segment(b, c, a);
-}
-
 // +1 counterclockwise, -1 clockwise, 0 degenerate; for a loop without crossings the
 // turn at its lexicographically smallest vertex decides.
 int orientation(const std::vector<Vec2>& loop) {
@@ -87,9 +78,9 @@ Status check_crossings(const std::vector<std::vector<Vec2>>& loops) {
       bool bad;
       const std::size_t n = loops[e.loop].size();
       if (e.loop == f.loop && (e.index + 1) % n == f.index) {
-        bad = folds_back(e.a, e.b, f.b);
+        bad = edges_fold_back(e.a, e.b, f.b);
       } else if (e.loop == f.loop && (f.index + 1) % n == e.index) {
-        bad = folds_back(f.a, f.b, e.b);
+        bad = edges_fold_back(f.a, f.b, e.b);
       } else {
         bad = segments_meet(e.a, e.b, f.a, f.b);
       }

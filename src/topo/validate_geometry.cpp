@@ -32,13 +32,6 @@ std::optional<Plane> face_plane(const Model& m, FaceId f, std::vector<VertexId>&
   return std::nullopt;  // a degenerate face: every vertex on one line
 }
 
-// Consecutive edges ab, bc overlap beyond b (c runs back along ab), in the plane.
-bool folds_back(Vec2 a, Vec2 b, Vec2 c) {
-  if (orient2d(a, b, c) != 0) return false;
-  const auto lift = [](Vec2 p) { return Vec3{p.x, p.y, 0}; };
-  return dot_sign(lift(a), lift(b), lift(b), lift(c)) < 0;
-}
-
 void crossings(const Model& m, FaceId f, LoopId l, const Projection& proj,
                std::vector<Violation>& out) {
   const std::vector<VertexId> vs = m.loop_vertices(l);
@@ -53,7 +46,7 @@ void crossings(const Model& m, FaceId f, LoopId l, const Projection& proj,
   };
   for (std::size_t i = 0; i < n; ++i) {
     const std::size_t next = (i + 1) % n;
-    if (folds_back(p[i], p[next], p[(i + 2) % n])) return report(i, next);
+    if (edges_fold_back(p[i], p[next], p[(i + 2) % n])) return report(i, next);
     for (std::size_t j = i + 2; j < n; ++j) {
       const VertexId a = vs[i], b = vs[next], c = vs[j], d = vs[(j + 1) % n];
       if (a == c || a == d || b == c || b == d) continue;

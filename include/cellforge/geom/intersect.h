@@ -14,6 +14,10 @@ bool point_on_segment(Vec2 a, Vec2 b, Vec2 p);
 // The closed segments ab and cd share a point.
 bool segments_meet(Vec2 a, Vec2 b, Vec2 c, Vec2 d);
 
+// Consecutive edges ab and bc of a polygon meet in more than b: the turn at b is a
+// reversal (c runs back along ab), or one edge covers the other's far end.
+bool edges_fold_back(Vec2 a, Vec2 b, Vec2 c);
+
 // p lies in the closed triangle t, of either orientation.
 bool point_in_triangle(const Vec2 t[3], Vec2 p);
 
