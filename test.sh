@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Builds and runs every test: the normal build in build/, then the same tests once
-# more under AddressSanitizer + UndefinedBehaviorSanitizer in build-asan/.
+# Builds and runs every test: the normal build in build/, a separate project built
+# against its `cmake --install`, then the same tests once more under
+# AddressSanitizer + UndefinedBehaviorSanitizer in build-asan/.
 # The store tests run against a real PostgreSQL server started here (and stopped at
 # exit); if it cannot start, this script fails. Then each file parser is fuzzed for
 # FUZZ_SECONDS (default 30) seconds. Exits non-zero on any failure.
@@ -13,11 +14,15 @@ eval "$(scripts/pg_test_server.sh start)"  # exports CELLFORGE_PG_URL, CELLFORGE
 trap 'scripts/pg_test_server.sh stop' EXIT
 export CI="${CI:-1}"  # without the server URL the PostgreSQL tests fail, never skip
 
-(cd build && ctest --output-on-failure -j2)
+(cd build && ctest --output-on-failure -j"$(nproc)")
+
+# The installed library as another project sees it: find_package(cellforge) and
+# <cellforge/cellforge.h> (tests/consumer/).
+scripts/consumer_test.sh build
 
 scripts/setup.sh build-asan -DCMAKE_BUILD_TYPE=Debug -DCELLFORGE_SANITIZE=ON -DCELLFORGE_BENCH=OFF
 (cd build-asan && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
-   LSAN_OPTIONS=suppressions=$PWD/../tests/lsan.supp ctest --output-on-failure -j2)
+   LSAN_OPTIONS=suppressions=$PWD/../tests/lsan.supp ctest --output-on-failure -j"$(nproc)")
 
 # Every file parser under libFuzzer (clang, ASan + UBSan) for a bounded time each.
 FUZZ_SECONDS=${FUZZ_SECONDS:-30} scripts/fuzz.sh

@@ -2,15 +2,15 @@
 // mass properties, by size (segments).
 #include <benchmark/benchmark.h>
 
-#include "cellforge/build/mass.h"
-#include "cellforge/build/primitives.h"
-#include "cellforge/build/sweep.h"
-#include "cellforge/build/transform.h"
+#include "cellforge/shape/mass.h"
+#include "cellforge/shape/primitives.h"
+#include "cellforge/shape/sweep.h"
+#include "cellforge/shape/transform.h"
 
 namespace {
 
 using namespace cellforge;
-using namespace cellforge::build;
+using namespace cellforge::shape;
 
 void BM_Sphere(benchmark::State& state) {
   const double fn = static_cast<double>(state.range(0));

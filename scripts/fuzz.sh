@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer targets of io/ (tests/fuzz/fuzz_read.cpp, one binary per
-# format) with clang, AddressSanitizer and UndefinedBehaviorSanitizer, and runs
+# format, linked to the io layer target) with clang, AddressSanitizer and
+# UndefinedBehaviorSanitizer, and runs
 # each for FUZZ_SECONDS (default 30) on a copy of the seed corpus in tests/data/.
 # A crash, a sanitizer report, a leak or a timeout fails the script; the input
 # that caused it is kept in $FUZZ_BUILD/crashes/<format>/.
@@ -18,44 +19,32 @@ JOBS=$(nproc 2>/dev/null || echo 2)
 
 command -v "$CXX" > /dev/null || { echo "fuzz.sh: $CXX not found (apt-get install clang)"; exit 1; }
 
-FLAGS=(-std=c++20 -O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined
-       -fno-sanitize-recover=undefined -I"$ROOT/include" -I"$ROOT/src")
-LIBS=()
-if [ -f /usr/include/lib3mf/Model/COM/NMR_DLLInterfaces.h ]; then
-  FLAGS+=(-DCELLFORGE_HAVE_LIB3MF -I/usr/include/lib3mf)
-  LIBS+=(-l3MF)
-else
+if [ ! -f /usr/include/lib3mf/Model/COM/NMR_DLLInterfaces.h ]; then
   FORMATS=${FORMATS//3mf/}
   echo "fuzz.sh: lib3mf-dev not installed; skipping the 3mf target"
 fi
 
-# The layers io/ stands on (geom, topo, build; no database code: it needs no server
-# libraries).
-mkdir -p "$OUT/obj"
-SOURCES=$(ls "$ROOT"/src/geom/*.cpp "$ROOT"/src/topo/*.cpp "$ROOT"/src/build/*.cpp \
-  "$ROOT"/src/io/*.cpp 2>/dev/null)
-compile() {  # src -> obj, when the object is missing or older than a source or header
-  local src=$1 obj=$OUT/obj/$(echo "${1#$ROOT/}" | tr / _).o
-  if [ ! -f "$obj" ] || [ -n "$(find "$src" "$ROOT/include" "$ROOT/src" -newer "$obj" -name '*.[ch]*' -print -quit)" ]; then
-    "$CXX" "${FLAGS[@]}" -fsanitize=fuzzer-no-link -c "$src" -o "$obj"
-  fi
-  echo "$obj"
-}
-export -f compile; export OUT ROOT CXX
-export FLAGS_STR="${FLAGS[*]}"
-OBJECTS=()
-while read -r o; do OBJECTS+=("$o"); done < <(
-  echo "$SOURCES" | xargs -P "$JOBS" -I{} bash -c 'FLAGS=($FLAGS_STR); compile "$@"' _ {})
+# The fuzzers link the io layer target (and so the layers io/ stands on: geom, topo,
+# shape; no database code, which needs server libraries), built with clang, -O1 and
+# the sanitizers by the CELLFORGE_FUZZ configuration of CMakeLists.txt.
+generator=()
+command -v ninja > /dev/null && generator=(-G Ninja)
+if [ ! -f "$OUT/CMakeCache.txt" ] || ! grep -q "CELLFORGE_FUZZ:BOOL=ON" "$OUT/CMakeCache.txt"; then
+  cmake -S "$ROOT" -B "$OUT" "${generator[@]}" -DCMAKE_CXX_COMPILER="$CXX" \
+    -DCMAKE_BUILD_TYPE=Fuzz -DCMAKE_CXX_FLAGS_FUZZ="-O1 -g" -DCELLFORGE_FUZZ=ON > /dev/null
+fi
+targets=()
+for fmt in $FORMATS; do
+  case $fmt in
+    stl | obj | off | 3mf | json) targets+=("fuzz_$fmt") ;;
+    *) echo "fuzz.sh: unknown format $fmt"; exit 2 ;;
+  esac
+done
+cmake --build "$OUT" -j "$JOBS" --target "${targets[@]}"
 
 status=0
 for fmt in $FORMATS; do
-  case $fmt in
-    stl) enum=kStl ;; obj) enum=kObj ;; off) enum=kOff ;; 3mf) enum=k3mf ;; json) enum=kJson ;;
-    *) echo "fuzz.sh: unknown format $fmt"; exit 2 ;;
-  esac
-  bin=$OUT/fuzz_$fmt
-  "$CXX" "${FLAGS[@]}" -fsanitize=fuzzer -DFUZZ_FORMAT=$enum "$ROOT/tests/fuzz/fuzz_read.cpp" \
-    "${OBJECTS[@]}" "${LIBS[@]}" -o "$bin"
+  bin=$OUT/bin/fuzz_$fmt
   corpus=$OUT/corpus/$fmt
   crashes=$OUT/crashes/$fmt
   mkdir -p "$corpus" "$crashes"

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# A throwaway PostgreSQL 15 server for the store tests.
+# A throwaway PostgreSQL server (the newest installed) for the store tests.
 #
 #   eval "$(scripts/pg_test_server.sh start)"   # prints export CELLFORGE_PG_URL=... CELLFORGE_PG_DIR=...
 #   ... ctest ...
@@ -16,7 +16,9 @@ set -euo pipefail
 
 find_bin() {
   local name=$1 dir
-  for dir in /usr/lib/postgresql/15/bin /usr/lib/postgresql/*/bin; do
+  # Debian keeps each major version's programs in /usr/lib/postgresql/N/bin: the
+  # highest N that has the program.
+  for dir in $(ls -d /usr/lib/postgresql/*/bin 2>/dev/null | sort -t/ -k5,5nr); do
     [[ -x $dir/$name ]] && { echo "$dir/$name"; return; }
   done
   command -v "$name" || { echo "pg_test_server: $name not found (apt-get install postgresql)" >&2; exit 1; }

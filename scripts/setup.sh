@@ -23,7 +23,12 @@ generator=()
 command -v ninja >/dev/null && generator=(-G Ninja)
 launcher=()
 command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
-if [ ! -f "$build_dir/CMakeCache.txt" ]; then
+# Configure when the folder is new or when the flags differ from the ones it was
+# configured with (kept in $build_dir/setup-flags), so that changing a flag here or in
+# the caller takes effect without deleting the folder.
+flags="${generator[*]} ${launcher[*]} $*"
+if [ ! -f "$build_dir/CMakeCache.txt" ] || [ "$(cat "$build_dir/setup-flags" 2>/dev/null)" != "$flags" ]; then
   cmake -S . -B "$build_dir" "${generator[@]}" "${launcher[@]}" "$@"
+  echo "$flags" > "$build_dir/setup-flags"
 fi
-cmake --build "$build_dir" -j2
+cmake --build "$build_dir" -j "$(nproc 2>/dev/null || echo 2)"

@@ -7,7 +7,7 @@
 #include <iostream>
 
 #include "cellforge/boolean/boolean.h"
-#include "cellforge/build/mass.h"
+#include "cellforge/shape/mass.h"
 #include "cellforge/io/mesh_io.h"
 #include "cellforge/topo/validate.h"
 #include "command.h"
@@ -128,7 +128,7 @@ int run(const std::vector<std::string>& args) {
     return 1;
   }
   const auto violations = validate(r->model);
-  const double volume = r->model.num_faces() ? build::mass_properties(r->model).volume : 0;
+  const double volume = r->model.num_faces() ? shape::mass_properties(r->model).volume : 0;
   if (Status s = io::write_file(r->model, out, write); !s) {
     std::cerr << "cellforge bool: " << s.error().message << '\n';
     return 1;

@@ -1,5 +1,5 @@
 // `cellforge make KIND [key=value ...] -o OUT [--ascii]`: builds one primitive or sweep
-// (build/) and writes it in any format of io/ (STL binary by default). Keys follow
+// (shape/) and writes it in any format of io/ (STL binary by default). Keys follow
 // OpenSCAD's parameter names where it has them (r, d, r1, r2, d1, d2, h, center, size,
 // fn, fa, fs, twist, scale, slices, angle); `$fn=` is read as `fn=`.
 #include <algorithm>
@@ -9,16 +9,16 @@
 #include <map>
 #include <sstream>
 
-#include "cellforge/build/mass.h"
-#include "cellforge/build/primitives.h"
-#include "cellforge/build/sweep.h"
+#include "cellforge/shape/mass.h"
+#include "cellforge/shape/primitives.h"
+#include "cellforge/shape/sweep.h"
 #include "cellforge/io/mesh_io.h"
 #include "command.h"
 
 namespace cellforge::cli {
 namespace {
 
-using namespace cellforge::build;
+using namespace cellforge::shape;
 
 constexpr const char* kUsage =
     "usage: cellforge make KIND [KEY=VALUE ...] -o OUT [--ascii]\n"

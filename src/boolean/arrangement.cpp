@@ -18,6 +18,7 @@
 #include <numeric>
 
 #include "cellforge/geom/predicates.h"
+#include "cellforge/geom/union_find.h"
 
 namespace cellforge::boolean {
 
@@ -52,22 +53,6 @@ V3<T> normal_of(const PlaneT& p) {
   return cross(sub(vec<T>(p.b), vec<T>(p.a)), sub(vec<T>(p.c), vec<T>(p.a)));
 }
 
-class UnionFind {
- public:
-  explicit UnionFind(std::size_t n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), 0u); }
-  std::uint32_t find(std::uint32_t x) {
-    while (parent_[x] != x) x = parent_[x] = parent_[parent_[x]];
-    return x;
-  }
-  void join(std::uint32_t a, std::uint32_t b) {
-    a = find(a);
-    b = find(b);
-    if (a != b) parent_[std::max(a, b)] = std::min(a, b);
-  }
-
- private:
-  std::vector<std::uint32_t> parent_;
-};
 
 constexpr std::uint64_t kEdgeTag = 1ull << 63;
 
@@ -546,7 +531,7 @@ void Arrangement::intersect() {
       vertices_on_edges(*this, b, a, oa, record);
       const int k = dominant_axis(cross(a1 - a0, a2 - a0));
       if (coplanar_overlap(*this, a, b, k)) {
-        coplanar.join(i, j);
+        coplanar.unite(i, j);
         ++pairs_hit;
       }
       return;

@@ -9,6 +9,7 @@
 #include <unordered_map>
 
 #include "boolean/stages.h"
+#include "cellforge/geom/intersect.h"
 #include "cellforge/geom/predicates.h"
 #include "cellforge/io/triangulate.h"
 
@@ -141,56 +142,6 @@ Result<Arrangement> make_soup(std::span<const Model* const> operands) {
 }
 
 // ---------------------------------------------------------------- the rounding check
-
-bool segment_meets_triangle(Vec3 p, Vec3 q, const Vec3 t[3]) {
-  const int sp = orient3d(t[0], t[1], t[2], p), sq = orient3d(t[0], t[1], t[2], q);
-  if (sp * sq > 0) return false;
-  if (sp == 0 && sq == 0) return false;  // in the plane: left to the coplanar test
-  const int o1 = orient3d(p, q, t[0], t[1]), o2 = orient3d(p, q, t[1], t[2]),
-            o3 = orient3d(p, q, t[2], t[0]);
-  return (o1 >= 0 && o2 >= 0 && o3 >= 0) || (o1 <= 0 && o2 <= 0 && o3 <= 0);
-}
-
-bool segments_meet2(Vec3 a, Vec3 b, Vec3 c, Vec3 d, int k) {
-  const int o1 = orient2d_projected(a, b, c, k), o2 = orient2d_projected(a, b, d, k);
-  const int o3 = orient2d_projected(c, d, a, k), o4 = orient2d_projected(c, d, b, k);
-  return o1 * o2 <= 0 && o3 * o4 <= 0 && !(o1 == 0 && o2 == 0 && o3 == 0 && o4 == 0);
-}
-
-bool inside2(Vec3 p, const Vec3 t[3], int k) {
-  const int o = orient2d_projected(t[0], t[1], t[2], k);
-  for (int e = 0; e < 3; ++e)
-    if (orient2d_projected(t[e], t[(e + 1) % 3], p, k) * o < 0) return false;
-  return true;
-}
-
-// Triangles without a common vertex that meet anywhere, exactly.
-bool triangles_meet(const Vec3 a[3], const Vec3 b[3]) {
-  int pa = 0, na = 0, pb = 0, nb = 0;
-  for (int k = 0; k < 3; ++k) {
-    const int s = orient3d(a[0], a[1], a[2], b[k]);
-    pb += s > 0;
-    nb += s < 0;
-    const int t = orient3d(b[0], b[1], b[2], a[k]);
-    pa += t > 0;
-    na += t < 0;
-  }
-  if (pb == 3 || nb == 3 || pa == 3 || na == 3) return false;
-  if (pb == 0 && nb == 0) {
-    const Vec3 n = cross(a[1] - a[0], a[2] - a[0]);
-    const int k = std::abs(n.x) >= std::abs(n.y) && std::abs(n.x) >= std::abs(n.z)
-                      ? 0
-                      : (std::abs(n.y) >= std::abs(n.z) ? 1 : 2);
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j)
-        if (segments_meet2(a[i], a[(i + 1) % 3], b[j], b[(j + 1) % 3], k)) return true;
-    return inside2(a[0], b, k) || inside2(b[0], a, k);
-  }
-  for (int i = 0; i < 3; ++i)
-    if (segment_meets_triangle(a[i], a[(i + 1) % 3], b) || segment_meets_triangle(b[i], b[(i + 1) % 3], a))
-      return true;
-  return false;
-}
 
 std::size_t rounding_crossings(const Model& m) {
   std::vector<std::array<VertexId, 3>> tris;

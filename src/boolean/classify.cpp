@@ -19,6 +19,7 @@
 
 #include "boolean/stages.h"
 #include "cellforge/geom/predicates.h"
+#include "cellforge/geom/union_find.h"
 
 namespace cellforge::boolean {
 
@@ -268,12 +269,7 @@ std::vector<OutPoly> classify_and_select(const Arrangement& a, const Expr& expr,
   }
   std::sort(halves.begin(), halves.end(),
             [](const HalfEdge& x, const HalfEdge& y) { return x.key < y.key || (x.key == y.key && x.tri < y.tri); });
-  std::vector<std::uint32_t> parent(a.tris.size());
-  for (std::uint32_t t = 0; t < parent.size(); ++t) parent[t] = t;
-  auto find = [&](std::uint32_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  };
+  UnionFind patches(a.tris.size());
   auto untouched = [&](std::uint32_t t) { return !a.clusters[a.cluster_of[t]].touched; };
   for (std::size_t i = 0; i < halves.size();) {
     std::size_t j = i;
@@ -284,8 +280,7 @@ std::vector<OutPoly> classify_and_select(const Arrangement& a, const Expr& expr,
       const std::uint32_t p = static_cast<std::uint32_t>(x.key >> 32), q = static_cast<std::uint32_t>(x.key);
       if (untouched(x.tri) && untouched(y.tri) && x.forward != y.forward &&
           a.tris[x.tri].operand == a.tris[y.tri].operand && a.find_edge_key(p, q) == kInvalidIndex) {
-        const std::uint32_t rx = find(x.tri), ry = find(y.tri);
-        if (rx != ry) parent[std::max(rx, ry)] = std::min(rx, ry);
+        patches.unite(x.tri, y.tri);
       }
     }
     i = j;
@@ -294,7 +289,7 @@ std::vector<OutPoly> classify_and_select(const Arrangement& a, const Expr& expr,
   std::vector<int> tri_keep(a.tris.size(), 0);
   for (std::uint32_t t = 0; t < a.tris.size(); ++t) {
     if (!untouched(t)) continue;
-    const std::uint32_t root = find(t);
+    const std::uint32_t root = patches.find(t);
     if (patch_keep[root] == 2) {
       const Tri& rt = a.tris[root];
       rays.cast({a.cluster_of[root], {rt.v[0], rt.v[1], rt.v[2]}}, w);

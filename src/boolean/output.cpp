@@ -21,28 +21,13 @@
 
 #include "boolean/stages.h"
 #include "cellforge/geom/predicates.h"
+#include "cellforge/geom/union_find.h"
 #include "cellforge/topo/builder.h"
 
 namespace cellforge::boolean {
 
 namespace {
 
-class UnionFind {
- public:
-  explicit UnionFind(std::size_t n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), 0u); }
-  std::uint32_t find(std::uint32_t x) {
-    while (parent_[x] != x) x = parent_[x] = parent_[parent_[x]];
-    return x;
-  }
-  void join(std::uint32_t a, std::uint32_t b) {
-    a = find(a);
-    b = find(b);
-    if (a != b) parent_[std::max(a, b)] = std::min(a, b);
-  }
-
- private:
-  std::vector<std::uint32_t> parent_;
-};
 
 std::uint64_t ordered(std::uint32_t a, std::uint32_t b) {
   return (static_cast<std::uint64_t>(std::min(a, b)) << 32) | std::max(a, b);
@@ -343,7 +328,7 @@ Result<BooleanResult> build_result(Arrangement& a, std::vector<OutPoly> polys, R
       while (j < uses.size() && uses[j].key == uses[i].key) ++j;
       if (j - i == 2 && uses[i].poly != uses[i + 1].poly && uses[i].forward != uses[i + 1].forward &&
           same_plane(a, polys[uses[i].poly], polys[uses[i + 1].poly]))
-        regions.join(uses[i].poly, uses[i + 1].poly);
+        regions.unite(uses[i].poly, uses[i + 1].poly);
       i = j;
     }
     // Faces using each vertex: a merge may not swallow a vertex another face needs.
@@ -438,7 +423,7 @@ Result<BooleanResult> build_result(Arrangement& a, std::vector<OutPoly> polys, R
   for (std::size_t i = 0; i < uses.size();) {
     std::size_t j = i;
     while (j < uses.size() && uses[j].key == uses[i].key) ++j;
-    if (j - i == 2) shells.join(uses[i].poly, uses[i + 1].poly);
+    if (j - i == 2) shells.unite(uses[i].poly, uses[i + 1].poly);
     i = j;
   }
   std::vector<double> volume(polys.size(), 0);

@@ -113,7 +113,7 @@ RadialEdge RadialEdge::from_model(const Model& m) {
       push_front(shell.faceuses, side[s]);
     }
     LoopUse* tail[2] = {nullptr, nullptr};
-    for (LoopId l = m.outer_loop(f); l.is_valid(); l = m.next_loop(l)) {
+    for (LoopId l : m.loops_of(f)) {
       const std::size_t li = next_loop++;
       Loop& loop = r.loops_[li];
       LoopUse* lu[2] = {&r.loopuses_[2 * li], &r.loopuses_[2 * li + 1]};

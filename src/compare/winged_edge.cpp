@@ -139,7 +139,7 @@ Result<WingedEdge> WingedEdge::from_model(const Model& m) {
   for (FaceId f : m.faces()) {
     Face& face = w.faces_[f.value];
     Ring* last_ring = nullptr;
-    for (LoopId l = m.outer_loop(f); l.is_valid(); l = m.next_loop(l)) {
+    for (LoopId l : m.loops_of(f)) {
       uses.clear();
       const EdgeUseId first = m.loop_first(l);
       for (EdgeUseId u = first; uses.empty() || u != first; u = m.loop_next(u)) uses.push_back(u);

@@ -8,7 +8,7 @@
 
 #include "geom/expansion_kernels.h"
 
-namespace cellforge {
+namespace cellforge::inline geom {
 
 namespace {
 
@@ -89,4 +89,4 @@ Expansion operator*(const Expansion& a, const Expansion& b) {
   return Expansion(std::span<const double>(h.data(), n));
 }
 
-}  // namespace cellforge
+}  // namespace cellforge::inline geom

@@ -14,7 +14,7 @@
 
 #include "cellforge/geom/expansion.h"
 
-namespace cellforge::expansion_kernels {
+namespace cellforge::inline geom::expansion_kernels {
 
 // e + f (Fast-Expansion-Sum with zero elimination, Theorem 13): merge the components
 // by magnitude, then sweep from the smallest, keeping every nonzero roundoff.
@@ -158,4 +158,4 @@ Fixed<2 * M * N> operator*(const Fixed<M>& a, const Fixed<N>& b) {
   return r;
 }
 
-}  // namespace cellforge::expansion_kernels
+}  // namespace cellforge::inline geom::expansion_kernels

@@ -14,7 +14,7 @@
 
 #include "geom/expansion_kernels.h"
 
-namespace cellforge {
+namespace cellforge::inline geom {
 
 namespace {
 
@@ -155,4 +155,4 @@ bool radial_less(const ExactVec3& t, const ExactVec3& d0, const ExactVec3& di,
   return exact_det3(t, di, dj).sign() > 0;
 }
 
-}  // namespace cellforge
+}  // namespace cellforge::inline geom

@@ -1,17 +1,18 @@
 // diagnose(): what a model is as a mesh (diagnose.h). Every count walks the local
 // cycles of the structure once; degeneracy and duplicates use exact tests on the
-// vertices; mass properties are build/'s (divergence theorem over the faces).
+// vertices; mass properties are shape/'s (divergence theorem over the faces).
 #include "cellforge/io/diagnose.h"
 
 #include <algorithm>
 #include <cstdio>
 #include <numeric>
 
-#include "cellforge/build/mass.h"
+#include "cellforge/shape/mass.h"
+#include "cellforge/geom/predicates.h"
+#include "cellforge/geom/union_find.h"
 #include "cellforge/io/triangulate.h"
 #include "cellforge/topo/queries.h"
 #include "cellforge/topo/validate.h"
-#include "io/exact.h"
 #include "io/intersect.h"
 
 namespace cellforge::io {
@@ -22,17 +23,14 @@ namespace {
 bool degenerate(const Model& m, FaceId f) {
   const std::vector<Vec3> p = m.loop_points(m.outer_loop(f));
   if (p.size() < 3) return true;
-  for (int drop = 0; drop < 3; ++drop) {
-    const auto q = [&](Vec3 v) { return Point2{v[(drop + 1) % 3], v[(drop + 2) % 3]}; };
-    for (std::size_t k = 2; k < p.size(); ++k)
-      if (orient2d(q(p[0]), q(p[1]), q(p[k])) != 0) return false;
-  }
+  for (std::size_t k = 2; k < p.size(); ++k)
+    if (!collinear3d(p[0], p[1], p[k])) return false;
   return true;
 }
 
 // Faces around v that form separate fans (joined across the edges at v).
 std::size_t fans_at(const Model& m, VertexId v, std::vector<FaceId>& faces,
-                    std::vector<std::uint32_t>& parent) {
+                    UnionFind& fans_of) {
   faces.clear();
   std::vector<EdgeId> edges;
   edges_of(m, v, edges);
@@ -43,25 +41,16 @@ std::size_t fans_at(const Model& m, VertexId v, std::vector<FaceId>& faces,
   }
   std::sort(faces.begin(), faces.end());
   faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
-  parent.resize(faces.size());
-  std::iota(parent.begin(), parent.end(), 0);
+  fans_of.reset(faces.size());
   const auto index = [&](FaceId f) {
     return static_cast<std::uint32_t>(std::lower_bound(faces.begin(), faces.end(), f) -
                                       faces.begin());
-  };
-  const auto root = [&](std::uint32_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
   };
   std::size_t fans = faces.size();
   for (EdgeId e : edges) {
     faces_of(m, e, around);
     for (std::size_t k = 1; k < around.size(); ++k) {
-      const std::uint32_t a = root(index(around[0])), b = root(index(around[k]));
-      if (a != b) {
-        parent[a] = b;
-        --fans;
-      }
+      if (fans_of.unite(index(around[k]), index(around[0]))) --fans;
     }
   }
   return fans;
@@ -134,7 +123,7 @@ Diagnosis diagnose(const Model& m, const DiagnoseOptions& options) {
     }
   }
   std::vector<FaceId> faces;
-  std::vector<std::uint32_t> parent;
+  UnionFind parent;
   for (VertexId v : m.vertices()) {
     if (!m.first_end(v).edge.is_valid()) {
       if (!m.point_loop(v).is_valid()) ++d.isolated_vertices;
@@ -148,7 +137,7 @@ Diagnosis diagnose(const Model& m, const DiagnoseOptions& options) {
   for (FaceId f : m.faces()) {
     if (degenerate(m, f)) d.degenerate_faces.push_back(f);
     std::vector<std::uint32_t> key;
-    for (LoopId l = m.outer_loop(f); l.is_valid(); l = m.next_loop(l))
+    for (LoopId l : m.loops_of(f))
       for (VertexId v : m.loop_vertices(l)) key.push_back(v.value);
     std::sort(key.begin(), key.end());
     keys.push_back({std::move(key), f});
@@ -164,7 +153,7 @@ Diagnosis diagnose(const Model& m, const DiagnoseOptions& options) {
   d.closed = d.faces > 0 && d.boundary_edges.empty();
   d.manifold = d.non_manifold_edges.empty() && d.non_manifold_vertices.empty() &&
                d.wire_edges == 0 && d.isolated_vertices == 0;
-  d.mass = build::mass_properties(m);
+  d.mass = shape::mass_properties(m);
   return d;
 }
 

@@ -14,8 +14,11 @@
 #include <optional>
 #include <unordered_set>
 
+#include "cellforge/geom/polygon.h"
+#include "cellforge/geom/predicates.h"
+#include "cellforge/geom/union_find.h"
+#include "cellforge/geom/volume.h"
 #include "cellforge/topo/builder.h"
-#include "io/exact.h"
 #include "io/formats.h"
 #include "io/weld.h"
 
@@ -79,14 +82,42 @@ class EdgeTable {
   std::vector<bool> forward_;
 };
 
-double signed_volume(const std::vector<Vec3>& pos, const Polygon& p) {
-  double v = 0;
-  for (std::size_t k = 1; k + 1 < p.size(); ++k)
-    v += dot(pos[p[0]], cross(pos[p[k]], pos[p[k + 1]]));
-  return v / 6;
+// The exact sign of the volume each closed patch encloses (0 for the others): one
+// filtered pass over the loops, then an exact pass over the loops of each patch the
+// filter left undecided.
+std::vector<int> patch_volume_signs(const std::vector<Vec3>& pos, const std::vector<Polygon>& loops,
+                                    const std::vector<std::uint32_t>& patch,
+                                    const std::vector<bool>& closed) {
+  const std::size_t count = closed.size();
+  std::vector<std::uint32_t> first(count + 1, 0);  // loops of patch p: order[first[p] ..]
+  for (std::size_t l = 0; l < loops.size(); ++l) ++first[patch[l] + 1];
+  std::partial_sum(first.begin(), first.end(), first.begin());
+  std::vector<std::uint32_t> order(loops.size()), at(first.begin(), first.end() - 1);
+  for (std::size_t l = 0; l < loops.size(); ++l) order[at[patch[l]]++] = static_cast<std::uint32_t>(l);
+  std::vector<int> sign(count, 0);
+  for (std::size_t p = 0; p < count; ++p) {
+    if (!closed[p] || first[p] == first[p + 1]) continue;
+    const auto patch_loops = std::span(order).subspan(first[p], first[p + 1] - first[p]);
+    const Vec3 origin = pos[loops[patch_loops[0]][0]];
+    const auto sum = [&](auto& volume) {
+      for (std::uint32_t l : patch_loops)
+        for_each_fan_triangle<std::uint32_t>(
+            pos, loops[l], [&](Vec3 a, Vec3 b, Vec3 c) { volume.add_triangle(a, b, c); });
+      return volume.sign();
+    };
+    VolumeFilter filter(origin);
+    sign[p] = sum(filter);
+    if (sign[p] == 0) {
+      ExactVolume exact(origin);
+      sign[p] = sum(exact);
+    }
+  }
+  return sign;
 }
 
-// Face-connected patches: polygons joined across edges that `join` accepts.
+// Face-connected patches: polygons joined across two-use edges that `join` accepts.
+// join(c, o) is asked once for each polygon not yet in a patch, across corner c of a
+// polygon in the patch growing and its mate o, depth first from the lowest seed.
 template <class Join>
 std::vector<std::uint32_t> patches(const std::vector<Polygon>& polys, const EdgeTable& edges,
                                    Join join, std::uint32_t& count) {
@@ -102,9 +133,9 @@ std::vector<std::uint32_t> patches(const std::vector<Polygon>& polys, const Edge
       stack.pop_back();
       for (std::size_t k = 0; k < polys[p].size(); ++k) {
         const std::uint32_t c = edges.corner(p, k), o = edges.mate(c);
-        if (o == kNoRep || !join(c, o)) continue;
+        if (o == kNoRep) continue;
         const std::uint32_t q = edges.poly_of(o);
-        if (patch[q] != kNoRep) continue;
+        if (patch[q] != kNoRep || !join(c, o)) continue;
         patch[q] = count;
         stack.push_back(q);
       }
@@ -137,38 +168,24 @@ std::vector<bool> closed_patches(const std::vector<Polygon>& polys, const EdgeTa
 
 std::size_t repair_orientation(const std::vector<Vec3>& pos, std::vector<Polygon>& polys) {
   const EdgeTable edges(polys);
-  std::vector<std::int8_t> flip(polys.size(), -1);  // -1 undecided, 0 keep, 1 flip
-  std::vector<std::uint32_t> stack, patch(polys.size(), kNoRep);
+  std::vector<std::int8_t> flip(polys.size(), 0);  // 1: reverse, relative to the patch's seed
   std::uint32_t count = 0;
-  for (std::uint32_t seed = 0; seed < polys.size(); ++seed) {
-    if (flip[seed] >= 0) continue;
-    flip[seed] = 0;
-    patch[seed] = count;
-    stack.push_back(seed);
-    while (!stack.empty()) {
-      const std::uint32_t p = stack.back();
-      stack.pop_back();
-      for (std::size_t k = 0; k < polys[p].size(); ++k) {
-        const std::uint32_t c = edges.corner(p, k), o = edges.mate(c);
-        if (o == kNoRep) continue;
-        const std::uint32_t q = edges.poly_of(o);
-        if (flip[q] >= 0) continue;
+  const auto patch = patches(
+      polys, edges,
+      [&](std::uint32_t c, std::uint32_t o) {
         // Agreeing neighbours run the shared edge in opposite directions.
         const bool same_way = edges.forward(c) == edges.forward(o);
-        flip[q] = static_cast<std::int8_t>(flip[p] ^ (same_way ? 1 : 0));
-        patch[q] = count;
-        stack.push_back(q);
-      }
-    }
-    ++count;
-  }
+        flip[edges.poly_of(o)] =
+            static_cast<std::int8_t>(flip[edges.poly_of(c)] ^ (same_way ? 1 : 0));
+        return true;
+      },
+      count);
   for (std::size_t p = 0; p < polys.size(); ++p)
     if (flip[p] == 1) std::reverse(polys[p].begin(), polys[p].end());
   // Closed patches enclosing negative volume are inside out.
   const EdgeTable fixed(polys);
   const auto closed = closed_patches(polys, fixed, patch, count);
-  std::vector<double> volume(count, 0);
-  for (std::size_t p = 0; p < polys.size(); ++p) volume[patch[p]] += signed_volume(pos, polys[p]);
+  const std::vector<int> volume = patch_volume_signs(pos, polys, patch, closed);
   std::size_t flipped = 0;
   for (std::size_t p = 0; p < polys.size(); ++p) {
     const bool turn = closed[patch[p]] && volume[patch[p]] < 0;
@@ -182,11 +199,7 @@ std::size_t repair_orientation(const std::vector<Vec3>& pos, std::vector<Polygon
 
 bool degenerate_triangle(const std::vector<Vec3>& pos, const Polygon& t) {
   const Vec3 a = pos[t[0]], b = pos[t[1]], c = pos[t[2]];
-  for (int drop = 0; drop < 3; ++drop) {
-    const auto p = [&](Vec3 v) { return Point2{v[(drop + 1) % 3], v[(drop + 2) % 3]}; };
-    if (orient2d(p(a), p(b), p(c)) != 0) return false;
-  }
-  return true;
+  return collinear3d(a, b, c);
 }
 
 // Two triangles across corner c (of t1) and its mate o (of t2) lie in one plane and
@@ -201,7 +214,7 @@ bool flat_across(const std::vector<Vec3>& pos, const std::vector<Polygon>& polys
   for (std::uint32_t v : t2)
     if (v != t1[0] && v != t1[1] && v != t1[2]) d = v;
   if (d == kNoRep) return false;  // the same three vertices: a folded pair
-  if (orient3d_filtered(pos[t1[0]], pos[t1[1]], pos[t1[2]], pos[d]) != 0) return false;
+  if (orient3d(pos[t1[0]], pos[t1[1]], pos[t1[2]], pos[d]) != 0) return false;
   // In the plane: t1's third vertex and d on opposite sides of the shared edge.
   const Vec3 n = cross(pos[t1[1]] - pos[t1[0]], pos[t1[2]] - pos[t1[0]]);
   const Projection proj(n);
@@ -247,12 +260,10 @@ std::vector<Polygon> patch_boundary(const std::vector<Vec3>& pos, const std::vec
       loop.push_back(out[i].first);
     }
     if (loop.size() < 3 || next_of(out[s].first) != s) return {};
-    double area = 0;
-    for (std::size_t k = 0; k < loop.size(); ++k) {
-      const Point2 p = proj(pos[loop[k]]), q = proj(pos[loop[(k + 1) % loop.size()]]);
-      area += p.u * q.v - q.u * p.v;
-    }
-    if (area > 0) {
+    std::vector<Vec2> projected;
+    projected.reserve(loop.size());
+    for (std::uint32_t v : loop) projected.push_back(proj(pos[v]));
+    if (area_sign(projected) > 0) {
       if (outer >= 0) return {};
       outer = static_cast<int>(loops.size());
     }
@@ -372,27 +383,21 @@ Result<ReadResult> import_soup(Model& m, const PolygonSoup& soup, const ImportOp
         count);
     // Loops of one face belong to one patch.
     std::vector<std::uint32_t> face_patch(faces.size(), kNoRep);
-    std::vector<std::uint32_t> parent(count);
-    std::iota(parent.begin(), parent.end(), 0);
-    const auto root = [&](std::uint32_t x) {
-      while (parent[x] != x) x = parent[x] = parent[parent[x]];
-      return x;
-    };
+    UnionFind joined(count);
     for (std::size_t l = 0; l < all.size(); ++l) {
       std::uint32_t& fp = face_patch[face_of_loop[l]];
       if (fp == kNoRep)
         fp = patch[l];
       else
-        parent[root(patch[l])] = root(fp);
+        joined.unite(fp, patch[l]);
     }
-    for (auto& p : patch) p = root(p);
+    for (auto& p : patch) p = joined.find(p);
     const auto closed = closed_patches(all, edges, patch, count);
-    std::vector<double> volume(count, 0);
-    for (std::size_t l = 0; l < all.size(); ++l) volume[patch[l]] += signed_volume(welded, all[l]);
+    const std::vector<int> volume = patch_volume_signs(welded, all, patch, closed);
     std::vector<int> cell_of_patch(count, -1);
     for (std::size_t l = 0; l < all.size(); ++l) {
       const std::uint32_t p = patch[l];
-      if (!closed[p] || !(volume[p] > 0)) continue;
+      if (!closed[p] || volume[p] <= 0) continue;
       if (cell_of_patch[p] < 0) cell_of_patch[p] = cells++;
       cell[face_of_loop[l]] = cell_of_patch[p];
     }

@@ -4,85 +4,10 @@
 #include <cmath>
 #include <unordered_map>
 
+#include "cellforge/geom/intersect.h"
 #include "cellforge/io/triangulate.h"
-#include "io/exact.h"
 
 namespace cellforge::io {
-
-namespace {
-
-bool on_segment(Point2 p, Point2 q, Point2 r) {  // r on pq, given collinear
-  return std::min(p.u, q.u) <= r.u && r.u <= std::max(p.u, q.u) && std::min(p.v, q.v) <= r.v &&
-         r.v <= std::max(p.v, q.v);
-}
-
-bool segments_meet_2d(Point2 a, Point2 b, Point2 c, Point2 d) {
-  const int o1 = orient2d(a, b, c), o2 = orient2d(a, b, d);
-  const int o3 = orient2d(c, d, a), o4 = orient2d(c, d, b);
-  if (o1 * o2 < 0 && o3 * o4 < 0) return true;
-  return (o1 == 0 && on_segment(a, b, c)) || (o2 == 0 && on_segment(a, b, d)) ||
-         (o3 == 0 && on_segment(c, d, a)) || (o4 == 0 && on_segment(c, d, b));
-}
-
-bool inside_2d(const Point2 t[3], Point2 p) {  // closed triangle, either orientation
-  const int a = orient2d(t[0], t[1], p), b = orient2d(t[1], t[2], p), c = orient2d(t[2], t[0], p);
-  return (a >= 0 && b >= 0 && c >= 0) || (a <= 0 && b <= 0 && c <= 0);
-}
-
-// Closed triangles in one plane (projected) meet.
-bool coplanar_meet(const Point2 a[3], const Point2 b[3]) {
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j)
-      if (segments_meet_2d(a[i], a[(i + 1) % 3], b[j], b[(j + 1) % 3])) return true;
-  return inside_2d(a, b[0]) || inside_2d(b, a[0]);
-}
-
-// The normal direction of a triangle that is not degenerate, for projection: the
-// exact signs of its components decide the dominant plane only approximately,
-// which is enough since any plane the triangle does not project to a line works.
-Vec3 normal_of(const Vec3 t[3]) { return cross(t[1] - t[0], t[2] - t[0]); }
-
-// Segment pq meets closed triangle t (not coplanar with it as a whole).
-bool segment_meets_triangle(Vec3 p, Vec3 q, const Vec3 t[3]) {
-  const int s1 = orient3d_filtered(t[0], t[1], t[2], p);
-  const int s2 = orient3d_filtered(t[0], t[1], t[2], q);
-  if (s1 == s2 && s1 != 0) return false;
-  if (s1 == 0 && s2 == 0) {  // the segment lies in t's plane
-    const Projection proj(normal_of(t));
-    const Point2 tt[3] = {proj(t[0]), proj(t[1]), proj(t[2])};
-    const Point2 pp = proj(p), qq = proj(q);
-    for (int j = 0; j < 3; ++j)
-      if (segments_meet_2d(pp, qq, tt[j], tt[(j + 1) % 3])) return true;
-    return inside_2d(tt, pp);
-  }
-  const int a = orient3d_filtered(p, q, t[0], t[1]);
-  const int b = orient3d_filtered(p, q, t[1], t[2]);
-  const int c = orient3d_filtered(p, q, t[2], t[0]);
-  return (a >= 0 && b >= 0 && c >= 0) || (a <= 0 && b <= 0 && c <= 0);
-}
-
-}  // namespace
-
-bool triangles_meet(const Vec3 a[3], const Vec3 b[3]) {
-  int sb[3], sa[3];
-  for (int i = 0; i < 3; ++i) sb[i] = orient3d_filtered(a[0], a[1], a[2], b[i]);
-  if ((sb[0] > 0 && sb[1] > 0 && sb[2] > 0) || (sb[0] < 0 && sb[1] < 0 && sb[2] < 0)) return false;
-  for (int i = 0; i < 3; ++i) sa[i] = orient3d_filtered(b[0], b[1], b[2], a[i]);
-  if ((sa[0] > 0 && sa[1] > 0 && sa[2] > 0) || (sa[0] < 0 && sa[1] < 0 && sa[2] < 0)) return false;
-  if (sb[0] == 0 && sb[1] == 0 && sb[2] == 0) {
-    const Vec3 n = normal_of(a);
-    if (n == Vec3{}) return false;  // degenerate: reported as such elsewhere
-    const Projection proj(n);
-    const Point2 pa[3] = {proj(a[0]), proj(a[1]), proj(a[2])};
-    const Point2 pb[3] = {proj(b[0]), proj(b[1]), proj(b[2])};
-    return coplanar_meet(pa, pb);
-  }
-  for (int i = 0; i < 3; ++i) {
-    if (segment_meets_triangle(a[i], a[(i + 1) % 3], b)) return true;
-    if (segment_meets_triangle(b[i], b[(i + 1) % 3], a)) return true;
-  }
-  return false;
-}
 
 std::vector<std::pair<FaceId, FaceId>> self_intersections(const Model& m) {
   struct Tri {

@@ -1,6 +1,6 @@
 // Self-intersections of a model's faces: pairs of faces whose triangulations
 // meet (touching counts), found through a uniform grid over triangle boxes and
-// decided by exact orientation tests (exact.h). Triangles that share a vertex
+// decided by the exact triangle test of geom/intersect.h. Triangles that share a vertex
 // are not tested against each other (their meeting there is the mesh's own
 // connectivity), so an overlap between triangles with a common vertex is missed.
 #pragma once
@@ -13,8 +13,5 @@
 namespace cellforge::io {
 
 std::vector<std::pair<FaceId, FaceId>> self_intersections(const Model& m);
-
-// Closed triangles abc and def (none of the six points shared) meet.
-bool triangles_meet(const Vec3 a[3], const Vec3 b[3]);
 
 }  // namespace cellforge::io

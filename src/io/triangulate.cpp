@@ -10,7 +10,8 @@
 #include <algorithm>
 #include <numeric>
 
-#include "io/exact.h"
+#include "cellforge/geom/intersect.h"
+#include "cellforge/geom/polygon.h"
 
 namespace cellforge::io {
 
@@ -18,38 +19,16 @@ namespace {
 
 using Tri = std::array<std::uint32_t, 3>;
 
-double signed_area(const std::vector<Point2>& p, const std::vector<std::uint32_t>& loop) {
-  double a = 0;
-  for (std::size_t i = 0; i < loop.size(); ++i) {
-    const Point2 s = p[loop[i]], t = p[loop[(i + 1) % loop.size()]];
-    a += s.u * t.v - t.u * s.v;
-  }
-  return a / 2;
-}
-
-// Closed segments ab and cd meet (touching counts).
-bool segments_meet(Point2 a, Point2 b, Point2 c, Point2 d) {
-  const int o1 = orient2d(a, b, c), o2 = orient2d(a, b, d);
-  const int o3 = orient2d(c, d, a), o4 = orient2d(c, d, b);
-  if (o1 * o2 < 0 && o3 * o4 < 0) return true;
-  const auto on = [](Point2 p, Point2 q, Point2 r) {  // r on segment pq, given collinear
-    return std::min(p.u, q.u) <= r.u && r.u <= std::max(p.u, q.u) && std::min(p.v, q.v) <= r.v &&
-           r.v <= std::max(p.v, q.v);
-  };
-  return (o1 == 0 && on(a, b, c)) || (o2 == 0 && on(a, b, d)) || (o3 == 0 && on(c, d, a)) ||
-         (o4 == 0 && on(c, d, b));
-}
-
 // Direction p->q leaves vertex p (between prev and next, interior on the left)
 // into the interior.
-bool inside_cone(Point2 prev, Point2 p, Point2 next, Point2 q) {
+bool inside_cone(Vec2 prev, Vec2 p, Vec2 next, Vec2 q) {
   if (orient2d(prev, p, next) > 0) return orient2d(prev, p, q) > 0 && orient2d(p, next, q) > 0;
   return orient2d(prev, p, q) > 0 || orient2d(p, next, q) > 0;
 }
 
 class Clipper {
  public:
-  explicit Clipper(std::vector<Point2> points) : p_(std::move(points)) {}
+  explicit Clipper(std::vector<Vec2> points) : p_(std::move(points)) {}
 
   // Joins every hole into `outer`: a hole that shares a point with the ring is
   // spliced in there (holes touching the outer loop or a joined hole at a vertex),
@@ -59,7 +38,7 @@ class Clipper {
     while (!holes.empty()) {
       if (join_touching(outer, holes)) continue;
       const auto right_of = [&](std::uint32_t a, std::uint32_t b) {  // a beyond b
-        return p_[a].u > p_[b].u || (p_[a].u == p_[b].u && p_[a].v < p_[b].v);
+        return p_[a].x > p_[b].x || (p_[a].x == p_[b].x && p_[a].y < p_[b].y);
       };
       const auto rightmost = [&](const std::vector<std::uint32_t>& h) {
         return static_cast<std::size_t>(std::min_element(h.begin(), h.end(), right_of) - h.begin());
@@ -99,7 +78,7 @@ class Clipper {
                          std::vector<std::vector<std::uint32_t>>& rings) const {
     const std::size_t n = ring.size();
     const auto at = [&](std::size_t k) { return p_[ring[k % n]]; };
-    const auto in_cone = [&](std::size_t k, Point2 q) {
+    const auto in_cone = [&](std::size_t k, Vec2 q) {
       return inside_cone(at(k + n - 1), at(k), at(k + 1), q);
     };
     for (std::size_t i = 0; i < n; ++i)
@@ -138,7 +117,7 @@ class Clipper {
     const std::size_t n = outer.size();
     for (auto h = holes.begin(); h != holes.end(); ++h) {
       for (std::size_t j = 0; j < h->size(); ++j) {
-        const Point2 next = p_[(*h)[(j + 1) % h->size()]];
+        const Vec2 next = p_[(*h)[(j + 1) % h->size()]];
         for (std::size_t k = 0; k < n; ++k) {
           if (p_[outer[k]] != p_[(*h)[j]] ||
               !inside_cone(p_[outer[(k + n - 1) % n]], p_[outer[k]], p_[outer[(k + 1) % n]], next))
@@ -161,19 +140,19 @@ class Clipper {
   std::size_t find_bridge(const std::vector<std::uint32_t>& outer,
                           const std::vector<std::uint32_t>& hole, std::size_t mi,
                           const std::vector<std::vector<std::uint32_t>>& others) {
-    const Point2 m = p_[hole[mi]];
+    const Vec2 m = p_[hole[mi]];
     std::vector<std::size_t> order(outer.size());
     std::iota(order.begin(), order.end(), 0);
     const auto dist = [&](std::size_t k) {
-      const Point2 q = p_[outer[k]];
-      return (q.u - m.u) * (q.u - m.u) + (q.v - m.v) * (q.v - m.v);
+      const Vec2 q = p_[outer[k]];
+      return (q.x - m.x) * (q.x - m.x) + (q.y - m.y) * (q.y - m.y);
     };
     std::sort(order.begin(), order.end(),
               [&](std::size_t a, std::size_t b) { return dist(a) < dist(b); });
     for (std::size_t k : order) {
-      const Point2 q = p_[outer[k]];
-      const Point2 q_prev = p_[outer[(k + outer.size() - 1) % outer.size()]];
-      const Point2 q_next = p_[outer[(k + 1) % outer.size()]];
+      const Vec2 q = p_[outer[k]];
+      const Vec2 q_prev = p_[outer[(k + outer.size() - 1) % outer.size()]];
+      const Vec2 q_next = p_[outer[(k + 1) % outer.size()]];
       if (!inside_cone(q_prev, q, q_next, m) || crosses(outer, m, q) || !clear(hole, m, q))
         continue;
       if (std::all_of(others.begin(), others.end(),
@@ -186,19 +165,19 @@ class Clipper {
   // Segment mq, from a point m of hole loop `loop` or beside it, meets none of its
   // edges away from m and q, and leaves m on the interior side of the loop (which is
   // clockwise: the polygon's interior is on its left).
-  bool clear(const std::vector<std::uint32_t>& loop, Point2 m, Point2 q) const {
+  bool clear(const std::vector<std::uint32_t>& loop, Vec2 m, Vec2 q) const {
     for (std::size_t i = 0; i < loop.size(); ++i) {
       if (p_[loop[i]] != m) continue;
-      const Point2 prev = p_[loop[(i + loop.size() - 1) % loop.size()]];
+      const Vec2 prev = p_[loop[(i + loop.size() - 1) % loop.size()]];
       if (!inside_cone(prev, m, p_[loop[(i + 1) % loop.size()]], q)) return false;
     }
     return !crosses(loop, m, q);
   }
 
   // Segment mq meets an edge of `loop` that has neither m nor q as an end.
-  bool crosses(const std::vector<std::uint32_t>& loop, Point2 m, Point2 q) const {
+  bool crosses(const std::vector<std::uint32_t>& loop, Vec2 m, Vec2 q) const {
     for (std::size_t i = 0; i < loop.size(); ++i) {
-      const Point2 c = p_[loop[i]], d = p_[loop[(i + 1) % loop.size()]];
+      const Vec2 c = p_[loop[i]], d = p_[loop[(i + 1) % loop.size()]];
       if (c == m || c == q || d == m || d == q) continue;
       if (segments_meet(m, q, c, d)) return true;
     }
@@ -207,18 +186,18 @@ class Clipper {
 
   bool is_ear(const std::vector<std::uint32_t>& ring, std::size_t i, bool strict) const {
     const std::size_t n = ring.size();
-    const Point2 a = p_[ring[(i + n - 1) % n]], b = p_[ring[i]], c = p_[ring[(i + 1) % n]];
+    const Vec2 a = p_[ring[(i + n - 1) % n]], b = p_[ring[i]], c = p_[ring[(i + 1) % n]];
     if (orient2d(a, b, c) <= 0) return false;
     if (!strict) return true;
     for (std::size_t k = 0; k < n; ++k) {
-      const Point2 q = p_[ring[k]];
+      const Vec2 q = p_[ring[k]];
       if (q == a || q == b || q == c) continue;
       if (orient2d(a, b, q) >= 0 && orient2d(b, c, q) >= 0 && orient2d(c, a, q) >= 0) return false;
     }
     return true;
   }
 
-  std::vector<Point2> p_;
+  std::vector<Vec2> p_;
 };
 
 }  // namespace
@@ -227,7 +206,7 @@ std::vector<Tri> triangulate_polygon(const std::vector<std::vector<Vec3>>& loops
   if (loops.empty()) return {};
   if (loops.size() == 1 && loops[0].size() == 3) return {{0, 1, 2}};
   const Projection proj(normal);
-  std::vector<Point2> points;
+  std::vector<Vec2> points;
   std::vector<std::vector<std::uint32_t>> index(loops.size());
   for (std::size_t l = 0; l < loops.size(); ++l) {
     for (const Vec3& p : loops[l]) {
@@ -236,9 +215,15 @@ std::vector<Tri> triangulate_polygon(const std::vector<std::vector<Vec3>>& loops
     }
   }
   // Outer counterclockwise, holes clockwise, whatever the input said.
-  if (signed_area(points, index[0]) < 0) std::reverse(index[0].begin(), index[0].end());
+  const auto area_sign_of = [&](const std::vector<std::uint32_t>& loop) {
+    std::vector<Vec2> p;
+    p.reserve(loop.size());
+    for (std::uint32_t i : loop) p.push_back(points[i]);
+    return area_sign(p);
+  };
+  if (area_sign_of(index[0]) < 0) std::reverse(index[0].begin(), index[0].end());
   for (std::size_t l = 1; l < index.size(); ++l)
-    if (signed_area(points, index[l]) > 0) std::reverse(index[l].begin(), index[l].end());
+    if (area_sign_of(index[l]) > 0) std::reverse(index[l].begin(), index[l].end());
   Clipper clipper(std::move(points));
   std::vector<std::uint32_t> outer = index[0];
   clipper.bridge(outer, {index.begin() + 1, index.end()});
@@ -248,7 +233,7 @@ std::vector<Tri> triangulate_polygon(const std::vector<std::vector<Vec3>>& loops
 std::vector<std::array<VertexId, 3>> triangulate_face(const Model& m, FaceId f) {
   std::vector<VertexId> ids;
   std::vector<std::vector<Vec3>> loops;
-  for (LoopId l = m.outer_loop(f); l.is_valid(); l = m.next_loop(l)) {
+  for (LoopId l : m.loops_of(f)) {
     if (m.is_point_loop(l)) continue;
     const std::vector<VertexId> vs = m.loop_vertices(l);
     ids.insert(ids.end(), vs.begin(), vs.end());

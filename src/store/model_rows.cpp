@@ -8,25 +8,11 @@
 #include <numeric>
 #include <thread>
 
-#include "cellforge/build/mass.h"
+#include "cellforge/shape/mass.h"
+#include "cellforge/geom/polygon.h"
 #include "cellforge/topo/validate.h"
 
 namespace cellforge::store {
-
-namespace {
-
-// Newell vector of a loop: twice its vector area, of the points times `scale` (a
-// power of two, so that coordinates near the largest double do not overflow).
-Vec3 newell(const std::vector<Vec3>& pts, double scale) {
-  Vec3 n;
-  for (std::size_t i = 0; i < pts.size(); ++i) {
-    const Vec3 a = pts[i] * scale, b = pts[(i + 1) % pts.size()] * scale;
-    n = n + Vec3{(a.y - b.y) * (a.z + b.z), (a.z - b.z) * (a.x + b.x), (a.x - b.x) * (a.y + b.y)};
-  }
-  return n;
-}
-
-}  // namespace
 
 namespace {
 
@@ -49,8 +35,10 @@ void add_derived(const Model& m, ModelRows& r) {
     }
     const double scale = largest > 0 ? std::ldexp(1.0, -std::ilogb(largest)) : 1.0;
     Vec3 area;
-    for (LoopId l = m.outer_loop(f); l.is_valid(); l = m.next_loop(l)) {
-      area = area + newell(m.loop_points(l), scale);
+    for (LoopId l : m.loops_of(f)) {  // of the points times a power of two: no overflow
+      std::vector<Vec3> pts = m.loop_points(l);
+      for (Vec3& p : pts) p = p * scale;
+      area = newell_normal(pts, area);
     }
     const Vec3 n = normalized(area);
     r.planes.push_back({n, -dot(n, first)});
@@ -106,7 +94,7 @@ VolumeInfo summarize(const Model& m) {
   for (FaceId f : m.faces()) {
     (m.back_volume(f).is_valid() || m.front_volume(f).is_valid() ? solid : sheet) = true;
   }
-  const build::MassProperties mass = build::mass_properties(m);
+  const shape::MassProperties mass = shape::mass_properties(m);
   info.volume = mass.volume;
   info.area = mass.area;
   info.centroid = mass.centroid;

@@ -15,7 +15,7 @@
 
 #include "topo/model_editor.h"
 
-namespace cellforge {
+namespace cellforge::inline topo {
 
 namespace {
 
@@ -201,4 +201,4 @@ MeshInput solid_input(std::vector<Vec3> positions, std::vector<std::vector<std::
   return in;
 }
 
-}  // namespace cellforge
+}  // namespace cellforge::inline topo

@@ -11,7 +11,7 @@
 #include <map>
 #include <sstream>
 
-namespace cellforge {
+namespace cellforge::inline topo {
 
 namespace {
 
@@ -53,7 +53,7 @@ std::string canonical_dump(const Model& m) {
   for (FaceId f : m.faces()) {
     std::vector<std::string> inner;
     std::string outer;
-    for (LoopId l = m.outer_loop(f); l.is_valid(); l = m.next_loop(l)) {
+    for (LoopId l : m.loops_of(f)) {
       std::vector<std::string> cycle;
       for (VertexId v : m.loop_vertices(l)) cycle.push_back(vkey(v));
       if (m.is_point_loop(l)) cycle[0] = "point" + cycle[0];
@@ -98,13 +98,8 @@ std::string canonical_dump(const Model& m) {
     std::string a = vkey(m.start_of(e)), b = vkey(m.end_of(e));
     const bool flip = b < a;
     std::vector<std::string> cycle;
-    if (EdgeUseId first = m.first_use(e); first.is_valid()) {
-      EdgeUseId u = first;
-      do {
-        cycle.push_back((m.is_reversed(u) != flip ? "-" : "+") + face_key[m.face_of(u)]);
-        u = m.radial_next(u);
-      } while (u != first);
-    }
+    for (EdgeUseId u : m.radial(e))
+      cycle.push_back((m.is_reversed(u) != flip ? "-" : "+") + face_key[m.face_of(u)]);
     if (flip) {
       std::swap(a, b);
       std::reverse(cycle.begin(), cycle.end());
@@ -126,31 +121,20 @@ std::string raw_dump(const Model& m) {
   std::ostringstream os;
   for (VertexId v : m.vertices()) {
     os << v << ' ' << m.position(v) << ' ' << m.group_of(v) << " edges:";
-    EdgeEnd first = m.first_end(v), end = first;
-    if (first.edge.is_valid()) {
-      do {
-        os << ' ' << end.edge << (end.end ? "-" : "+");
-        end = m.next_end_around(end);
-      } while (end != first);
-    }
+    for (EdgeEnd end : m.ends_around(v)) os << ' ' << end.edge << (end.end ? "-" : "+");
     if (m.point_loop(v).is_valid()) os << " point-loop " << m.point_loop(v);
     os << '\n';
   }
   for (EdgeId e : m.edges()) {
     os << e << ' ' << m.start_of(e) << "->" << m.end_of(e) << " radial:";
-    EdgeUseId first = m.first_use(e), u = first;
-    if (first.is_valid()) {
-      do {
-        os << ' ' << u << (m.is_reversed(u) ? "-" : "+") << m.face_of(u);
-        u = m.radial_next(u);
-      } while (u != first);
-    }
+    for (EdgeUseId u : m.radial(e))
+      os << ' ' << u << (m.is_reversed(u) ? "-" : "+") << m.face_of(u);
     os << '\n';
   }
   for (FaceId f : m.faces()) {
     os << f << " front " << m.front_volume(f) << " back " << m.back_volume(f) << " group "
        << m.group_of(f);
-    for (LoopId l = m.outer_loop(f); l.is_valid(); l = m.next_loop(l)) {
+    for (LoopId l : m.loops_of(f)) {
       os << " | " << l << ':';
       for (VertexId v : m.loop_vertices(l)) os << ' ' << v;
     }
@@ -159,4 +143,4 @@ std::string raw_dump(const Model& m) {
   return os.str();
 }
 
-}  // namespace cellforge
+}  // namespace cellforge::inline topo

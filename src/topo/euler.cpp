@@ -7,7 +7,7 @@
 #include "topo/model_editor.h"
 #include "topo/operators_common.h"
 
-namespace cellforge {
+namespace cellforge::inline topo {
 
 using ops::require_live;
 
@@ -483,4 +483,4 @@ Status jekv(Model& m, EdgeId dying, VertexId v) {
   return Status::Ok();
 }
 
-}  // namespace cellforge
+}  // namespace cellforge::inline topo

@@ -3,7 +3,7 @@
 #include "cellforge/topo/operators.h"
 #include "topo/operators_common.h"
 
-namespace cellforge {
+namespace cellforge::inline topo {
 
 namespace {
 
@@ -160,4 +160,4 @@ Result<GroupId> euler_nonmanifold_example(Model& m, std::string name) {
   return g;
 }
 
-}  // namespace cellforge
+}  // namespace cellforge::inline topo

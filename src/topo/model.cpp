@@ -4,7 +4,9 @@
 #include <algorithm>
 #include <iterator>
 
-namespace cellforge {
+#include "cellforge/geom/polygon.h"
+
+namespace cellforge::inline topo {
 
 namespace {
 
@@ -64,27 +66,13 @@ LiveIds<GroupId> Model::groups() const {
 }
 
 std::size_t Model::degree(VertexId v) const {
-  const EdgeEnd first = first_end(v);
-  if (!first.edge.is_valid()) return 0;
-  std::size_t n = 0;
-  EdgeEnd end = first;
-  do {
-    ++n;
-    end = next_end_around(end);
-  } while (end != first);
-  return n;
+  const auto ends = ends_around(v);
+  return static_cast<std::size_t>(std::distance(ends.begin(), ends.end()));
 }
 
 std::size_t Model::use_count(EdgeId e) const {
-  const EdgeUseId first = first_use(e);
-  if (!first.is_valid()) return 0;
-  std::size_t n = 0;
-  EdgeUseId u = first;
-  do {
-    ++n;
-    u = radial_next(u);
-  } while (u != first);
-  return n;
+  const auto uses = radial(e);
+  return static_cast<std::size_t>(std::distance(uses.begin(), uses.end()));
 }
 
 EdgeUseId Model::loop_prev(EdgeUseId u) const {
@@ -96,28 +84,16 @@ EdgeUseId Model::loop_prev(EdgeUseId u) const {
 LoopId Model::loop_of(EdgeUseId u) const {
   const FaceId f = face_of(u);
   if (!(faces_[f.value].first & kTagBit)) return LoopId(f.value);  // the face's only loop
-  for (LoopId l = outer_loop(f); l.is_valid(); l = next_loop(l)) {
-    const EdgeUseId first = loop_first(l);
-    if (!first.is_valid()) continue;
-    EdgeUseId w = first;
-    do {
+  for (LoopId l : loops_of(f)) {
+    for (EdgeUseId w : uses_of(l))
       if (w == u) return l;
-      w = loop_next(w);
-    } while (w != first);
   }
   return LoopId();
 }
 
 std::size_t Model::loop_length(LoopId l) const {
-  const EdgeUseId first = loop_first(l);
-  if (!first.is_valid()) return 0;
-  std::size_t n = 0;
-  EdgeUseId u = first;
-  do {
-    ++n;
-    u = loop_next(u);
-  } while (u != first);
-  return n;
+  const auto uses = uses_of(l);
+  return static_cast<std::size_t>(std::distance(uses.begin(), uses.end()));
 }
 
 std::size_t Model::inner_loop_count(FaceId f) const {
@@ -133,11 +109,7 @@ std::vector<VertexId> Model::loop_vertices(LoopId l) const {
     out.push_back(point_loop_vertex(l));
     return out;
   }
-  EdgeUseId u = first;
-  do {
-    out.push_back(use_start(u));
-    u = loop_next(u);
-  } while (u != first);
+  for (EdgeUseId u : uses_of(l)) out.push_back(use_start(u));
   return out;
 }
 
@@ -148,10 +120,7 @@ std::vector<Vec3> Model::loop_points(LoopId l) const {
 }
 
 Vec3 Model::face_normal(FaceId f) const {
-  Vec3 n;
-  const std::vector<Vec3> pts = loop_points(outer_loop(f));
-  for (std::size_t i = 0; i < pts.size(); ++i) n = n + cross(pts[i], pts[(i + 1) % pts.size()]);
-  return n;
+  return newell_normal(loop_points(outer_loop(f)));
 }
 
 std::size_t Model::spare_pairs() const {
@@ -206,12 +175,9 @@ bool Model::is_smooth(EdgeId e) const {
   if (!first.is_valid() || radial_next(first) == first) return false;
   const std::uint32_t s = surface_of(face_of(first));
   if (s == kInvalidIndex) return false;
-  EdgeUseId u = radial_next(first);
-  do {
+  for (EdgeUseId u : radial(e))
     if (surface_of(face_of(u)) != s) return false;
-    u = radial_next(u);
-  } while (u != first);
   return true;
 }
 
-}  // namespace cellforge
+}  // namespace cellforge::inline topo

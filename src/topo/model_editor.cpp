@@ -9,7 +9,7 @@
 #include "cellforge/topo/dedupe.h"
 #include "topo/operators_common.h"
 
-namespace cellforge {
+namespace cellforge::inline topo {
 
 // A slot from kind's free list (whose links `link(i)` reads), or a new one that
 // `grow()` appends.
@@ -478,13 +478,8 @@ void ModelEditor::unlink_end(VertexId v, EdgeEnd end) {
 
 void ModelEditor::move_end(EdgeEnd end, VertexId to) {
   // The faces along the edge may now meet `to` twice.
-  if (const EdgeUseId first = m_.first_use(end.edge); first.is_valid()) {
-    std::uint32_t u = first.value;
-    do {
-      if (const FaceId f = m_.face_of(EdgeUseId(u)); m_.is_live(f)) touch(f);
-      u = radial(u);
-    } while (u != first.value);
-  }
+  for (EdgeUseId u : m_.radial(end.edge))
+    if (const FaceId f = m_.face_of(u); m_.is_live(f)) touch(f);
   unlink_end(VertexId(end_rec(end).vertex), end);
   end_rec(end).vertex = to.value;
   link_end(to, end);
@@ -571,4 +566,4 @@ void ModelEditor::set_sides(FaceId f, VolumeId front, VolumeId back) {
   rec(f).sides = intern_sides(front, back, m_.group_of(f)) | (rec(f).sides & Model::kFaceMarks);
 }
 
-}  // namespace cellforge
+}  // namespace cellforge::inline topo

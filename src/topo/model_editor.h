@@ -13,7 +13,7 @@
 
 #include "cellforge/topo/model.h"
 
-namespace cellforge {
+namespace cellforge::inline topo {
 
 class ModelEditor {
  public:
@@ -157,4 +157,4 @@ std::vector<EdgeUseId> sort_radially(const Model& m, EdgeId e, std::vector<EdgeU
 // True when `cycle` (a radial cycle read from its first use) is in that order.
 bool radially_ordered(const Model& m, EdgeId e, const std::vector<EdgeUseId>& cycle);
 
-}  // namespace cellforge
+}  // namespace cellforge::inline topo

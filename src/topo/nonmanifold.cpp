@@ -9,7 +9,7 @@
 #include "topo/model_editor.h"
 #include "topo/operators_common.h"
 
-namespace cellforge {
+namespace cellforge::inline topo {
 
 using ops::require_live;
 
@@ -62,7 +62,7 @@ Status can_make_volume(const Model& m, GroupId g, const std::vector<FaceSide>& s
       return precondition("make_volume: the " + std::string(s.front ? "front" : "back") +
                           " of face " + s.face.str() + " already bounds " + taken.str());
     }
-    for (LoopId l = m.outer_loop(s.face); l.is_valid(); l = m.next_loop(l)) {
+    for (LoopId l : m.loops_of(s.face)) {
       for (EdgeUseId u : ops::loop_uses(m, l)) {
         balance[m.edge_of(u)] += (m.is_reversed(u) != s.front) ? -1 : 1;
       }
@@ -256,7 +256,7 @@ Status kill_face(Model& m, FaceId f, KillFaceOptions options) {
   std::vector<EdgeId> edges;
   std::vector<VertexId> verts;
   std::vector<LoopId> loops;
-  for (LoopId l = m.outer_loop(f); l.is_valid(); l = m.next_loop(l)) loops.push_back(l);
+  for (LoopId l : m.loops_of(f)) loops.push_back(l);
   for (LoopId l : loops) {
     if (m.is_point_loop(l)) verts.push_back(m.point_loop_vertex(l));
     for (EdgeUseId u : ops::loop_uses(m, l)) {
@@ -337,7 +337,7 @@ Status can_unglue_face(const Model& m, FaceId f) {
     return precondition("unglue_face: face " + f.str() + " does not have volumes on both sides");
   }
   std::size_t uses = 0;  // each gets a twin on its edge
-  for (LoopId l = m.outer_loop(f); l.is_valid(); l = m.next_loop(l)) uses += m.loop_length(l);
+  for (LoopId l : m.loops_of(f)) uses += m.loop_length(l);
   if (!ops::room_for_edges(m, 0, uses)) return precondition("unglue_face: too many edges");
   return Status::Ok();
 }
@@ -348,7 +348,7 @@ Result<FaceId> unglue_face(Model& m, FaceId f) {
   const FaceId g = ed.new_face(ed.intern_sides(VolumeId(), m.front_volume(f), m.group_of(f)));
   ed.set_sides(f, VolumeId(), m.back_volume(f));
   std::vector<EdgeUseId> made;
-  for (LoopId l = m.outer_loop(f); l.is_valid(); l = m.next_loop(l)) {
+  for (LoopId l : m.loops_of(f)) {
     const std::vector<EdgeUseId> uses = ops::loop_uses(m, l);
     std::vector<EdgeUseId> rev;
     for (auto it = uses.rbegin(); it != uses.rend(); ++it) {
@@ -527,4 +527,4 @@ Status merge_vertices(Model& m, VertexId keep, VertexId dying) {
   return Status::Ok();
 }
 
-}  // namespace cellforge
+}  // namespace cellforge::inline topo

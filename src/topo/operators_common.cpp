@@ -1,6 +1,6 @@
 #include "topo/operators_common.h"
 
-namespace cellforge::ops {
+namespace cellforge::inline topo::ops {
 
 EdgeUseId first_use_from(const Model& m, LoopId l, VertexId v) {
   for (EdgeUseId u : loop_uses(m, l)) {
@@ -22,14 +22,8 @@ bool on_loop(const Model& m, LoopId l, VertexId v) {
 }
 
 void radial_uses(const Model& m, EdgeId e, std::vector<EdgeUseId>& out) {
-  out.clear();
-  const EdgeUseId first = m.first_use(e);
-  if (!first.is_valid()) return;
-  EdgeUseId u = first;
-  do {
-    out.push_back(u);
-    u = m.radial_next(u);
-  } while (u != first);
+  const auto radial = m.radial(e);
+  out.assign(radial.begin(), radial.end());
 }
 
 std::vector<EdgeUseId> radial_uses(const Model& m, EdgeId e) {
@@ -39,27 +33,13 @@ std::vector<EdgeUseId> radial_uses(const Model& m, EdgeId e) {
 }
 
 std::vector<EdgeUseId> loop_uses(const Model& m, LoopId l) {
-  std::vector<EdgeUseId> out;
-  const EdgeUseId first = m.loop_first(l);
-  if (!first.is_valid()) return out;
-  EdgeUseId u = first;
-  do {
-    out.push_back(u);
-    u = m.loop_next(u);
-  } while (u != first);
-  return out;
+  const auto uses = m.uses_of(l);
+  return {uses.begin(), uses.end()};
 }
 
 std::vector<EdgeEnd> ends_at(const Model& m, VertexId v) {
-  std::vector<EdgeEnd> out;
-  const EdgeEnd first = m.first_end(v);
-  if (!first.edge.is_valid()) return out;
-  EdgeEnd end = first;
-  do {
-    out.push_back(end);
-    end = m.next_end_around(end);
-  } while (end != first);
-  return out;
+  const auto ends = m.ends_around(v);
+  return {ends.begin(), ends.end()};
 }
 
 EdgeId edge_between(const Model& m, VertexId a, VertexId b) {
@@ -87,4 +67,4 @@ EdgeUseId inconsistent_wedge(const Model& m, const std::vector<EdgeUseId>& cycle
   return {};
 }
 
-}  // namespace cellforge::ops
+}  // namespace cellforge::inline topo::ops

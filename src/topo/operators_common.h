@@ -17,7 +17,7 @@
     }                              \
   } while (0)
 
-namespace cellforge::ops {
+namespace cellforge::inline topo::ops {
 
 template <class IdT>
 Status require_live(const Model& m, IdT id, const char* role) {
@@ -59,4 +59,4 @@ VolumeId side_before(const Model& m, EdgeUseId u);
 // different volumes on its two sides; invalid when every wedge agrees.
 EdgeUseId inconsistent_wedge(const Model& m, const std::vector<EdgeUseId>& cycle);
 
-}  // namespace cellforge::ops
+}  // namespace cellforge::inline topo::ops

@@ -6,20 +6,14 @@
 
 #include "cellforge/topo/dedupe.h"
 
-namespace cellforge {
+namespace cellforge::inline topo {
 
 namespace {
 
 // The radial cycle of e, from its first use round to it.
 template <class Fn>
 void for_each_radial(const Model& m, EdgeId e, Fn fn) {
-  const EdgeUseId first = m.first_use(e);
-  if (!first.is_valid()) return;
-  EdgeUseId u = first;
-  do {
-    fn(u);
-    u = m.radial_next(u);
-  } while (u != first);
+  for (EdgeUseId u : m.radial(e)) fn(u);
 }
 
 }  // namespace
@@ -96,4 +90,4 @@ void faces_of(const Model& m, FaceId f, std::vector<FaceId>& out) {
   dedupe_stable(out);
 }
 
-}  // namespace cellforge
+}  // namespace cellforge::inline topo

@@ -10,7 +10,7 @@
 #include "cellforge/geom/predicates.h"
 #include "topo/model_editor.h"
 
-namespace cellforge {
+namespace cellforge::inline topo {
 
 namespace {
 
@@ -94,4 +94,4 @@ bool radially_ordered(const Model& m, EdgeId e, const std::vector<EdgeUseId>& cy
   return descents <= 1;
 }
 
-}  // namespace cellforge
+}  // namespace cellforge::inline topo

@@ -10,7 +10,7 @@
 #include "cellforge/topo/validate.h"
 #include "topo/model_editor.h"
 
-namespace cellforge {
+namespace cellforge::inline topo {
 
 namespace {
 
@@ -63,13 +63,7 @@ Snapshot snapshot(const Model& m) {
   r.edges.reserve(m.num_edges());
   for (EdgeId e : m.edges()) {
     std::uint32_t n = 0;
-    if (const EdgeUseId first = m.first_use(e); first.is_valid()) {
-      EdgeUseId u = first;
-      do {
-        radial_ord[u.value] = n++;
-        u = m.radial_next(u);
-      } while (u != first);
-    }
+    for (EdgeUseId u : m.radial(e)) radial_ord[u.value] = n++;
     cycle_length[e.value] = n;
     r.edges.push_back({vkey[m.start_of(e).value], vkey[m.end_of(e).value]});
   }
@@ -85,26 +79,24 @@ Snapshot snapshot(const Model& m) {
     r.faces.push_back(row);
 
     std::uint32_t ord = 0;
-    for (LoopId l = m.outer_loop(f); l.is_valid(); l = m.next_loop(l), ++ord) {
+    for (LoopId l : m.loops_of(f)) {
       const auto loop_key = static_cast<std::uint32_t>(r.loops.size());
       Snapshot::Loop lr{fkey[f.value], ord, kNone};
       if (m.is_point_loop(l)) {
         lr.point_vertex = vkey[m.point_loop_vertex(l).value];
       } else {
-        const EdgeUseId first = m.loop_first(l);
-        EdgeUseId u = first;
         std::uint32_t k = 0;
-        do {
+        for (EdgeUseId u : m.uses_of(l)) {
           const EdgeId e = m.edge_of(u);
           std::uint32_t& base = radial_base[e.value];
           if (base == kInvalidIndex) base = radial_ord[u.value];
           const std::uint32_t ord =
               (radial_ord[u.value] + cycle_length[e.value] - base) % cycle_length[e.value];
           r.uses.push_back({loop_key, k++, ekey[e.value], m.is_reversed(u), ord});
-          u = m.loop_next(u);
-        } while (u != first);
+        }
       }
       r.loops.push_back(lr);
+      ++ord;
     }
   }
   return r;
@@ -253,4 +245,4 @@ Result<Model> restore(const Snapshot& r) {
   return m;
 }
 
-}  // namespace cellforge
+}  // namespace cellforge::inline topo

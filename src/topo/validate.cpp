@@ -2,7 +2,7 @@
 
 #include "topo/validate_checks.h"
 
-namespace cellforge {
+namespace cellforge::inline topo {
 
 std::vector<Violation> validate(const Model& m) {
   std::vector<Violation> out;
@@ -24,4 +24,4 @@ std::string to_string(const std::vector<Violation>& violations) {
   return s;
 }
 
-}  // namespace cellforge
+}  // namespace cellforge::inline topo

@@ -6,7 +6,7 @@
 
 #include "cellforge/topo/validate.h"
 
-namespace cellforge::checks {
+namespace cellforge::inline topo::checks {
 
 using Violations = std::vector<Violation>;
 
@@ -27,4 +27,4 @@ void wedges(const Model& m, Violations& out);
 // validate_euler.cpp: the Euler-Poincare relations.
 void euler(const Model& m, Violations& out);
 
-}  // namespace cellforge::checks
+}  // namespace cellforge::inline topo::checks

@@ -4,25 +4,22 @@
 #include "topo/model_editor.h"
 #include "topo/validate_checks.h"
 
-namespace cellforge::checks {
+namespace cellforge::inline topo::checks {
 
 void vertex_cycles(const Model& m, Violations& out) {
   auto fail = [&](std::string msg) { out.push_back({"vertex", std::move(msg)}); };
   const std::size_t limit = 2 * m.num_edges();
   std::size_t total = 0;
   for (VertexId v : m.vertices()) {
-    const EdgeEnd first = m.first_end(v);
-    if (!first.edge.is_valid()) continue;
-    EdgeEnd end = first;
     std::size_t n = 0;
-    do {
+    for (EdgeEnd end : m.ends_around(v)) {  // stopped after `limit` ends if it does not close
       if (m.vertex_of(end.edge, end.end) != v) {
         fail("the edge cycle of " + v.str() + " reaches " + end.edge.str() + ", which ends at " +
              m.vertex_of(end.edge, end.end).str());
         break;
       }
-      end = m.next_end_around(end);
-    } while (++n <= limit && end != first);
+      if (++n > limit) break;
+    }
     if (n > limit) fail("the edge cycle of " + v.str() + " does not close");
     total += n;
   }
@@ -38,12 +35,10 @@ void radial_cycles(const Model& m, Violations& out) {
   std::size_t total = 0;
   std::vector<EdgeUseId> cycle;
   for (EdgeId e : m.edges()) {
-    const EdgeUseId first = m.first_use(e);
-    if (!first.is_valid()) continue;
+    if (m.is_wire(e)) continue;
     cycle.clear();
-    EdgeUseId u = first;
     bool ok = true;
-    do {
+    for (EdgeUseId u : m.radial(e)) {  // stopped after `limit` uses if it does not close
       if (m.edge_of(u) != e) {
         fail("the radial cycle of " + e.str() + " reaches " + u.str() + ", a use of " +
              m.edge_of(u).str());
@@ -51,8 +46,8 @@ void radial_cycles(const Model& m, Violations& out) {
         break;
       }
       cycle.push_back(u);
-      u = m.radial_next(u);
-    } while (cycle.size() <= limit && u != first);
+      if (cycle.size() > limit) break;
+    }
     if (cycle.size() > limit) {
       fail("the radial cycle of " + e.str() + " does not close");
       ok = false;
@@ -73,17 +68,15 @@ void loops(const Model& m, Violations& out) {
   std::size_t uses = 0, loops_seen = 0;
   for (FaceId f : m.faces()) {
     std::size_t n = 0;
-    for (LoopId l = m.outer_loop(f); l.is_valid(); l = m.next_loop(l)) {
+    for (LoopId l : m.loops_of(f)) {
       if (++n > m.num_loops()) {
         fail("the loop list of " + f.str() + " does not end");
         return;
       }
       if (m.face_of(l) != f) fail(l.str() + " is listed by " + f.str() + " but names another face");
       if (m.is_point_loop(l)) continue;
-      const EdgeUseId first = m.loop_first(l);
-      EdgeUseId u = first;
       std::size_t k = 0;
-      do {
+      for (EdgeUseId u : m.uses_of(l)) {  // stopped after every use if it does not close
         if (m.face_of(u) != f)
           fail(u.str() + " in " + l.str() + " names face " + m.face_of(u).str());
         const EdgeUseId next = m.loop_next(u);
@@ -91,8 +84,8 @@ void loops(const Model& m, Violations& out) {
           fail(l.str() + ": " + u.str() + " ends at " + m.use_end(u).str() + " but " + next.str() +
                " starts at " + m.use_start(next).str());
         }
-        u = next;
-      } while (++k <= m.num_edge_uses() && u != first);
+        if (++k > m.num_edge_uses()) break;
+      }
       if (k > m.num_edge_uses()) fail(l.str() + " does not close");
       uses += k;
     }
@@ -108,4 +101,4 @@ void loops(const Model& m, Violations& out) {
   }
 }
 
-}  // namespace cellforge::checks
+}  // namespace cellforge::inline topo::checks

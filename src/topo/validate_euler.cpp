@@ -23,33 +23,19 @@
 // right side is not compared (they are listed in EulerFigures::unchecked).
 #include <algorithm>
 #include <numeric>
+#include <string>
 
+#include "cellforge/geom/union_find.h"
 #include "topo/operators_common.h"
 #include "topo/validate_checks.h"
 
-namespace cellforge {
+namespace cellforge::inline topo {
 
 namespace {
 
-struct UnionFind {
-  explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0u); }
-  std::uint32_t find(std::uint32_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  }
-  bool unite(std::uint32_t a, std::uint32_t b) {
-    a = find(a);
-    b = find(b);
-    if (a == b) return false;
-    parent[b] = a;
-    return true;
-  }
-  std::vector<std::uint32_t> parent;
-};
-
 template <class Fn>
 void for_each_use(const Model& m, FaceId f, Fn fn) {
-  for (LoopId l = m.outer_loop(f); l.is_valid(); l = m.next_loop(l)) {
+  for (LoopId l : m.loops_of(f)) {
     for (EdgeUseId u : ops::loop_uses(m, l)) fn(u);
   }
 }
@@ -74,11 +60,16 @@ Analysis analyse(const Model& m) {
   }
   // Pieces: shells (by root face), wire graphs (by root vertex, offset), isolated
   // vertices. Index pieces densely.
+  // Each piece is named by its lowest element, for messages.
   std::vector<std::uint32_t> shell_piece(nf, kInvalidIndex);
+  std::vector<std::string> piece_name;
   std::uint32_t pieces = 0;
   for (FaceId f : m.faces()) {
     const std::uint32_t r = faces.find(f.value);
-    if (shell_piece[r] == kInvalidIndex) shell_piece[r] = pieces++;
+    if (shell_piece[r] == kInvalidIndex) {
+      shell_piece[r] = pieces++;
+      piece_name.push_back("the shell of " + f.str());
+    }
     shell_piece[f.value] = shell_piece[r];
   }
   const std::uint32_t shells = pieces;
@@ -90,7 +81,10 @@ Analysis analyse(const Model& m) {
   for (EdgeId e : m.edges()) {
     if (!m.is_wire(e)) continue;
     const std::uint32_t r = wires.find(m.start_of(e).value);
-    if (wire_piece[r] == kInvalidIndex) wire_piece[r] = pieces++;
+    if (wire_piece[r] == kInvalidIndex) {
+      wire_piece[r] = pieces++;
+      piece_name.push_back("the wire graph of " + e.str());
+    }
   }
 
   // Per piece counts.
@@ -111,7 +105,7 @@ Analysis analyse(const Model& m) {
     p.r += static_cast<long>(m.inner_loop_count(f));
     p.volume_front |= m.front_volume(f).is_valid();
     p.volume_back |= m.back_volume(f).is_valid();
-    for (LoopId l = m.outer_loop(f); l.is_valid(); l = m.next_loop(l)) {
+    for (LoopId l : m.loops_of(f)) {
       if (m.is_point_loop(l)) touch(m.point_loop_vertex(l), shell_piece[f.value]);
     }
   }
@@ -129,6 +123,7 @@ Analysis analyse(const Model& m) {
     if (pieces_at[v.value].empty()) {
       pieces_at[v.value].push_back(pieces++);
       piece.emplace_back();
+      piece_name.push_back("the isolated vertex " + v.str());
     }
     for (std::uint32_t p : pieces_at[v.value]) ++piece[p].v;
   }
@@ -144,18 +139,15 @@ Analysis analyse(const Model& m) {
   std::vector<std::pair<std::uint32_t, std::uint32_t>> seen;  // (shell, fan) at a vertex
   for (VertexId v : m.vertices()) {
     seen.clear();
-    for (EdgeEnd end = m.first_end(v), first = end; end.edge.is_valid();) {
-      if (const EdgeUseId u = m.first_use(end.edge); u.is_valid()) {
-        const std::uint32_t shell = shell_piece[m.face_of(u).value];
-        const std::uint32_t fan =
-            fans.find(2 * end.edge.value + static_cast<std::uint32_t>(end.end));
-        for (const auto& [s2, f2] : seen) {
-          if (s2 == shell && f2 != fan) piece[shell].manifold = false;
-        }
-        seen.emplace_back(shell, fan);
+    for (EdgeEnd end : m.ends_around(v)) {
+      const EdgeUseId u = m.first_use(end.edge);
+      if (!u.is_valid()) continue;
+      const std::uint32_t shell = shell_piece[m.face_of(u).value];
+      const std::uint32_t fan = fans.find(2 * end.edge.value + static_cast<std::uint32_t>(end.end));
+      for (const auto& [s2, f2] : seen) {
+        if (s2 == shell && f2 != fan) piece[shell].manifold = false;
       }
-      end = m.next_end_around(end);
-      if (end == first) break;
+      seen.emplace_back(shell, fan);
     }
   }
 
@@ -224,8 +216,10 @@ Analysis analyse(const Model& m) {
         t.summable = false;
       } else if (q.closed) {
         if (chi > 2 || (chi % 2) != 0) {
-          a.problems.push_back("a closed shell has v - e + f - r = " + std::to_string(chi) +
-                               ", which gives no integer genus h >= 0");
+          a.problems.push_back(piece_name[p] + ", a closed shell, has v - e + f - r = " +
+                               std::to_string(chi) + " (v=" + std::to_string(q.v) +
+                               " e=" + std::to_string(q.e) + " f=" + std::to_string(q.f) +
+                               " r=" + std::to_string(q.r) + "), which gives no integer genus h >= 0");
           t.summable = false;
         } else {
           const long g = (2 - chi) / 2;
@@ -290,7 +284,8 @@ Analysis analyse(const Model& m) {
     const long rhs = 1 - t.Ch + cavities;
     if (lhs != rhs) {
       a.problems.push_back(
-          "extended Euler formula fails on a component: v - e + (f - r) - (V - Vh + Vc) = " +
+          "extended Euler formula fails on the component holding " + piece_name[p] +
+          ": v - e + (f - r) - (V - Vh + Vc) = " +
           std::to_string(lhs) + " but C - Ch + Cc = " + std::to_string(rhs) +
           " (v=" + std::to_string(t.v) + " e=" + std::to_string(t.e) + " f=" + std::to_string(t.f) +
           " r=" + std::to_string(t.r) + " V=" + std::to_string(t.V) +
@@ -313,4 +308,4 @@ void euler(const Model& m, Violations& out) {
 
 }  // namespace checks
 
-}  // namespace cellforge
+}  // namespace cellforge::inline topo

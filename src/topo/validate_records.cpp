@@ -5,7 +5,7 @@
 #include "cellforge/topo/dedupe.h"
 #include "topo/validate_checks.h"
 
-namespace cellforge::checks {
+namespace cellforge::inline topo::checks {
 
 void records(const Model& m, Violations& out) {
   auto fail = [&](std::string msg) { out.push_back({"records", std::move(msg)}); };
@@ -104,7 +104,7 @@ void face_marks(const Model& m, Violations& out) {
     edges.clear();
     vertices.clear();
     bool unplaced = false, overflow = false;
-    for (LoopId l = m.outer_loop(f); l.is_valid(); l = m.next_loop(l)) {
+    for (LoopId l : m.loops_of(f)) {
       if (m.is_point_loop(l)) {
         vertices.push_back(m.point_loop_vertex(l).value);
         continue;
@@ -139,4 +139,4 @@ void face_marks(const Model& m, Violations& out) {
   }
 }
 
-}  // namespace cellforge::checks
+}  // namespace cellforge::inline topo::checks

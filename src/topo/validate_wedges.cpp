@@ -9,7 +9,7 @@
 #include "topo/operators_common.h"
 #include "topo/validate_checks.h"
 
-namespace cellforge::checks {
+namespace cellforge::inline topo::checks {
 
 void wedges(const Model& m, Violations& out) {
   std::vector<EdgeUseId> uses;
@@ -29,4 +29,4 @@ void wedges(const Model& m, Violations& out) {
   }
 }
 
-}  // namespace cellforge::checks
+}  // namespace cellforge::inline topo::checks

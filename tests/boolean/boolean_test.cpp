@@ -59,7 +59,7 @@ TEST(Boolean, SameOperandTwice) {
   const BoolCase d = run(Op::kDifference, {&a, &a});
   EXPECT_EQ(d.faces, 0u);
   const Model s = sphere_model(3, 16);
-  const double vs = build::mass_properties(s).volume;
+  const double vs = shape::mass_properties(s).volume;
   EXPECT_NEAR(run(Op::kUnion, {&s, &s}).volume, vs, 1e-12);
   EXPECT_NEAR(run(Op::kIntersection, {&s, &s}).volume, vs, 1e-12);
   EXPECT_EQ(run(Op::kDifference, {&s, &s}).faces, 0u);
@@ -225,7 +225,7 @@ TEST(Boolean, CylinderHoleExactlyThroughABox) {
 TEST(Boolean, SphereMinusOffsetSphere) {
   const Model a = sphere_model(10, 24);
   const Model b = sphere_model(10, 24, {5, 3, 2});
-  const double va = build::mass_properties(a).volume;
+  const double va = shape::mass_properties(a).volume;
   const BoolCase u = run(Op::kUnion, {&a, &b}, false);
   const BoolCase i = run(Op::kIntersection, {&a, &b}, false);
   const BoolCase d = run(Op::kDifference, {&a, &b}, false);
@@ -237,10 +237,10 @@ TEST(Boolean, SphereMinusOffsetSphere) {
 TEST(Boolean, SphereMinusItselfTurnedOntoItsVertices) {
   // A quarter turn maps the sphere's vertices onto vertices (sin and cos are exact).
   const Model a = sphere_model(5, 16);
-  const Model b = moved(a, build::Transform::rotate(90, {0, 0, 1}));
+  const Model b = moved(a, shape::Transform::rotate(90, {0, 0, 1}));
   EXPECT_EQ(run(Op::kDifference, {&a, &b}).faces, 0u);
   const BoolCase u = run(Op::kUnion, {&a, &b});
-  EXPECT_NEAR(u.volume, build::mass_properties(a).volume, 1e-12);
+  EXPECT_NEAR(u.volume, shape::mass_properties(a).volume, 1e-12);
 }
 
 TEST(Boolean, OperandWithANonManifoldEdge) {

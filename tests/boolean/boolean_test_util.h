@@ -9,9 +9,9 @@
 #include <vector>
 
 #include "cellforge/boolean/boolean.h"
-#include "cellforge/build/mass.h"
-#include "cellforge/build/primitives.h"
-#include "cellforge/build/transform.h"
+#include "cellforge/shape/mass.h"
+#include "cellforge/shape/primitives.h"
+#include "cellforge/shape/transform.h"
 #include "cellforge/geom/predicates.h"
 #include "cellforge/io/triangulate.h"
 #include "cellforge/topo/validate.h"
@@ -49,7 +49,7 @@ inline BoolCase run_expr(const boolean::Expr& e, std::vector<const Model*> ops, 
   } else if (c.result.report.rounding_self_intersections != 0) {
     std::printf("rounding made %zu crossings\n", c.result.report.rounding_self_intersections);
   }
-  c.volume = m.num_faces() ? build::mass_properties(m).volume : 0;
+  c.volume = m.num_faces() ? shape::mass_properties(m).volume : 0;
   c.vertices = m.num_vertices();
   c.edges = m.num_edges();
   c.faces = m.num_faces();
@@ -63,7 +63,7 @@ inline BoolCase run(boolean::Op op, std::vector<const Model*> ops, bool rounds_e
 }
 
 // The faces of every group of m, with positions mapped by t, in one new model.
-inline Model moved(const Model& m, const build::Transform& t) {
+inline Model moved(const Model& m, const shape::Transform& t) {
   MeshInput in;
   std::unordered_map<std::uint32_t, std::uint32_t> vi, ci;
   auto vid = [&](VertexId v) {
@@ -95,14 +95,14 @@ inline Model moved(const Model& m, const build::Transform& t) {
 
 inline Model sphere_model(double r, int fn, Vec3 at = {}) {
   Model m;
-  EXPECT_TRUE(build::make_sphere(m, {.r = r, .faceting = {.fn = static_cast<double>(fn)}}).ok());
-  return at == Vec3{} ? std::move(m) : moved(m, build::Transform::translate(at));
+  EXPECT_TRUE(shape::make_sphere(m, {.r = r, .faceting = {.fn = static_cast<double>(fn)}}).ok());
+  return at == Vec3{} ? std::move(m) : moved(m, shape::Transform::translate(at));
 }
 
 inline Model cylinder_model(double r, double h, int fn, Vec3 at = {}) {
   Model m;
-  EXPECT_TRUE(build::make_cylinder(m, {.h = h, .r1 = r, .r2 = r, .faceting = {.fn = static_cast<double>(fn)}}).ok());
-  return at == Vec3{} ? std::move(m) : moved(m, build::Transform::translate(at));
+  EXPECT_TRUE(shape::make_cylinder(m, {.h = h, .r1 = r, .r2 = r, .faceting = {.fn = static_cast<double>(fn)}}).ok());
+  return at == Vec3{} ? std::move(m) : moved(m, shape::Transform::translate(at));
 }
 
 // Winding number of the closed faces of m (their cells behind) at p, by a ray along

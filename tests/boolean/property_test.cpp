@@ -45,30 +45,30 @@ Model random_primitive(std::mt19937_64& rng) {
   Model m;
   switch (kind(rng)) {
     case 0:
-      EXPECT_TRUE(build::make_sphere(m, {.r = 1 + 0.25 * grid(rng), .faceting = {.fn = double(fn(rng))}}).ok());
+      EXPECT_TRUE(shape::make_sphere(m, {.r = 1 + 0.25 * grid(rng), .faceting = {.fn = double(fn(rng))}}).ok());
       break;
     case 1:
-      EXPECT_TRUE(build::make_cylinder(m, {.h = 1 + 0.5 * grid(rng), .r1 = 1 + 0.25 * grid(rng),
+      EXPECT_TRUE(shape::make_cylinder(m, {.h = 1 + 0.5 * grid(rng), .r1 = 1 + 0.25 * grid(rng),
                                            .r2 = 0.5 + 0.25 * grid(rng), .center = true,
                                            .faceting = {.fn = double(fn(rng))}})
                       .ok());
       break;
     default:
-      EXPECT_TRUE(build::make_cube(m, {.size = {1 + 0.5 * grid(rng), 1 + 0.5 * grid(rng), 1 + 0.5 * grid(rng)},
+      EXPECT_TRUE(shape::make_cube(m, {.size = {1 + 0.5 * grid(rng), 1 + 0.5 * grid(rng), 1 + 0.5 * grid(rng)},
                                        .center = true})
                       .ok());
       break;
   }
-  build::Transform t = build::Transform::translate({0.5 * grid(rng) - 2, 0.5 * grid(rng) - 2, 0.5 * grid(rng) - 2});
+  shape::Transform t = shape::Transform::translate({0.5 * grid(rng) - 2, 0.5 * grid(rng) - 2, 0.5 * grid(rng) - 2});
   if (std::uniform_int_distribution<int>(0, 1)(rng)) {
-    t = t * build::Transform::rotate(angle(rng), {angle(rng) - 180, angle(rng) - 180, angle(rng)});
+    t = t * shape::Transform::rotate(angle(rng), {angle(rng) - 180, angle(rng) - 180, angle(rng)});
   } else {
-    t = t * build::Transform::rotate(90.0 * grid(rng), {0, 0, 1});
+    t = t * shape::Transform::rotate(90.0 * grid(rng), {0, 0, 1});
   }
   return moved(m, t);
 }
 
-double volume_of(const Model& m) { return m.num_faces() ? build::mass_properties(m).volume : 0; }
+double volume_of(const Model& m) { return m.num_faces() ? shape::mass_properties(m).volume : 0; }
 
 // One case; false (with the reason in `why`) on any failure. `rounded` counts the
 // results whose rounding to doubles made a crossing (exact before rounding): the goal

@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-#include "cellforge/build/mass.h"
+#include "cellforge/shape/mass.h"
 #include "io_test_util.h"
 #include "support/checks.h"
 #include "support/fixtures.h"
@@ -72,7 +72,7 @@ TEST(Diagnose, InsideOutCubeIsTurnedOutward) {
   auto r = io::import_soup(m, soup, {.repair_orientation = true});
   ASSERT_OK(r);
   EXPECT_EQ(r->report.flipped_faces, 6u);
-  EXPECT_DOUBLE_EQ(build::mass_properties(m).volume, 1);
+  EXPECT_DOUBLE_EQ(shape::mass_properties(m).volume, 1);
 }
 
 TEST(Diagnose, DegenerateAndDuplicateFaces) {
@@ -126,7 +126,7 @@ TEST(Diagnose, SelfIntersectionsOfOverlappingCubes) {
 
 TEST(Diagnose, MassPropertiesOfTheHoledCube) {
   const Model m = testing::build(testing::cube_with_through_hole());
-  const io::MassProperties p = build::mass_properties(m);
+  const io::MassProperties p = shape::mass_properties(m);
   EXPECT_DOUBLE_EQ(p.volume, 24);
   EXPECT_DOUBLE_EQ(p.area, 6 * 9 - 2 + 4 * 3);
   EXPECT_NEAR(p.centroid.x, 1.5, 1e-12);
@@ -136,7 +136,7 @@ TEST(Diagnose, MassPropertiesOfTheHoledCube) {
 
 TEST(Diagnose, SharedFaceCountsForBothCells) {
   const Model m = testing::build(testing::two_cubes_sharing_face());
-  EXPECT_DOUBLE_EQ(build::mass_properties(m).volume, 2);
+  EXPECT_DOUBLE_EQ(shape::mass_properties(m).volume, 2);
 }
 
 TEST(Diagnose, JsonHasTheKeysOfTheIssue) {

@@ -11,8 +11,8 @@
 #include <random>
 #include <sstream>
 
+#include "cellforge/geom/predicates.h"
 #include "cellforge/io/diagnose.h"
-#include "io/exact.h"
 #include "io_test_util.h"
 #include "support/checks.h"
 #include "support/fixtures.h"
@@ -30,10 +30,10 @@ void expect_good_triangulation(const Loops& loops, double area) {
   for (const auto& l : loops) all.insert(all.end(), l.begin(), l.end());
   double sum = 0;
   for (const auto& t : tris) {
-    const io::Point2 a{all[t[0]].x, all[t[0]].y}, b{all[t[1]].x, all[t[1]].y},
+    const Vec2 a{all[t[0]].x, all[t[0]].y}, b{all[t[1]].x, all[t[1]].y},
         c{all[t[2]].x, all[t[2]].y};
-    EXPECT_EQ(io::orient2d(a, b, c), 1) << t[0] << " " << t[1] << " " << t[2];
-    sum += ((b.u - a.u) * (c.v - a.v) - (b.v - a.v) * (c.u - a.u)) / 2;
+    EXPECT_EQ(orient2d(a, b, c), 1) << t[0] << " " << t[1] << " " << t[2];
+    sum += ((b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x)) / 2;
   }
   EXPECT_DOUBLE_EQ(sum, area);
   std::size_t corners = 0;
@@ -110,18 +110,18 @@ TEST(Triangulate, BridgeAlongAHoleDiagonal) {
   ASSERT_EQ(tris.size(), 8u - 2 + 2);
   const auto uv = [&](std::uint32_t i) {
     const Vec3 p = loops[i / 4][i % 4];
-    return io::Point2{p.z, p.x};
+    return Vec2{p.z, p.x};
   };
   double area = 0;
   for (const auto& t : tris) {
-    const io::Point2 a = uv(t[0]), b = uv(t[1]), c = uv(t[2]);
-    EXPECT_EQ(io::orient2d(a, b, c), 1);
-    area += ((b.u - a.u) * (c.v - a.v) - (b.v - a.v) * (c.u - a.u)) / 2;
+    const Vec2 a = uv(t[0]), b = uv(t[1]), c = uv(t[2]);
+    EXPECT_EQ(orient2d(a, b, c), 1);
+    area += ((b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x)) / 2;
     for (std::uint32_t h = 4; h < 8; ++h) {  // no hole corner inside a triangle
-      const io::Point2 q = uv(h);
+      const Vec2 q = uv(h);
       if (q == a || q == b || q == c) continue;
-      EXPECT_FALSE(io::orient2d(a, b, q) >= 0 && io::orient2d(b, c, q) >= 0 &&
-                   io::orient2d(c, a, q) >= 0)
+      EXPECT_FALSE(orient2d(a, b, q) >= 0 && orient2d(b, c, q) >= 0 &&
+                   orient2d(c, a, q) >= 0)
           << t[0] << " " << t[1] << " " << t[2] << " holds " << h;
     }
   }
@@ -133,16 +133,16 @@ TEST(Triangulate, BridgeAlongAHoleDiagonal) {
 // tiled exactly by their triangles.
 class TilingCheck {
  public:
-  using Loop = std::vector<io::Point2>;
+  using Loop = std::vector<Vec2>;
   explicit TilingCheck(std::vector<Loop> loops) : loops_(std::move(loops)) {}
 
   // Why the triangles fail to tile the polygon, or empty.
   std::string failure() const {
     Loops in;
-    std::vector<io::Point2> all;
+    std::vector<Vec2> all;
     for (const Loop& l : loops_) {
       in.emplace_back();
-      for (io::Point2 p : l) in.back().push_back({p.u, p.v, 0});
+      for (Vec2 p : l) in.back().push_back({p.x, p.y, 0});
       all.insert(all.end(), l.begin(), l.end());
     }
     const auto tris = io::triangulate_polygon(in, {0, 0, 1});
@@ -150,13 +150,13 @@ class TilingCheck {
     double twice_area = 0;
     for (std::size_t i = 0; i < tris.size(); ++i) {
       const auto& t = tris[i];
-      const io::Point2 a = all[t[0]], b = all[t[1]], c = all[t[2]];
-      if (io::orient2d(a, b, c) != 1) return "triangle " + name(t) + " not counterclockwise";
+      const Vec2 a = all[t[0]], b = all[t[1]], c = all[t[2]];
+      if (orient2d(a, b, c) != 1) return "triangle " + name(t) + " not counterclockwise";
       twice_area += twice_signed_area({a, b, c});
       for (std::uint32_t k : t) used[k] = true;
       if (const std::string why = meets_boundary({a, b, c}); !why.empty())
         return "triangle " + name(t) + ": " + why;
-      if (!in_region({a.u + b.u + c.u, a.v + b.v + c.v}, 3))
+      if (!in_region({a.x + b.x + c.x, a.y + b.y + c.y}, 3))
         return "triangle " + name(t) + " outside the polygon";
       for (std::size_t j = 0; j < i; ++j)
         if (interiors_meet({a, b, c}, {all[tris[j][0]], all[tris[j][1]], all[tris[j][2]]}))
@@ -182,9 +182,9 @@ class TilingCheck {
         if (!boundaries_meet_at_vertices(loops_[a], loops_[b])) return false;
         // Hole b inside the outer loop, outside hole a; loop a outside hole b.
         const int inside_a = a == 0 ? 1 : 0;
-        for (io::Point2 p : loops_[b])
+        for (Vec2 p : loops_[b])
           if (!has(loops_[a], p) && winding(loops_[a], p, 1) != inside_a) return false;
-        for (io::Point2 p : loops_[a])
+        for (Vec2 p : loops_[a])
           if (!has(loops_[b], p) && winding(loops_[b], p, 1) != 0) return false;
         if (winding(loops_[a], vertex_sum(loops_[b]), double(loops_[b].size())) != inside_a)
           return false;
@@ -199,7 +199,7 @@ class TilingCheck {
   bool touching() const {
     for (std::size_t a = 0; a < loops_.size(); ++a)
       for (std::size_t b = a + 1; b < loops_.size(); ++b)
-        for (io::Point2 p : loops_[a])
+        for (Vec2 p : loops_[a])
           if (has(loops_[b], p)) return true;
     return false;
   }
@@ -208,7 +208,7 @@ class TilingCheck {
     std::ostringstream out;
     for (const Loop& l : loops_) {
       out << "{";
-      for (io::Point2 p : l) out << "(" << p.u << "," << p.v << ")";
+      for (Vec2 p : l) out << "(" << p.x << "," << p.y << ")";
       out << "} ";
     }
     return out.str();
@@ -222,44 +222,44 @@ class TilingCheck {
   static double twice_signed_area(const Loop& l) {
     double a = 0;
     for (std::size_t i = 0; i < l.size(); ++i) {
-      const io::Point2 s = l[i], t = l[(i + 1) % l.size()];
-      a += s.u * t.v - t.u * s.v;
+      const Vec2 s = l[i], t = l[(i + 1) % l.size()];
+      a += s.x * t.y - t.x * s.y;
     }
     return a;
   }
-  static bool has(const Loop& l, io::Point2 p) {
+  static bool has(const Loop& l, Vec2 p) {
     return std::find(l.begin(), l.end(), p) != l.end();
   }
   // n times the vertex centroid of an n-gon (inside it when it is convex).
-  static io::Point2 vertex_sum(const Loop& l) {
-    io::Point2 s;
-    for (io::Point2 p : l) s = {s.u + p.u, s.v + p.v};
+  static Vec2 vertex_sum(const Loop& l) {
+    Vec2 s;
+    for (Vec2 p : l) s = {s.x + p.x, s.y + p.y};
     return s;
   }
   // Winding number about the point p / scale, for p off the loop.
-  static int winding(const Loop& l, io::Point2 p, double scale) {
+  static int winding(const Loop& l, Vec2 p, double scale) {
     int w = 0;
     for (std::size_t i = 0; i < l.size(); ++i) {
-      const io::Point2 s{l[i].u * scale, l[i].v * scale};
-      const io::Point2 t{l[(i + 1) % l.size()].u * scale, l[(i + 1) % l.size()].v * scale};
-      if (s.v <= p.v && p.v < t.v && io::orient2d(s, t, p) > 0) ++w;
-      if (t.v <= p.v && p.v < s.v && io::orient2d(s, t, p) < 0) --w;
+      const Vec2 s{l[i].x * scale, l[i].y * scale};
+      const Vec2 t{l[(i + 1) % l.size()].x * scale, l[(i + 1) % l.size()].y * scale};
+      if (s.y <= p.y && p.y < t.y && orient2d(s, t, p) > 0) ++w;
+      if (t.y <= p.y && p.y < s.y && orient2d(s, t, p) < 0) --w;
     }
     return w;
   }
-  static bool on_segment(io::Point2 a, io::Point2 b, io::Point2 p) {  // closed, exact
-    return io::orient2d(a, b, p) == 0 && std::min(a.u, b.u) <= p.u && p.u <= std::max(a.u, b.u) &&
-           std::min(a.v, b.v) <= p.v && p.v <= std::max(a.v, b.v);
+  static bool on_segment(Vec2 a, Vec2 b, Vec2 p) {  // closed, exact
+    return orient2d(a, b, p) == 0 && std::min(a.x, b.x) <= p.x && p.x <= std::max(a.x, b.x) &&
+           std::min(a.y, b.y) <= p.y && p.y <= std::max(a.y, b.y);
   }
-  static bool proper_cross(io::Point2 a, io::Point2 b, io::Point2 c, io::Point2 d) {
-    return io::orient2d(a, b, c) * io::orient2d(a, b, d) < 0 &&
-           io::orient2d(c, d, a) * io::orient2d(c, d, b) < 0;
+  static bool proper_cross(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
+    return orient2d(a, b, c) * orient2d(a, b, d) < 0 &&
+           orient2d(c, d, a) * orient2d(c, d, b) < 0;
   }
   static bool boundaries_meet_at_vertices(const Loop& x, const Loop& y) {
     for (std::size_t i = 0; i < x.size(); ++i) {
-      const io::Point2 a = x[i], b = x[(i + 1) % x.size()];
+      const Vec2 a = x[i], b = x[(i + 1) % x.size()];
       for (std::size_t j = 0; j < y.size(); ++j) {
-        const io::Point2 c = y[j], d = y[(j + 1) % y.size()];
+        const Vec2 c = y[j], d = y[(j + 1) % y.size()];
         if (proper_cross(a, b, c, d)) return false;
         // An end of one edge on the other, other than at a shared end.
         if ((c != a && c != b && on_segment(a, b, c)) ||
@@ -276,9 +276,9 @@ class TilingCheck {
   std::string meets_boundary(const Loop& t) const {
     for (const Loop& l : loops_) {
       for (std::size_t i = 0; i < l.size(); ++i) {
-        const io::Point2 p = l[i], q = l[(i + 1) % l.size()];
-        if (!has(t, p) && io::orient2d(t[0], t[1], p) >= 0 && io::orient2d(t[1], t[2], p) >= 0 &&
-            io::orient2d(t[2], t[0], p) >= 0)
+        const Vec2 p = l[i], q = l[(i + 1) % l.size()];
+        if (!has(t, p) && orient2d(t[0], t[1], p) >= 0 && orient2d(t[1], t[2], p) >= 0 &&
+            orient2d(t[2], t[0], p) >= 0)
           return "holds a loop vertex";
         for (int s = 0; s < 3; ++s)
           if (proper_cross(t[s], t[(s + 1) % 3], p, q)) return "crosses a loop edge";
@@ -286,7 +286,7 @@ class TilingCheck {
     }
     return "";
   }
-  bool in_region(io::Point2 p, double scale) const {
+  bool in_region(Vec2 p, double scale) const {
     if (winding(loops_[0], p, scale) == 0) return false;
     for (std::size_t l = 1; l < loops_.size(); ++l)
       if (winding(loops_[l], p, scale) != 0) return false;
@@ -297,9 +297,9 @@ class TilingCheck {
   static bool interiors_meet(const Loop& x, const Loop& y) {
     for (const auto& [s, t] : {std::pair{&x, &y}, std::pair{&y, &x}})
       for (int e = 0; e < 3; ++e) {
-        const io::Point2 a = (*s)[e], b = (*s)[(e + 1) % 3];
+        const Vec2 a = (*s)[e], b = (*s)[(e + 1) % 3];
         if (std::all_of(t->begin(), t->end(),
-                        [&](io::Point2 p) { return io::orient2d(a, b, p) <= 0; }))
+                        [&](Vec2 p) { return orient2d(a, b, p) <= 0; }))
           return false;
       }
     return true;
@@ -320,9 +320,9 @@ class RandomPolygons {
     const int w = uniform(3, 9), h = uniform(3, 9);
     Loop outer;
     const bool dense = uniform(0, 1) == 1;
-    const auto side = [&](io::Point2 from, double du, double dv, int steps) {
+    const auto side = [&](Vec2 from, double du, double dv, int steps) {
       for (int i = 0; i < steps; ++i)
-        if (dense || i == 0) outer.push_back({from.u + du * i, from.v + dv * i});
+        if (dense || i == 0) outer.push_back({from.x + du * i, from.y + dv * i});
     };
     side({0, 0}, 1, 0, w);
     side({double(w), 0}, 0, 1, h);
@@ -337,14 +337,14 @@ class RandomPolygons {
       Loop outer;
       const int n = uniform(3, 12);
       for (int i = 0; i < n; ++i) outer.push_back({double(uniform(-6, 6)), double(uniform(-6, 6))});
-      const auto upper = [](io::Point2 p) { return p.v > 0 || (p.v == 0 && p.u > 0); };
-      std::sort(outer.begin(), outer.end(), [&](io::Point2 a, io::Point2 b) {
+      const auto upper = [](Vec2 p) { return p.y > 0 || (p.y == 0 && p.x > 0); };
+      std::sort(outer.begin(), outer.end(), [&](Vec2 a, Vec2 b) {
         if (upper(a) != upper(b)) return upper(a);
-        return io::orient2d({0, 0}, a, b) > 0;
+        return orient2d({0, 0}, a, b) > 0;
       });
       bool ok = true;
       for (std::size_t i = 0; i < outer.size(); ++i)
-        ok = ok && io::orient2d(outer[i], outer[(i + 1) % outer.size()], {0, 0}) > 0;
+        ok = ok && orient2d(outer[i], outer[(i + 1) % outer.size()], {0, 0}) > 0;
       if (ok) return with_holes(std::move(outer), holes, -6, -6, 6, 6);
     }
   }
@@ -365,20 +365,20 @@ class RandomPolygons {
   }
   Loop hole(int u0, int v0, int u1, int v1) {
     const auto at = [&](int du, int dv) {
-      return io::Point2{double(uniform(u0, u1 - du)), double(uniform(v0, v1 - dv))};
+      return Vec2{double(uniform(u0, u1 - du)), double(uniform(v0, v1 - dv))};
     };
     Loop l;
     switch (uniform(0, 2)) {
       case 0: {
         const int du = uniform(1, 3), dv = uniform(1, 3);
-        const io::Point2 p = at(du, dv);
-        l = {p, {p.u + du, p.v}, {p.u + du, p.v + dv}, {p.u, p.v + dv}};
+        const Vec2 p = at(du, dv);
+        l = {p, {p.x + du, p.y}, {p.x + du, p.y + dv}, {p.x, p.y + dv}};
         break;
       }
       case 1: {
         const int r = uniform(1, std::min({2, (u1 - u0) / 2, (v1 - v0) / 2}));
-        const io::Point2 p = at(2 * r, 2 * r);
-        l = {{p.u + r, p.v}, {p.u + 2 * r, p.v + r}, {p.u + r, p.v + 2 * r}, {p.u, p.v + r}};
+        const Vec2 p = at(2 * r, 2 * r);
+        l = {{p.x + r, p.y}, {p.x + 2 * r, p.y + r}, {p.x + r, p.y + 2 * r}, {p.x, p.y + r}};
         break;
       }
       default:

@@ -328,7 +328,7 @@ std::string face_walk_mismatch(const Model& m) {
   for (FaceId f : m.faces()) {
     std::vector<VertexId> want;
     std::vector<EdgeUseId> uses;
-    for (LoopId l = m.outer_loop(f); l.is_valid(); l = m.next_loop(l)) {
+    for (LoopId l : m.loops_of(f)) {
       const auto vs = m.loop_vertices(l);
       want.insert(want.end(), vs.begin(), vs.end());
       if (const EdgeUseId first = m.loop_first(l); first.is_valid()) {

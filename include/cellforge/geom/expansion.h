@@ -20,7 +20,7 @@
 #include <memory>
 #include <span>
 
-namespace cellforge {
+namespace cellforge::inline geom {
 
 // A double with the rounding error of the operation that produced it:
 // hi = fl(a op b) and hi + lo == a op b exactly.
@@ -92,4 +92,4 @@ class Expansion {
   double inline_[kInline];
 };
 
-}  // namespace cellforge
+}  // namespace cellforge::inline geom

@@ -27,12 +27,7 @@
 #include "cellforge/geom/expansion.h"
 #include "cellforge/geom/vec.h"
 
-namespace cellforge {
-
-struct Vec2 {
-  double x = 0, y = 0;
-  friend constexpr bool operator==(const Vec2&, const Vec2&) = default;
-};
+namespace cellforge::inline geom {
 
 // sign det[b - a, c - a]: +1 counterclockwise, -1 clockwise, 0 collinear.
 int orient2d(Vec2 a, Vec2 b, Vec2 c);
@@ -89,4 +84,4 @@ int radial_half(const ExactVec3& t, const ExactVec3& d0, const ExactVec3& d);
 // equivalent (neither is less).
 bool radial_less(const ExactVec3& t, const ExactVec3& d0, const ExactVec3& di, const ExactVec3& dj);
 
-}  // namespace cellforge
+}  // namespace cellforge::inline geom

@@ -1,4 +1,5 @@
-// Vec3: plain double 3-vectors for positions and directions.
+// Vec3 and Vec2: plain double vectors for positions and directions in space and in a
+// plane.
 // Arithmetic here is inexact; anything that decides topology goes through
 // predicates.h instead.
 #pragma once
@@ -6,7 +7,7 @@
 #include <cmath>
 #include <ostream>
 
-namespace cellforge {
+namespace cellforge::inline geom {
 
 struct Vec3 {
   double x = 0, y = 0, z = 0;
@@ -31,8 +32,13 @@ inline Vec3 normalized(Vec3 a) {
   return n > 0 ? a / n : a;
 }
 
+struct Vec2 {
+  double x = 0, y = 0;
+  friend constexpr bool operator==(const Vec2&, const Vec2&) = default;
+};
+
 inline std::ostream& operator<<(std::ostream& os, Vec3 v) {
   return os << '(' << v.x << ", " << v.y << ", " << v.z << ')';
 }
 
-}  // namespace cellforge
+}  // namespace cellforge::inline geom

@@ -9,13 +9,13 @@
 #include <utility>
 #include <vector>
 
-#include "cellforge/build/mass.h"
+#include "cellforge/shape/mass.h"
 #include "cellforge/topo/model.h"
 
 namespace cellforge::io {
 
-// Volume, area, centroid and bounding box of the whole model (build/mass.h).
-using MassProperties = build::MassProperties;
+// Volume, area, centroid and bounding box of the whole model (shape/mass.h).
+using MassProperties = shape::MassProperties;
 
 struct DiagnoseOptions {
   // Exact triangle-triangle tests between faces that share no vertex, found

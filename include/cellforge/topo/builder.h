@@ -15,7 +15,7 @@
 #include "cellforge/result.h"
 #include "cellforge/topo/model.h"
 
-namespace cellforge {
+namespace cellforge::inline topo {
 
 struct MeshFace {
   // loops[0] is the outer loop (counterclockwise seen from the front), the rest
@@ -51,4 +51,4 @@ Result<BuildResult> build_mesh(Model& m, const MeshInput& input);
 // A closed solid from a triangle/polygon soup: every face gets back volume 0.
 MeshInput solid_input(std::vector<Vec3> positions, std::vector<std::vector<std::uint32_t>> faces);
 
-}  // namespace cellforge
+}  // namespace cellforge::inline topo

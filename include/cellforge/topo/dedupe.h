@@ -9,7 +9,7 @@
 #include <utility>
 #include <vector>
 
-namespace cellforge {
+namespace cellforge::inline topo {
 
 template <class T>
 void dedupe_stable(std::vector<T>& v) {
@@ -58,4 +58,4 @@ const T* find_repeat(std::vector<T>& v) {
   return it == v.end() ? nullptr : &*it;
 }
 
-}  // namespace cellforge
+}  // namespace cellforge::inline topo

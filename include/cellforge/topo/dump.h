@@ -7,10 +7,10 @@
 
 #include "cellforge/topo/model.h"
 
-namespace cellforge {
+namespace cellforge::inline topo {
 
 std::string canonical_dump(const Model& m);
 // A dump that shows ids as they are (for debugging and error messages).
 std::string raw_dump(const Model& m);
 
-}  // namespace cellforge
+}  // namespace cellforge::inline topo

@@ -5,7 +5,7 @@
 #include "cellforge/result.h"
 #include "cellforge/topo/model.h"
 
-namespace cellforge {
+namespace cellforge::inline topo {
 
 // The box [lo, hi] from mvsf, mev and mef (faces outward, counterclockwise). With
 // `solid`, make_volume fills it. The group is created with `name`.
@@ -25,4 +25,4 @@ Result<GroupId> euler_box_with_hole(Model& m, Vec3 lo, Vec3 hi, double hole_lo, 
 // corner (1, 1, 1) to (2, 2, 2), and an isolated vertex at (3, 0, 0).
 Result<GroupId> euler_nonmanifold_example(Model& m, std::string name = {});
 
-}  // namespace cellforge
+}  // namespace cellforge::inline topo

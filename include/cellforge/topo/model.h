@@ -1,53 +1,16 @@
 // The adjacent-dimension cycle structure (seed 000, GEMS 4.0): a face-centred,
 // non-manifold boundary representation kept in flat arrays with 32-bit ids.
 //
-// Entities and what each record holds (all fields are 32-bit indices):
-//   Vertex   first edge end of its vertex cycle                    (4 B)
-//   Edge     per end: vertex, next end around that vertex (8 B each) (16 B)
-//   EdgeUse  face + direction bit, next use in its loop (8 B); next use
-//            around its edge (radial cycle) in an array of its own  (4 B)
-//            Every edge has two use slots, used or not: 40 B an edge.
-//   Face     first use of its loop, interned side record           (8 B)
-//   Loop     only for faces with holes or a point loop: first use
-//            (or the point's vertex), next loop of the face         (8 B)
-//   Sides    front volume, back volume, group (shared by all faces with
-//            the same three values; a closed solid's faces share one)
-//   Groups of vertices: runs of consecutive vertex ids in one group (a model
-//            built group by group has one run per group)
+// Model's read API: counts, liveness, iteration, the cycle walks as ranges
+// (radial, uses_of, ends_around, loops_of), the face and vertex walks the 9 queries
+// (queries.h) are built on, and per-element data. The records, bit masks and slot
+// machinery behind it are in detail/model_records.h, which is not API.
 //
 // The two cycles that name the structure:
 //   vertex -> its edges: each edge end links to the next edge end around the same
 //             vertex (an "edge end" is 2*edge + end, end 0 = the edge's start);
 //   edge -> its uses: each edge use links to the next use around the same edge,
 //           in angular order (right-handed about the edge's start->end axis).
-//
-// Use ids are slots that belong to edges: edge e owns use slots 2e and 2e+1,
-// the same numbers as its two end records. So a use names its edge by its id
-// (edge_of(u) is u/2, no load), an edge's first use is slot 2e, and an edge of a
-// closed manifold fills both. A third or later use of an edge takes an overflow
-// slot: a slot of an edge record kept for overflow (a "spare pair", not an edge),
-// whose end record at the same index names the use's edge. Such a use carries
-// kOverflowBit beside its face. A use is *in place* when it sits in slot
-// 2e + direction (a forward use in 2e, a reversed one in 2e + 1): its start
-// vertex is then the end record of its own index, ends_[u]. The two uses of an
-// edge of a consistently oriented manifold run opposite ways, so both are in
-// place. A face that may hold a use not in place is marked (kUnplacedFace), and
-// one that may hold a use in an overflow slot too (kOverflowFace): F->V walks an
-// unmarked face reading start vertex ends_[u], F->E and F->F a face without the
-// overflow mark reading edge u/2, without a test per use. A third mark
-// (kRepeatFace) says that a face's loops may name an edge or a vertex twice (a
-// slit, a dangling edge, loops that touch): the F->E and F->V answers of a face
-// without it need no deduplication. An edit sets kRepeatFace on every face it
-// changes; when the last editor goes out of scope the three marks of those faces
-// are made exact (ModelEditor), so outside an edit each mark is set exactly when
-// its face needs it. When slot 2e is empty while the edge still has uses, the
-// empty slot's radial field names one of them (the edge's first use).
-//
-// A face with one loop of edges keeps that loop in its own record (the face names
-// the loop's first use); only a face with holes, or whose loop is a single vertex,
-// lists its loops in Loop records. Loop ids name loops either way: LoopId(f)
-// (f < kInnerLoopBit) is face f's outer loop, LoopId(kInnerLoopBit | r) the inner
-// loop kept in Loop record r.
 //
 // Orientation: a face's loops are oriented so that, seen from the front side (the
 // side its normal points to), the outer loop runs counterclockwise and inner loops
@@ -57,12 +20,6 @@
 //
 // Geometry lives beside the topology: vertex positions in their own array; faces
 // are planar polygons whose plane follows from their vertices.
-//
-// Edge and use records live in arrays indexed alike: ends_[2e + end],
-// uses_[2e + k] and radial_[2e + k]. The vertex cycle steps with one load and
-// no decoding, a use's start vertex is one load from its id, and a loop walk
-// reads one 8-byte record per use, addressed by a scaled index
-// (docs/structure-comparison.md says what the 12-byte record cost).
 //
 // Deleted slots go on per-kind free lists threaded through the dead records, so
 // ids stay stable across edits and are reused by later creations. A use keeps
@@ -74,45 +31,19 @@
 #include <cassert>
 #include <cstddef>
 #include <cstdint>
+#include <iterator>
 #include <span>
 #include <string>
 #include <vector>
 
 #include "cellforge/geom/vec.h"
 #include "cellforge/ids.h"
+#include "cellforge/topo/detail/model_records.h"
+#include "cellforge/topo/types.h"
 
-namespace cellforge {
+namespace cellforge::inline topo {
 
 class ModelEditor;  // src/topo: the only code that writes records
-
-// The analytic surface a face was faceted from (seed 000 keeps a primitive's
-// defining parameters on the body; drawings, the database and feature queries
-// read them). Faces without one are plain planar polygons.
-struct Surface {
-  std::string kind;  // "cylinder", "cone", "sphere", "torus", ...
-  Vec3 center;
-  Vec3 axis{0, 0, 1};
-  double radius = 0;   // cylinder/sphere radius, cone base radius, torus major radius
-  double radius2 = 0;  // cone top radius, torus minor radius
-  double height = 0;
-  int segments = 0;
-  friend bool operator==(const Surface&, const Surface&) = default;
-};
-
-// A primitive's kind and parameters as the user gave them ("sphere", {"r", "10"},
-// {"fn", "32"}), kept on its group.
-struct Attribute {
-  std::string key;
-  std::string value;
-  friend bool operator==(const Attribute&, const Attribute&) = default;
-};
-
-// One end of an edge, as seen from a vertex's edge cycle.
-struct EdgeEnd {
-  EdgeId edge;
-  int end = 0;  // 0: the edge's start vertex, 1: its end vertex
-  friend constexpr bool operator==(EdgeEnd, EdgeEnd) = default;
-};
 
 // Iterates the live ids of one kind in increasing order.
 template <class IdT>
@@ -149,7 +80,52 @@ class LiveIds {
   AliveFn alive_;
 };
 
-class Model {
+// The elements of a cycle or a list of links as a range: first, step(first),
+// step(step(first)), ... up to the element after which step returns to first (kCycle)
+// or returns an invalid element (a list). Empty when first is invalid (T{}).
+// Reads the model through its public accessors as it goes: not for a model an
+// operator is changing under the walk, nor for a broken cycle that does not close.
+template <class T, class Step, bool kCycle>
+class LinkRange {
+ public:
+  class iterator {
+   public:
+    using value_type = T;
+    using difference_type = std::ptrdiff_t;
+    using iterator_category = std::input_iterator_tag;
+    using reference = T;
+    using pointer = void;
+    iterator() = default;
+    iterator(const LinkRange* range, T at) : range_(range), at_(at) {}
+    T operator*() const { return at_; }
+    iterator& operator++() {
+      const T next = range_->step_(at_);
+      at_ = (kCycle && next == range_->first_) ? T{} : next;
+      return *this;
+    }
+    iterator operator++(int) {
+      iterator old = *this;
+      ++*this;
+      return old;
+    }
+    friend bool operator==(const iterator& a, const iterator& b) { return a.at_ == b.at_; }
+
+   private:
+    const LinkRange* range_ = nullptr;
+    T at_{};
+  };
+
+  LinkRange(T first, Step step) : first_(first), step_(step) {}
+  iterator begin() const { return iterator(this, first_); }
+  iterator end() const { return iterator(this, T{}); }
+  bool empty() const { return first_ == T{}; }
+
+ private:
+  T first_;
+  Step step_;
+};
+
+class Model : private detail::ModelRecords {
  public:
   Model() = default;
 
@@ -210,12 +186,13 @@ class Model {
   // The next edge end around the same vertex (the vertex cycle).
   EdgeEnd next_end_around(EdgeEnd end) const { return decode_end(ends_[encode_end(end)].next_end); }
   std::size_t degree(VertexId v) const;  // number of edge ends at v
-  // One step of a vertex walk: the edge end at the vertex and the vertex at the
-  // edge's other end.
-  struct VertexEnd {
-    EdgeEnd end;
-    VertexId other;
-  };
+  using VertexEnd = topo::VertexEnd;
+  // v's vertex cycle from first_end(v): every edge end at v, once.
+  //   for (EdgeEnd end : m.ends_around(v)) ...
+  auto ends_around(VertexId v) const {
+    const auto step = [this](EdgeEnd e) { return next_end_around(e); };
+    return LinkRange<EdgeEnd, decltype(step), true>(first_end(v), step);
+  }
   // Walks v's vertex cycle from first_end(v), calling on_end(VertexEnd) for every
   // edge end at v (a field the callback ignores is not read). The queries' vertex
   // walks; not for a model an operator is editing.
@@ -281,10 +258,16 @@ class Model {
     return EdgeUseId(radial_[u.value]);
   }
   LoopId loop_of(EdgeUseId u) const;  // walks the face's loops: O(face size)
+  // e's radial cycle from first_use(e), in angular order (empty for a wire edge).
+  //   for (EdgeUseId u : m.radial(e)) ...
+  auto radial(EdgeId e) const {
+    const auto step = [this](EdgeUseId u) { return radial_next(u); };
+    return LinkRange<EdgeUseId, decltype(step), true>(first_use(e), step);
+  }
 
   // ---- loops
   // LoopId(f) is face f's outer loop; LoopId(kInnerLoopBit | r) an inner loop.
-  static constexpr std::uint32_t kInnerLoopBit = 0x40000000u;
+  static constexpr std::uint32_t kInnerLoopBit = detail::ModelRecords::kInnerLoopBit;
   // First use of l; invalid when l is a point loop (a loop that is one vertex).
   EdgeUseId loop_first(LoopId l) const {
     const std::uint32_t f = loop_start(l);
@@ -316,6 +299,11 @@ class Model {
     return n == kInvalidIndex ? FaceId() : FaceId(n & ~kTagBit);
   }
   std::size_t loop_length(LoopId l) const;  // number of uses (0 for a point loop)
+  // The uses of loop l in loop order from loop_first(l) (none for a point loop).
+  auto uses_of(LoopId l) const {
+    const auto step = [this](EdgeUseId u) { return loop_next(u); };
+    return LinkRange<EdgeUseId, decltype(step), true>(loop_first(l), step);
+  }
 
   // ---- faces
   LoopId outer_loop(FaceId f) const {
@@ -323,11 +311,12 @@ class Model {
     return faces_[f.value].first == kInvalidIndex ? LoopId() : LoopId(f.value);
   }
   std::size_t inner_loop_count(FaceId f) const;
-  // One use of a face walk: the use and its edge.
-  struct FaceUse {
-    EdgeUseId use;
-    EdgeId edge;
-  };
+  // f's loops, the outer one first, then its inner loops in order.
+  auto loops_of(FaceId f) const {
+    const auto step = [this](LoopId l) { return next_loop(l); };
+    return LinkRange<LoopId, decltype(step), false>(outer_loop(f), step);
+  }
+  using FaceUse = topo::FaceUse;
   // Walks f's loops of edges in order (outer first), reading each record once:
   // calls on_use(FaceUse) for every use, in loop order (point loops have none).
   // The F->E and F->F walks; not for a model an operator is editing.
@@ -438,193 +427,6 @@ class Model {
 
  private:
   friend class ModelEditor;
-
-  static constexpr std::uint32_t kDead = 0xFFFFFFFEu;  // marks a free slot
-  static constexpr std::uint32_t kTagBit = 0x80000000u;
-  // A use's face_dir: the face in the low 30 bits, kOverflowBit for a use in an
-  // overflow slot, kTagBit when reversed; kNoUse for an empty slot.
-  static constexpr std::uint32_t kOverflowBit = 0x40000000u;
-  static constexpr std::uint32_t kFaceMask = 0x3FFFFFFFu;
-  static constexpr std::uint32_t kNoUse = kFaceMask;
-  // The first end record of a spare pair's free slot (a used one holds
-  // kTagBit | edge).
-  static constexpr std::uint32_t kSpare = 0xFFFFFFFDu;
-
-  static EdgeEnd decode_end(std::uint32_t code) {
-    if (code & kTagBit) return {};  // invalid, or a vertex's point-loop tag
-    return {EdgeId(code >> 1), static_cast<int>(code & 1u)};
-  }
-  static std::uint32_t encode_end(EdgeEnd end) {
-    return end.edge.is_valid() ? (end.edge.value << 1) | static_cast<std::uint32_t>(end.end)
-                               : kInvalidIndex;
-  }
-
-  struct VertexRec {
-    // Encoded edge end, kTagBit|loop id for a point loop, invalid for a bare
-    // vertex; kDead when the slot is free (free slots are kept in free_vertices_).
-    std::uint32_t first_end;
-  };
-  struct GroupRun {
-    std::uint32_t first_vertex;  // the run holds vertex ids from here to the next run
-    std::uint32_t group;
-  };
-  // One end of an edge, at index 2*edge + end of ends_ (the encoded end). In a
-  // spare pair each record serves the overflow use slot of the same index.
-  struct EndRec {
-    // The end's vertex; kDead at end 0 of a free edge slot; in a spare pair
-    // kTagBit | the use's edge, or kSpare when the slot is free.
-    std::uint32_t vertex;
-    // Encoded: the next edge end around the same vertex; links the free list of
-    // edge slots (at end 0) and of overflow slots.
-    std::uint32_t next_end;
-  };
-  // A use's loop fields; its radial link is in radial_ (same index).
-  struct UseRec {
-    std::uint32_t face_dir;  // see kOverflowBit; kNoUse for an empty slot
-    std::uint32_t next;      // next use of its loop
-  };
-  struct LoopRec {
-    std::uint32_t first;  // use id, or kTagBit|vertex for a point loop; kDead when free
-    std::uint32_t next;   // next Loop record of the face, or kTagBit|face after the last
-  };
-  struct FaceRec {
-    // The outer loop's first use when the face has that one loop of edges;
-    // kTagBit|Loop record of its first loop otherwise; kInvalidIndex while empty.
-    std::uint32_t first;
-    // Index into sides_ (below kMaxSideRows), | kUnplacedFace when a use of the
-    // face may not be in place, | kOverflowFace too when one may sit in an
-    // overflow slot, | kRepeatFace when its loops may name an edge or a vertex
-    // twice, | kTouchedFace while an edit lists it; kDead when free (first links
-    // the list).
-    std::uint32_t sides;
-  };
-  static constexpr std::uint32_t kOverflowFace = 0x40000000u;
-  static constexpr std::uint32_t kUnplacedFace = 0x20000000u;
-  static constexpr std::uint32_t kRepeatFace = 0x10000000u;
-  // Set while the face is listed in touched_faces_ (during an edit only).
-  static constexpr std::uint32_t kTouchedFace = 0x08000000u;
-  static constexpr std::uint32_t kFaceMarks = kOverflowFace | kUnplacedFace | kRepeatFace | kTouchedFace;
-  static constexpr std::uint32_t kMaxSideRows = kTouchedFace;
-  struct SidesRec {
-    std::uint32_t front, back, group;
-    friend bool operator==(const SidesRec&, const SidesRec&) = default;
-  };
-  const SidesRec& side_row(FaceId f) const { return sides_[faces_[f.value].sides & ~kFaceMarks]; }
-  struct VolumeRec {
-    std::uint32_t group;  // kDead when free
-    std::uint32_t next_free;
-  };
-  struct GroupRec {
-    bool live = true;
-    std::string name;
-    std::vector<Attribute> attributes;
-  };
-
-  enum Kind { kVertex, kEdge, kUse, kLoop, kFace, kVolume, kGroup, kKinds };
-
-  std::vector<VertexRec> vertices_;
-  std::vector<GroupRun> vertex_groups_;  // sorted by first_vertex
-  std::vector<std::uint32_t> free_vertices_;
-  std::vector<Vec3> positions_;
-  std::vector<EndRec> ends_;  // two per edge slot
-  std::vector<UseRec> uses_;  // two per edge slot
-  // Per use slot: the next use around its edge (the cycle closes); in an empty
-  // slot 2e of an edge with uses, its first use; kInvalidIndex otherwise.
-  std::vector<std::uint32_t> radial_;
-  std::vector<LoopRec> loops_;
-  std::vector<FaceRec> faces_;
-  std::vector<SidesRec> sides_;
-  std::vector<VolumeRec> volumes_;
-  std::vector<GroupRec> groups_;
-  std::vector<Surface> surfaces_;
-  std::size_t listed_faces_ = 0;       // live faces whose loops are in Loop records
-  std::vector<std::uint32_t> open_faces_;  // faces an operator is editing (ModelEditor)
-  // Faces an edit has changed (kTouchedFace), whose marks are made exact when the
-  // last editor goes out of scope.
-  std::vector<std::uint32_t> touched_faces_;
-  int edit_depth_ = 0;
-
-  // The raw start of loop l: a use id, kTagBit|vertex (point loop), or kInvalidIndex.
-  std::uint32_t loop_start(LoopId l) const {
-    if (l.value & kInnerLoopBit) return loops_[l.value & ~kInnerLoopBit].first;
-    const std::uint32_t f = faces_[l.value].first;
-    if (!(f & kTagBit) || f == kInvalidIndex) return f;
-    return loops_[f & ~kTagBit].first;
-  }
-  // The uses of the loop of edges that starts at `first`, for for_each_face_use.
-  // kAny: the face may hold uses in overflow slots (kOverflowFace); for a face
-  // that holds none every use's edge is u / 2, without a test.
-  template <bool kAny, class UseFn>
-  void walk_loop(std::uint32_t first, UseFn& on_use) const {
-    // The array's address is held here: the callback's stores could alias the
-    // vector, which would otherwise be re-read for every use.
-    const UseRec* uses = uses_.data();
-    const EndRec* ends = ends_.data();
-    std::uint32_t u = first;
-    do {
-      const UseRec& rec = uses[u];
-      const std::uint32_t next = rec.next;  // read before the callback's stores
-      on_use(FaceUse{EdgeUseId(u), EdgeId(kAny ? use_edge(rec, ends, u) : u >> 1)});
-      u = next;
-    } while (u != first);
-  }
-  // The start vertices of the loop of edges that starts at `first`, for
-  // for_each_face_vertex: two per edge found, u's start and its end (the next
-  // use's start), so a loop of n uses looks up ceil(n / 2) edges.
-  // kAny: the face may hold uses that are not in place (kUnplacedFace); for a
-  // face that holds none u's start is ends[u] and its end ends[u ^ 1], so the
-  // walk reads no use's face field.
-  template <bool kAny, class VertexFn>
-  void walk_loop_vertices(std::uint32_t first, VertexFn& on_vertex) const {
-    const UseRec* uses = uses_.data();
-    const EndRec* ends = ends_.data();
-    std::uint32_t u = first;
-    for (;;) {
-      const UseRec& rec = uses[u];
-      const std::uint32_t c = kAny ? 2 * use_edge(rec, ends, u) + (rec.face_dir >> 31) : u;
-      on_vertex(VertexId(ends[c].vertex));
-      const std::uint32_t n = rec.next;
-      if (n == first) return;
-      on_vertex(VertexId(ends[c ^ 1u].vertex));  // n's start is u's end
-      u = uses[n].next;
-      if (u == first) return;
-    }
-  }
-  // f's loops in order: on_loop(first use) for a loop of edges, on_point(vertex)
-  // for a point loop. A face without holes has its loop's first use in its record;
-  // a face with holes or a point loop lists its loops in Loop records.
-  template <class LoopFn, class PointFn>
-  void for_each_loop_of(const FaceRec& face, LoopFn&& on_loop, PointFn&& on_point) const {
-    const std::uint32_t first = face.first;
-    if (!(first & kTagBit)) {
-      on_loop(first);
-      return;
-    }
-    if (first == kInvalidIndex) return;
-    for (std::uint32_t r = first & ~kTagBit;;) {
-      const LoopRec loop = loops_[r];
-      if (loop.first & kTagBit)
-        on_point(VertexId(loop.first & ~kTagBit));
-      else
-        on_loop(loop.first);
-      if (loop.next & kTagBit) return;
-      r = loop.next;
-    }
-  }
-  // The edge of the use in slot u, whose record is rec: u/2, or for an overflow
-  // slot the edge its end record names. It computes both and selects one (a
-  // conditional move; the end record at index u is always there to read): in the
-  // walks of marked faces a branch on the overflow bit was mispredicted. It takes
-  // the array so that a walk can keep its address in a register.
-  static std::uint32_t use_edge(const UseRec& rec, const EndRec* ends, std::uint32_t u) {
-    const std::uint32_t spare = ends[u].vertex & ~kTagBit;
-    const std::uint32_t own = u >> 1;
-    return (rec.face_dir & kOverflowBit) ? spare : own;
-  }
-  std::vector<std::uint32_t> face_surface_;  // per face slot, kInvalidIndex = plane
-  std::uint32_t free_[kKinds] = {kInvalidIndex, kInvalidIndex, kInvalidIndex, kInvalidIndex,
-                                 kInvalidIndex, kInvalidIndex, kInvalidIndex};
-  std::size_t live_[kKinds] = {};
 };
 
-}  // namespace cellforge
+}  // namespace cellforge::inline topo

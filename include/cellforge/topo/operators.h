@@ -19,7 +19,7 @@
 #include "cellforge/result.h"
 #include "cellforge/topo/model.h"
 
-namespace cellforge {
+namespace cellforge::inline topo {
 
 // ---- groups and volumes
 GroupId make_group(Model& m, std::string name = {});
@@ -174,4 +174,4 @@ Result<VertexId> split_vertex(Model& m, VertexId v, const std::vector<EdgeEnd>& 
 Status can_merge_vertices(const Model& m, VertexId keep, VertexId dying);
 Status merge_vertices(Model& m, VertexId keep, VertexId dying);
 
-}  // namespace cellforge
+}  // namespace cellforge::inline topo

@@ -21,7 +21,7 @@
 
 #include "cellforge/topo/model.h"
 
-namespace cellforge {
+namespace cellforge::inline topo {
 
 void vertices_of(const Model& m, VertexId v, std::vector<VertexId>& out);
 void edges_of(const Model& m, VertexId v, std::vector<EdgeId>& out);
@@ -45,4 +45,4 @@ std::vector<Out> query(const Model& m, In x) {
   return out;
 }
 
-}  // namespace cellforge
+}  // namespace cellforge::inline topo

@@ -17,7 +17,7 @@
 #include "cellforge/result.h"
 #include "cellforge/topo/model.h"
 
-namespace cellforge {
+namespace cellforge::inline topo {
 
 struct Snapshot {
   static constexpr std::int64_t kNone = -1;  // an absent key
@@ -78,4 +78,4 @@ Snapshot snapshot(const Model& m);
 // offending row.
 Result<Model> restore(const Snapshot& s);
 
-}  // namespace cellforge
+}  // namespace cellforge::inline topo

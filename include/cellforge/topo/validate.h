@@ -15,6 +15,7 @@
 //   euler       per closed manifold shell v - e + f = 2(1 - h) + r with integer
 //               h >= 0 (seed 003); over the model seed 001's extended formula
 //               v - e + (f - r) - (V - Vh + Vc) = C - Ch + Cc
+// check_geometry: the faces' own geometry, reported apart (see below).
 #pragma once
 
 #include <string>
@@ -22,7 +23,7 @@
 
 #include "cellforge/topo/model.h"
 
-namespace cellforge {
+namespace cellforge::inline topo {
 
 struct Violation {
   std::string check;    // "vertex", "radial", "loop", ...
@@ -44,4 +45,17 @@ struct EulerFigures {
 };
 EulerFigures euler_figures(const Model& m);
 
-}  // namespace cellforge
+// What validate leaves to geometry (validate_geometry.cpp), in two lists because
+// they weigh differently. crossings: loops of planar faces that cross or touch
+// themselves in their plane (check "crossing"), an error in any model. non_planar:
+// faces whose vertices do not lie exactly on one plane (check "planarity"), each
+// naming a vertex off the plane of three others; the quads of a faceted curved
+// primitive are planar in real numbers but seldom in doubles, so this is a finding
+// (the Booleans split such faces), not a fault. Exact predicates decide both.
+struct GeometryFindings {
+  std::vector<Violation> crossings;
+  std::vector<Violation> non_planar;
+};
+GeometryFindings check_geometry(const Model& m);
+
+}  // namespace cellforge::inline topo

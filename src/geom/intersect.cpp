@@ -1,0 +1,101 @@
+// Segment and triangle intersection tests (intersect.h). In space, a segment meets a
+// triangle when its ends are not strictly on one side of the triangle's plane and the
+// segment's line passes through the closed triangle (the three orient3d signs of the
+// line against the triangle's edges agree); a segment in the triangle's plane, and
+// triangles in one plane, are decided in the projection along the dominant axis of
+// the normal (polygon.h), which keeps incidences because it is a linear bijection of
+// the plane.
+#include "cellforge/geom/intersect.h"
+
+#include <algorithm>
+
+#include "cellforge/geom/polygon.h"
+
+namespace cellforge::inline geom {
+
+namespace {
+
+// p within the bounding box of ab: on the segment, given that a, b, p are collinear.
+bool in_box(Vec2 a, Vec2 b, Vec2 p) {
+  return std::min(a.x, b.x) <= p.x && p.x <= std::max(a.x, b.x) && std::min(a.y, b.y) <= p.y &&
+         p.y <= std::max(a.y, b.y);
+}
+
+bool same_strict_side(const int s[3]) {
+  return (s[0] > 0 && s[1] > 0 && s[2] > 0) || (s[0] < 0 && s[1] < 0 && s[2] < 0);
+}
+
+// The normal of a triangle, for the choice of projection only: any plane the triangle
+// does not project to a line will do, so the rounded direction is enough.
+Vec3 projection_normal(const Vec3 t[3]) { return cross(t[1] - t[0], t[2] - t[0]); }
+
+}  // namespace
+
+bool point_on_segment(Vec2 a, Vec2 b, Vec2 p) { return orient2d(a, b, p) == 0 && in_box(a, b, p); }
+
+bool segments_meet(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
+  const int o1 = orient2d(a, b, c), o2 = orient2d(a, b, d);
+  const int o3 = orient2d(c, d, a), o4 = orient2d(c, d, b);
+  if (o1 * o2 < 0 && o3 * o4 < 0) return true;
+  return (o1 == 0 && in_box(a, b, c)) || (o2 == 0 && in_box(a, b, d)) ||
+         (o3 == 0 && in_box(c, d, a)) || (o4 == 0 && in_box(c, d, b));
+}
+
+bool edges_fold_back(Vec2 a, Vec2 b, Vec2 c) {
+  if (orient2d(a, b, c) != 0) return false;
+  const auto lift = [](Vec2 p) { return Vec3{p.x, p.y, 0}; };
+  return dot_sign(lift(a), lift(b), lift(b), lift(c)) < 0 || point_on_segment(a, b, c) ||
+         point_on_segment(b, c, a);
+}
+
+bool point_in_triangle(const Vec2 t[3], Vec2 p) {
+  const int a = orient2d(t[0], t[1], p), b = orient2d(t[1], t[2], p), c = orient2d(t[2], t[0], p);
+  return (a >= 0 && b >= 0 && c >= 0) || (a <= 0 && b <= 0 && c <= 0);
+}
+
+bool triangles_meet(const Vec2 a[3], const Vec2 b[3]) {
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      if (segments_meet(a[i], a[(i + 1) % 3], b[j], b[(j + 1) % 3])) return true;
+  return point_in_triangle(a, b[0]) || point_in_triangle(b, a[0]);
+}
+
+bool segment_meets_triangle(Vec3 p, Vec3 q, const Vec3 t[3]) {
+  const int s1 = orient3d(t[0], t[1], t[2], p);
+  const int s2 = orient3d(t[0], t[1], t[2], q);
+  if (s1 == s2 && s1 != 0) return false;
+  if (s1 == 0 && s2 == 0) {  // the segment lies in t's plane
+    const Projection proj(projection_normal(t));
+    const Vec2 tt[3] = {proj(t[0]), proj(t[1]), proj(t[2])};
+    const Vec2 pp = proj(p), qq = proj(q);
+    for (int j = 0; j < 3; ++j)
+      if (segments_meet(pp, qq, tt[j], tt[(j + 1) % 3])) return true;
+    return point_in_triangle(tt, pp);
+  }
+  const int s[3] = {orient3d(p, q, t[0], t[1]), orient3d(p, q, t[1], t[2]),
+                    orient3d(p, q, t[2], t[0])};
+  return (s[0] >= 0 && s[1] >= 0 && s[2] >= 0) || (s[0] <= 0 && s[1] <= 0 && s[2] <= 0);
+}
+
+bool triangles_meet(const Vec3 a[3], const Vec3 b[3]) {
+  int sb[3], sa[3];
+  for (int i = 0; i < 3; ++i) sb[i] = orient3d(a[0], a[1], a[2], b[i]);
+  if (same_strict_side(sb)) return false;
+  for (int i = 0; i < 3; ++i) sa[i] = orient3d(b[0], b[1], b[2], a[i]);
+  if (same_strict_side(sa)) return false;
+  if (sb[0] == 0 && sb[1] == 0 && sb[2] == 0) {
+    const Vec3 n = projection_normal(a);
+    if (n == Vec3{}) return false;
+    const Projection proj(n);
+    const Vec2 pa[3] = {proj(a[0]), proj(a[1]), proj(a[2])};
+    const Vec2 pb[3] = {proj(b[0]), proj(b[1]), proj(b[2])};
+    return triangles_meet(pa, pb);
+  }
+  for (int i = 0; i < 3; ++i) {
+    if (segment_meets_triangle(a[i], a[(i + 1) % 3], b)) return true;
+    if (segment_meets_triangle(b[i], b[(i + 1) % 3], a)) return true;
+  }
+  return false;
+}
+
+}  // namespace cellforge::inline geom
