@@ -145,13 +145,21 @@ Result<Arrangement> make_soup(std::span<const Model* const> operands) {
 
 std::size_t rounding_crossings(const Model& m) {
   std::vector<std::array<VertexId, 3>> tris;
+  std::vector<std::uint32_t> face;  // of each triangle
   for (FaceId f : m.faces())
-    for (const auto& t : io::triangulate_face(m, f)) tris.push_back(t);
+    for (const auto& t : io::triangulate_face(m, f)) {
+      tris.push_back(t);
+      face.push_back(f.value);
+    }
   std::vector<Box> boxes(tris.size());
   for (std::size_t i = 0; i < tris.size(); ++i)
     for (VertexId v : tris[i]) boxes[i].add(m.position(v));
   std::size_t count = 0;
   Bvh(boxes).pairs([&](std::uint32_t i, std::uint32_t j) {
+    // Triangles of one face tile it (io/triangulate.h): rounding moves a face's
+    // vertices together, so only faces against faces are checked. This also keeps
+    // faces with many holes, triangulated into long slivers, from pairing quadratically.
+    if (face[i] == face[j]) return;
     for (VertexId u : tris[i])
       for (VertexId v : tris[j])
         if (u == v) return;  // neighbours: what they share is theirs
