@@ -771,18 +771,21 @@ void Arrangement::split_cluster(std::uint32_t ci) {
   piece_box(c, c.pieces[0]);
 
   std::vector<Piece> made;
+  // Piece pi cut by a line (where it overlaps segment pq; p = kInvalidIndex: wholly).
+  auto cut = [&](std::size_t pi, std::uint32_t line, std::uint32_t p, std::uint32_t q) {
+    made.clear();
+    if (!split_piece(c, ci, pi, line, p, q, made, crossings)) return;
+    c.pieces[pi] = std::move(made[0]);
+    piece_box(c, c.pieces[pi]);
+    c.pieces.push_back(std::move(made[1]));
+    piece_box(c, c.pieces.back());
+  };
   auto split_all = [&](std::uint32_t line, std::uint32_t p, std::uint32_t q, Box sb) {
-    const std::size_t n = c.pieces.size();
-    for (std::size_t pi = 0; pi < n; ++pi) {
+    for (std::size_t pi = 0, n = c.pieces.size(); pi < n; ++pi) {
       const Box& pb = c.pieces[pi].box2;
       if (pb.lo.x > sb.hi.x || sb.lo.x > pb.hi.x || pb.lo.y > sb.hi.y || sb.lo.y > pb.hi.y)
         continue;
-      made.clear();
-      if (!split_piece(c, ci, pi, line, p, q, made, crossings)) continue;
-      c.pieces[pi] = std::move(made[0]);
-      piece_box(c, c.pieces[pi]);
-      c.pieces.push_back(std::move(made[1]));
-      piece_box(c, c.pieces.back());
+      cut(pi, line, p, q);
     }
   };
   for (const Segment& s : segments) {
@@ -806,13 +809,7 @@ void Arrangement::split_cluster(std::uint32_t ci) {
         const Piece& P = c.pieces[pi];
         bool inside = true;  // p in the closed piece
         for (std::size_t q = 0; q < P.pts.size() && inside; ++q) inside = side(c, c.lines[P.lines[q]], v) >= 0;
-        if (!inside) continue;
-        made.clear();
-        if (!split_piece(c, ci, pi, l, kInvalidIndex, kInvalidIndex, made, crossings)) continue;
-        c.pieces[pi] = std::move(made[0]);
-        piece_box(c, c.pieces[pi]);
-        c.pieces.push_back(std::move(made[1]));
-        piece_box(c, c.pieces.back());
+        if (inside) cut(pi, l, kInvalidIndex, kInvalidIndex);
       }
     }
   }
