@@ -334,6 +334,18 @@ Vec3 Arrangement::approx3(std::uint32_t p, double* err) const {
   return r;
 }
 
+bool Arrangement::rounds_exactly(std::uint32_t p) const {
+  if (p < pos.size()) return true;
+  const H3<Fp>& h = h3f[p - pos.size()];
+  if (h.c[3].e != 0 || h.c[3].v == 0) return false;
+  for (int i = 0; i < 3; ++i) {
+    if (h.c[i].e != 0) return false;
+    const double x = h.c[i].v / h.c[3].v;
+    if (x * h.c[3].v != h.c[i].v || std::fma(x, h.c[3].v, -h.c[i].v) != 0) return false;
+  }
+  return true;
+}
+
 void Arrangement::approx2(const Cluster& c, std::uint32_t p, double& u, double& v,
                           double& err) const {
   const H2<Fp> h = point2<Fp>(c, p);

@@ -182,6 +182,9 @@ class Arrangement {
 
   // Approximate position (for boxes and output): value and error per coordinate.
   Vec3 approx3(std::uint32_t p, double* err = nullptr) const;
+  // Whether approx3(p) is known to be p's exact position (always for input vertices;
+  // for implicit points when the filter's arithmetic was exact and the quotient is).
+  bool rounds_exactly(std::uint32_t p) const;
   void approx2(const Cluster& c, std::uint32_t p, double& u, double& v, double& err) const;
 
  private:

@@ -143,7 +143,9 @@ Result<Arrangement> make_soup(std::span<const Model* const> operands) {
 
 // ---------------------------------------------------------------- the rounding check
 
-std::size_t rounding_crossings(const Model& m) {
+// Pairs of result triangles, from different faces and with no common vertex, that
+// meet; only pairs with a vertex rounding may have moved can have come to meet.
+std::size_t rounding_crossings(const Model& m, const std::vector<bool>& rounded) {
   std::vector<std::array<VertexId, 3>> tris;
   std::vector<std::uint32_t> face;  // of each triangle
   for (FaceId f : m.faces())
@@ -152,21 +154,29 @@ std::size_t rounding_crossings(const Model& m) {
       face.push_back(f.value);
     }
   std::vector<Box> boxes(tris.size());
+  std::vector<char> moved(tris.size(), 0);
   for (std::size_t i = 0; i < tris.size(); ++i)
-    for (VertexId v : tris[i]) boxes[i].add(m.position(v));
+    for (VertexId v : tris[i]) {
+      boxes[i].add(m.position(v));
+      moved[i] |= v.value < rounded.size() && rounded[v.value];
+    }
+  // Each triangle with a moved vertex against every triangle its box meets (a pair of
+  // two moved ones once), so that a part whose vertices are all doubles costs nothing.
+  const Bvh bvh(boxes);
   std::size_t count = 0;
-  Bvh(boxes).pairs([&](std::uint32_t i, std::uint32_t j) {
-    // Triangles of one face tile it (io/triangulate.h): only faces against faces are
-    // checked. (A face with many holes still triangulates into long slivers whose boxes
-    // meet most of the part: the check is the slow stage of a plate with 1000 holes.)
-    if (face[i] == face[j]) return;
-    for (VertexId u : tris[i])
-      for (VertexId v : tris[j])
-        if (u == v) return;  // neighbours: what they share is theirs
-    const Vec3 a[3] = {m.position(tris[i][0]), m.position(tris[i][1]), m.position(tris[i][2])};
-    const Vec3 b[3] = {m.position(tris[j][0]), m.position(tris[j][1]), m.position(tris[j][2])};
-    if (triangles_meet(a, b)) ++count;
-  });
+  for (std::uint32_t i = 0; i < tris.size(); ++i) {
+    if (!moved[i]) continue;
+    const Box& bi = boxes[i];
+    bvh.query([&](const Box& b) { return b.overlaps(bi); }, [&](std::uint32_t j) {
+      if (j == i || (moved[j] && j < i) || face[i] == face[j]) return;  // one face: its tiling
+      for (VertexId u : tris[i])
+        for (VertexId v : tris[j])
+          if (u == v) return;  // neighbours: what they share is theirs
+      const Vec3 a[3] = {m.position(tris[i][0]), m.position(tris[i][1]), m.position(tris[i][2])};
+      const Vec3 b[3] = {m.position(tris[j][0]), m.position(tris[j][1]), m.position(tris[j][2])};
+      if (triangles_meet(a, b)) ++count;
+    });
+  }
   return count;
 }
 
@@ -212,7 +222,7 @@ Result<BooleanResult> evaluate(std::span<const Model* const> operands, const Exp
   if (!result) return result.error();
 
   t = Clock::now();
-  report.rounding_self_intersections = rounding_crossings(result->model);
+  report.rounding_self_intersections = rounding_crossings(result->model, result->rounded);
   report.seconds.build = seconds_since(t);
   report.exact_fallbacks = exact_evaluations() - exact_before;
   result->report = report;

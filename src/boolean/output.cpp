@@ -490,6 +490,12 @@ Result<BooleanResult> build_result(Arrangement& a, std::vector<OutPoly> polys, R
     by_id[id.value] = s;
   }
   result.sources = std::move(by_id);
+  result.rounded.assign(result.model.num_vertices(), false);
+  for (auto [point, i] : index) {
+    const VertexId v = built->vertices[i];
+    if (v.value >= result.rounded.size()) result.rounded.resize(v.value + 1, false);
+    result.rounded[v.value] = !a.rounds_exactly(point);
+  }
   (void)report;
   return result;
 }

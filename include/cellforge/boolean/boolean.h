@@ -80,6 +80,9 @@ struct Report {
 struct BooleanResult {
   Model model;                      // one group, one cell per connected solid
   std::vector<FaceSource> sources;  // by result FaceId value
+  // By result VertexId value: true where the exact position may not be a double, so
+  // that rounding may have moved the vertex (false: it is exactly where it was).
+  std::vector<bool> rounded;
   Report report;
 };
 
