@@ -448,3 +448,26 @@ TEST(Admesh, AcceptsExportsOfClosedModels) {
 
 }  // namespace
 }  // namespace cellforge
+
+namespace cellforge {
+namespace {
+
+// A triangle with points on one side (other faces' vertices on its edge): every start
+// of the loop gives triangles of positive area, none of zero area along that side.
+TEST(Triangulate, CollinearRunLeavesNoZeroAreaTriangle) {
+  const std::vector<Vec3> corners = {{0, 0, 0}, {8, 0, 0}, {6, 2, 0}, {4, 4, 0}, {2, 6, 0}, {0, 6, 0}};
+  for (std::size_t start = 0; start < corners.size(); ++start) {
+    std::vector<Vec3> loop(corners.begin() + start, corners.end());
+    loop.insert(loop.end(), corners.begin(), corners.begin() + start);
+    const auto tris = io::triangulate_polygon({loop}, {0, 0, 1});
+    ASSERT_EQ(tris.size(), 4u) << "start " << start;
+    for (const auto& t : tris)
+      EXPECT_EQ(orient2d(Vec2{loop[t[0]].x, loop[t[0]].y}, Vec2{loop[t[1]].x, loop[t[1]].y},
+                         Vec2{loop[t[2]].x, loop[t[2]].y}),
+                1)
+          << "start " << start << ": (" << t[0] << t[1] << t[2] << ")";
+  }
+}
+
+}  // namespace
+}  // namespace cellforge
