@@ -99,14 +99,6 @@ class Clipper {
     while (ring.size() > 3) {
       const std::size_t n = ring.size();
       std::size_t pick = n;
-      // Ears next to a straight corner first: they use up runs of collinear vertices
-      // (points other faces put on an edge), which cut last would leave nothing but
-      // zero-area triangles.
-      const auto straight = [&](std::size_t k) {
-        return orient2d(p_[ring[(k + n - 1) % n]], p_[ring[k]], p_[ring[(k + 1) % n]]) == 0;
-      };
-      for (std::size_t i = 0; i < n && pick == n; ++i)
-        if ((straight((i + n - 1) % n) || straight((i + 1) % n)) && is_ear(ring, i, true)) pick = i;
       for (std::size_t i = 0; i < n && pick == n; ++i)
         if (is_ear(ring, i, true)) pick = i;
       for (std::size_t i = 0; i < n && pick == n; ++i)  // degenerate: any convex corner
