@@ -270,16 +270,21 @@ std::vector<OutPoly> classify_and_select(const Arrangement& a, const Expr& expr,
   std::sort(halves.begin(), halves.end(),
             [](const HalfEdge& x, const HalfEdge& y) { return x.key < y.key || (x.key == y.key && x.tri < y.tri); });
   UnionFind patches(a.tris.size());
+  std::vector<char> on_other_edge(a.pos.size(), 0);
+  for (auto [key, v] : a.edge_points) on_other_edge[v] = 1;
   auto untouched = [&](std::uint32_t t) { return !a.clusters[a.cluster_of[t]].touched; };
   for (std::size_t i = 0; i < halves.size();) {
     std::size_t j = i;
     while (j < halves.size() && halves[j].key == halves[i].key) ++j;
     if (j - i == 2) {
       const HalfEdge &x = halves[i], &y = halves[i + 1];
-      // Not across an edge that another solid touches at a point inside it.
+      // Not across an edge that another solid touches at a point inside it, nor at an
+      // end that lies on another's edge (the other's edge may run along this one, its
+      // faces passing between the two triangles).
       const std::uint32_t p = static_cast<std::uint32_t>(x.key >> 32), q = static_cast<std::uint32_t>(x.key);
       if (untouched(x.tri) && untouched(y.tri) && x.forward != y.forward &&
-          a.tris[x.tri].operand == a.tris[y.tri].operand && a.find_edge_key(p, q) == kInvalidIndex) {
+          a.tris[x.tri].operand == a.tris[y.tri].operand && a.find_edge_key(p, q) == kInvalidIndex &&
+          !on_other_edge[p] && !on_other_edge[q]) {
         patches.unite(x.tri, y.tri);
       }
     }

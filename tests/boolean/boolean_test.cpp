@@ -357,3 +357,4 @@ TEST(Boolean, RefusesAnOperandWithoutASolid) {
 
 }  // namespace
 }  // namespace cellforge::testing
+

@@ -165,5 +165,16 @@ TEST(BooleanProperty, RandomCasesHoldTheIdentities) {
               3 * cases, failures, rounded);
 }
 
+// Cases the long run found, each failing before its fix: 87679, a box whose edge lies
+// along a prism's vertical edge (the box's two faces there were one patch, though the
+// prism's faces pass between them).
+TEST(BooleanProperty, CasesTheLongRunFound) {
+  for (std::uint64_t seed : {87679u}) {
+    std::string why;
+    int rounded = 0;
+    EXPECT_TRUE(run_case(seed, why, rounded)) << "seed " << seed << ": " << why;
+  }
+}
+
 }  // namespace
 }  // namespace cellforge::testing
