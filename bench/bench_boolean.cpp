@@ -409,7 +409,7 @@ Outcome run_cellforge(const Case& c, const Settings& s) {
           o.candidate_pairs = rep.candidate_pairs;
           o.implicit_points = rep.implicit_points;
           const boolean::StageTimes& st = rep.seconds;
-          const double stages[6] = {st.soup, st.intersect, st.split, st.classify, st.output, st.build};
+          const double stages[6] = {st.soup, st.intersect, st.split, st.classify, st.output, st.check};
           std::copy(stages, stages + 6, o.stages);
         }
         write_all(fd, &o, sizeof o);

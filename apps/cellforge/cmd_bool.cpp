@@ -3,10 +3,10 @@
 // (boolean/boolean.h). --report json prints the counts, validity, volume and the
 // time of each stage.
 #include <charconv>
-#include <cstdio>
 #include <iostream>
 
 #include "cellforge/boolean/boolean.h"
+#include "cellforge/shape/faceting.h"
 #include "cellforge/shape/mass.h"
 #include "cellforge/io/mesh_io.h"
 #include "cellforge/topo/validate.h"
@@ -24,11 +24,7 @@ constexpr const char* kUsage =
     "  validity, volume, the rounding check and seconds per stage as one JSON object.\n"
     "  KEY=VALUE import options as for `cellforge info` (weld_tolerance=T, ...).";
 
-std::string number(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.17g", x);
-  return buf;
-}
+std::string number(double x) { return shape::format_number(x); }
 
 std::string report_json(const boolean::BooleanResult& r, bool valid, double volume) {
   const boolean::Report& p = r.report;
@@ -48,7 +44,7 @@ std::string report_json(const boolean::BooleanResult& r, bool valid, double volu
          ", \"rounding_self_intersections\": " + std::to_string(p.rounding_self_intersections) +
          ", \"seconds\": {\"soup\": " + number(t.soup) + ", \"intersect\": " + number(t.intersect) +
          ", \"split\": " + number(t.split) + ", \"classify\": " + number(t.classify) +
-         ", \"output\": " + number(t.output) + ", \"check\": " + number(t.build) + "}}";
+         ", \"output\": " + number(t.output) + ", \"check\": " + number(t.check) + "}}";
 }
 
 int run(const std::vector<std::string>& args) {

@@ -223,7 +223,7 @@ Result<BooleanResult> evaluate(std::span<const Model* const> operands, const Exp
 
   t = Clock::now();
   report.rounding_self_intersections = rounding_crossings(result->model, result->rounded);
-  report.seconds.build = seconds_since(t);
+  report.seconds.check = seconds_since(t);
   report.exact_fallbacks = exact_evaluations() - exact_before;
   result->report = report;
   return result;

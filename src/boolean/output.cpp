@@ -468,8 +468,6 @@ Result<BooleanResult> build_result(Arrangement& a, std::vector<OutPoly> polys, R
   }
   auto built = build_mesh(result.model, in);
   if (!built) return Error{ErrorCode::kUnsupported, "boolean: the result could not be built: " + built.error().message};
-  result.sources.resize(result.model.num_faces() ? built->faces.size() : 0);
-  result.sources.assign(polys.size(), {});
   std::vector<FaceSource> by_id;
   for (std::uint32_t f = 0; f < polys.size(); ++f) {
     const OutPoly& p = polys[f];
@@ -482,8 +480,7 @@ Result<BooleanResult> build_result(Arrangement& a, std::vector<OutPoly> polys, R
     int tri_sign = 1;
     for (std::size_t k = 0; k < c.tris.size(); ++k)
       if (c.tris[k] == p.tri) tri_sign = c.tri_sign[k];
-    const int along_ref = p.cluster == kInvalidIndex ? p.normal_sign : p.normal_sign;
-    s.reversed = (along_ref * tri_sign < 0) != a.faces[t.input_face].flipped;
+    s.reversed = (p.normal_sign * tri_sign < 0) != a.faces[t.input_face].flipped;
     s.plane = {a.pos[ref.v[0]], a.pos[ref.v[1]], a.pos[ref.v[2]]};
     const FaceId id = built->faces[f];
     if (by_id.size() <= id.value) by_id.resize(id.value + 1);

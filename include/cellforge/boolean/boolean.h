@@ -60,7 +60,8 @@ struct FaceSource {
 };
 
 struct StageTimes {
-  double soup = 0, intersect = 0, split = 0, classify = 0, output = 0, build = 0;  // seconds
+  // seconds; check: the exact test of the rounded result for crossings
+  double soup = 0, intersect = 0, split = 0, classify = 0, output = 0, check = 0;
 };
 
 struct Report {
