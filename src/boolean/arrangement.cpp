@@ -215,12 +215,22 @@ int Arrangement::w2_sign(const Cluster& c, std::uint32_t p) const {
 }
 
 int Arrangement::side(const Cluster& c, const Line& l, std::uint32_t p) const {
-  if (p >= pos.size()) {  // a crossing of this line lies on it
+  // Points on the line by construction (every point of a cluster lies in its plane):
+  if (p >= pos.size()) {
     const PointDef& d = points[p - pos.size()];
     const auto li = static_cast<std::uint32_t>(&l - c.lines.data());
+    // a crossing of this line;
     if (d.kind == PointKind::kCross && &clusters[d.a] == &c && (d.b == li || d.c == li)) return 0;
+    if (d.kind == PointKind::kLpi) {
+      // where this edge's segment meets a plane, or a segment meets this trace's plane;
+      if (l.kind == LineKind::kThrough && ordered(l.a, l.b) == ordered(d.a, d.b)) return 0;
+      if (l.kind == LineKind::kTrace && plane_of[cluster_of[l.a]] == plane_of[cluster_of[d.c]]) return 0;
+    }
   } else if (l.kind == LineKind::kThrough && (p == l.a || p == l.b)) {
-    return 0;
+    return 0;  // an end of this edge;
+  } else if (l.kind == LineKind::kTrace) {
+    const Tri& t = tris[l.a];  // a corner of the triangle whose plane this traces.
+    if (p == t.v[0] || p == t.v[1] || p == t.v[2]) return 0;
   }
   const int s = decide([&]<class T>() {
     const auto L = coeffs<T>(c, l);
@@ -430,13 +440,20 @@ namespace {
 
 std::uint32_t Arrangement::lpi_point(std::uint32_t p, std::uint32_t q, std::uint32_t cluster) {
   if (p > q) std::swap(p, q);
-  // Keyed by the segment, then by the plane's cluster: few planes meet one segment.
-  auto& list = lpi_ids_[ordered(p, q)];
-  for (auto [c, id] : list)
-    if (c == cluster) return id;
-  const std::uint32_t id = new_point({PointKind::kLpi, p, q, clusters[cluster].ref}, nullptr);
-  list.push_back({cluster, id});
-  return id;
+  const std::uint32_t plane = plane_of[cluster];
+  auto [it, fresh] = lpi_ids_.try_emplace({ordered(p, q), plane}, 0);
+  if (fresh) it->second = new_point({PointKind::kLpi, p, q, clusters[plane].ref}, nullptr);
+  return it->second;
+}
+
+std::uint32_t Arrangement::crossing_point(std::uint32_t ci, std::uint32_t li, std::uint32_t m) {
+  Cluster& c = clusters[ci];
+  const Line* through = &c.lines[li];
+  const Line* trace = &c.lines[m];
+  if (through->kind != LineKind::kThrough) std::swap(through, trace);
+  if (through->kind == LineKind::kThrough && trace->kind == LineKind::kTrace)
+    return lpi_point(through->a, through->b, cluster_of[trace->a]);
+  return new_point({PointKind::kCross, ci, std::min(li, m), std::max(li, m)}, &c);
 }
 
 std::uint32_t Arrangement::add_line(Cluster& c, Line l) {
@@ -522,6 +539,7 @@ void Arrangement::intersect() {
   std::vector<std::array<std::uint32_t, 3>> crossing;  // i, j, which of them is cut
   std::vector<std::array<std::uint32_t, 2>> touching;  // triangle, vertex on its plane
   UnionFind coplanar(tris.size());
+  UnionFind same_plane(tris.size());
   auto record = [&](std::uint32_t p, std::uint32_t q, std::uint32_t v) {
     edge_points.push_back({edge_key(p, q), v});
   };
@@ -538,6 +556,7 @@ void Arrangement::intersect() {
     }
     if (pos_b == 3 || neg_b == 3) return;
     if (pos_b == 0 && neg_b == 0) {
+      same_plane.unite(i, j);
       int oa[3] = {0, 0, 0};
       vertices_on_edges(*this, a, b, ob, record);
       vertices_on_edges(*this, b, a, oa, record);
@@ -615,6 +634,8 @@ void Arrangement::intersect() {
     }
     c.touched = c.tris.size() > 1;
   }
+  plane_of.resize(clusters.size());
+  for (std::uint32_t t = 0; t < tris.size(); ++t) plane_of[cluster_of[t]] = cluster_of[same_plane.find(t)];
 
   for (auto [t, v] : touching) {
     const Tri& x = tris[t];
@@ -658,9 +679,7 @@ void Arrangement::add_pair(std::uint32_t t, std::uint32_t b) {
   auto drop_new_points = [&] {
     while (points.size() > points_before) {
       const PointDef d = points.back();
-      auto& list = lpi_ids_[ordered(d.a, d.b)];
-      list.pop_back();
-      if (list.empty()) lpi_ids_.erase(ordered(d.a, d.b));
+      lpi_ids_.erase({ordered(d.a, d.b), plane_of[cluster_of[d.c]]});
       exact3.erase(static_cast<std::uint32_t>(pos.size() + points.size() - 1));  // the id is reused
       points.pop_back();
       h3f.pop_back();
@@ -792,23 +811,83 @@ void Arrangement::split_cluster(std::uint32_t ci) {
     c.pieces.push_back(std::move(made[1]));
     piece_box(c, c.pieces.back());
   };
-  auto split_all = [&](std::uint32_t line, std::uint32_t p, std::uint32_t q, Box sb) {
-    for (std::size_t pi = 0, n = c.pieces.size(); pi < n; ++pi) {
-      const Box& pb = c.pieces[pi].box2;
-      if (pb.lo.x > sb.hi.x || sb.lo.x > pb.hi.x || pb.lo.y > sb.hi.y || sb.lo.y > pb.hi.y)
-        continue;
-      cut(pi, line, p, q);
-    }
-  };
-  for (const Segment& s : segments) {
-    Box sb;
-    for (std::uint32_t q : {s.p, s.q}) {
+  // Segments, with bounds in (u, v) that hold their exact ends.
+  std::vector<Box> seg_box(segments.size());
+  for (std::size_t si = 0; si < segments.size(); ++si)
+    for (std::uint32_t q : {segments[si].p, segments[si].q}) {
       double u, v, e;
       approx2(c, q, u, v, e);
-      sb.add(Vec3{u - e, v - e, 0});
-      sb.add(Vec3{u + e, v + e, 0});
+      seg_box[si].add(Vec3{u - e, v - e, 0});
+      seg_box[si].add(Vec3{u + e, v + e, 0});
     }
-    split_all(s.line, s.p, s.q, sb);
+  // Each segment cuts the pieces of `region` (indices into c.pieces) whose boxes meet
+  // its own; the pieces it makes join the region.
+  auto cut_all = [&](std::vector<std::uint32_t>& region, const std::vector<std::uint32_t>& segs) {
+    for (std::uint32_t si : segs) {
+      const Segment& s = segments[si];
+      const Box& sb = seg_box[si];
+      for (std::size_t k = 0, n = region.size(); k < n; ++k) {
+        const Box& pb = c.pieces[region[k]].box2;
+        if (pb.lo.x > sb.hi.x || sb.lo.x > pb.hi.x || pb.lo.y > sb.hi.y || sb.lo.y > pb.hi.y)
+          continue;
+        const std::size_t before = c.pieces.size();
+        cut(region[k], s.line, s.p, s.q);
+        if (c.pieces.size() > before) region.push_back(static_cast<std::uint32_t>(before));
+      }
+    }
+  };
+  // Many segments in one cluster (a plate with many holes): whole chords of few
+  // pieces would run across the whole cluster, making long slivers and costing
+  // segments x pieces. The cluster is first cut, as a k-d tree, by axis-parallel
+  // lines u = m or v = m (m a double: the median of the segments' middles), each
+  // half keeping the segments that may reach it, until a region holds few. Those
+  // lines only separate pieces of one classification; the merge removes them.
+  constexpr std::size_t kLeafSegments = 16;
+  auto subdivide = [&](auto&& self, std::vector<std::uint32_t> region, std::vector<std::uint32_t> segs,
+                       int depth) -> void {
+    if (segs.size() <= kLeafSegments || depth >= 40) return cut_all(region, segs);
+    Box rb;
+    for (std::uint32_t pi : region) rb.add(c.pieces[pi].box2);
+    const int axis = rb.hi.x - rb.lo.x >= rb.hi.y - rb.lo.y ? 0 : 1;
+    std::vector<double> mids;
+    mids.reserve(segs.size());
+    for (std::uint32_t si : segs) mids.push_back((seg_box[si].lo[axis] + seg_box[si].hi[axis]) / 2);
+    std::nth_element(mids.begin(), mids.begin() + mids.size() / 2, mids.end());
+    const double m = mids[mids.size() / 2];
+    std::vector<std::uint32_t> segs_lo, segs_hi;
+    for (std::uint32_t si : segs) {
+      if (seg_box[si].lo[axis] <= m) segs_lo.push_back(si);
+      if (seg_box[si].hi[axis] >= m) segs_hi.push_back(si);
+    }
+    // A split that leaves every segment on both sides gains nothing.
+    if (!(m > rb.lo[axis] && m < rb.hi[axis]) || segs_lo.size() == segs.size() ||
+        segs_hi.size() == segs.size())
+      return cut_all(region, segs);
+    const std::uint32_t l =
+        add_line(c, Line::make(axis == 0 ? LineKind::kAxisU : LineKind::kAxisV, 0, 0, m));
+    c.lines[l].key = fresh_key();
+    std::vector<std::uint32_t> lo, hi;
+    for (std::uint32_t pi : region) {
+      const std::size_t before = c.pieces.size();
+      cut(pi, l, kInvalidIndex, kInvalidIndex);
+      if (c.pieces.size() > before) {  // made[0] is on the positive side (u or v > m)
+        hi.push_back(pi);
+        lo.push_back(static_cast<std::uint32_t>(before));
+        continue;
+      }
+      int s = 0;
+      for (std::size_t q = 0; q < c.pieces[pi].pts.size() && s == 0; ++q)
+        s = side(c, c.lines[l], c.pieces[pi].pts[q]);
+      (s > 0 ? hi : lo).push_back(pi);
+    }
+    self(self, std::move(lo), std::move(segs_lo), depth + 1);
+    self(self, std::move(hi), std::move(segs_hi), depth + 1);
+  };
+  {
+    std::vector<std::uint32_t> all_segs(segments.size()), region(c.pieces.size());
+    std::iota(all_segs.begin(), all_segs.end(), 0u);
+    std::iota(region.begin(), region.end(), 0u);
+    subdivide(subdivide, std::move(region), std::move(all_segs), 0);
   }
   // A touching point becomes a vertex where the lines u = p_u and v = p_v through it
   // cross (it lies on both exactly, as a double); they cut only the pieces it is in.
@@ -863,7 +942,7 @@ bool Arrangement::split_piece(Cluster& c, std::uint32_t ci, std::size_t pi, std:
       const std::uint32_t m = P.lines[q];
       auto [it, fresh] = crossings.try_emplace(ordered(li, m), 0);
       if (fresh) {
-        it->second = new_point({PointKind::kCross, ci, std::min(li, m), std::max(li, m)}, &c);
+        it->second = crossing_point(ci, li, m);
         c.lines[li].points.push_back(it->second);
         c.lines[m].points.push_back(it->second);
       }

@@ -133,6 +133,10 @@ class Arrangement {
   std::vector<Box> tri_boxes;
   Bvh bvh;
   std::vector<std::uint32_t> cluster_of;  // by triangle
+  // By cluster: the first cluster found to lie in the same plane (coplanar triangles
+  // that were tested as a pair, such as the two halves of a planar quad). Points are
+  // keyed by plane rather than cluster, so that one point has one id.
+  std::vector<std::uint32_t> plane_of;
   std::vector<Cluster> clusters;
   std::vector<PointDef> points;  // ids below pos.size() are the input vertices
   std::vector<H3<Fp>> h3f;       // by point id - pos.size()
@@ -190,6 +194,11 @@ class Arrangement {
  private:
   std::uint32_t new_point(PointDef def, const Cluster* home);
   std::uint32_t lpi_point(std::uint32_t p, std::uint32_t q, std::uint32_t cluster);
+  // Where lines li and m of cluster ci cross: an edge's line and another plane's trace
+  // meet where the edge's segment meets that plane, an lpi point of lower degree than
+  // the crossing of two lines lifted onto the plane, and shared with every other
+  // cluster that finds it.
+  std::uint32_t crossing_point(std::uint32_t ci, std::uint32_t li, std::uint32_t m);
   std::uint32_t add_line(Cluster& c, Line l);
   void add_pair(std::uint32_t t, std::uint32_t b);
   bool segment_enters(const Tri& x, std::uint32_t p, std::uint32_t q) const;
@@ -200,8 +209,21 @@ class Arrangement {
                    std::unordered_map<std::uint64_t, std::uint32_t>& crossings);
   void piece_box(const Cluster& c, Piece& p) const;
 
-  // segment {p, q} -> (cluster, point) for each plane it was cut by
-  std::unordered_map<std::uint64_t, std::vector<std::pair<std::uint32_t, std::uint32_t>>> lpi_ids_;
+  // The point where segment pq meets the plane of a cluster, by ((p, q), cluster):
+  // one segment may cross the planes of very many clusters (a plate's edge and the
+  // planes of the cylinders through it).
+  struct LpiKey {
+    std::uint64_t segment;
+    std::uint32_t cluster;
+    bool operator==(const LpiKey&) const = default;
+  };
+  struct LpiKeyHash {
+    std::size_t operator()(const LpiKey& k) const {
+      std::uint64_t h = (k.segment ^ (static_cast<std::uint64_t>(k.cluster) << 1)) * 0x9E3779B97F4A7C15ull;
+      return static_cast<std::size_t>(h ^ (h >> 32));
+    }
+  };
+  std::unordered_map<LpiKey, std::uint32_t, LpiKeyHash> lpi_ids_;
 };
 
 }  // namespace cellforge::boolean
