@@ -12,9 +12,11 @@
 // the line's global key, so that edges lying on one 3D line get every vertex on it
 // (no T-junctions) when the result is built.
 #include "boolean/arrangement.h"
+#include "boolean/parallel.h"
 
 #include <algorithm>
 #include <cassert>
+#include <mutex>
 #include <numeric>
 
 #include "cellforge/geom/predicates.h"
@@ -164,9 +166,15 @@ H3<T> Arrangement::point3(std::uint32_t p) const {
   if constexpr (std::is_same_v<T, Fp>) {
     return h3f[p - pos.size()];
   } else {
-    auto it = exact3.find(p);
-    if (it == exact3.end()) it = exact3.emplace(p, compute3<T>(*this, points[p - pos.size()])).first;
-    return it->second;
+    {
+      std::shared_lock read(*exact3_lock);
+      auto it = exact3.find(p);
+      if (it != exact3.end()) return it->second;
+    }
+    H3<T> h = compute3<T>(*this, points[p - pos.size()]);
+    std::unique_lock write(*exact3_lock);
+    exact3.emplace(p, h);
+    return h;
   }
 }
 
@@ -535,16 +543,20 @@ bool Arrangement::segment_enters(const Tri& x, std::uint32_t p, std::uint32_t q)
   return above > 0 && below > 0;
 }
 
-void Arrangement::intersect() {
-  std::vector<std::array<std::uint32_t, 3>> crossing;  // i, j, which of them is cut
+// What the exact test of one candidate pair found, gathered per range of pairs so
+// that ranges can be tested on threads and applied in order (the same result at any
+// thread count).
+struct Arrangement::PairEvents {
+  std::vector<std::array<std::uint32_t, 3>> edge_points;  // edge p, q; the vertex on it
+  std::vector<std::array<std::uint32_t, 2>> coplanar, same_plane;  // pairs to join
   std::vector<std::array<std::uint32_t, 2>> touching;  // triangle, vertex on its plane
-  UnionFind coplanar(tris.size());
-  UnionFind same_plane(tris.size());
-  auto record = [&](std::uint32_t p, std::uint32_t q, std::uint32_t v) {
-    edge_points.push_back({edge_key(p, q), v});
-  };
-  bvh.pairs([&](std::uint32_t i, std::uint32_t j) {
-    ++pairs_tested;
+  std::vector<std::array<std::uint32_t, 3>> crossing;  // i, j, which of them is cut
+  std::size_t tested = 0, hit = 0;
+};
+
+void Arrangement::test_pair(std::uint32_t i, std::uint32_t j, PairEvents& ev) const {
+  ++ev.tested;
+  auto record = [&](std::uint32_t p, std::uint32_t q, std::uint32_t v) { ev.edge_points.push_back({p, q, v}); };
     const Tri& a = tris[i];
     const Tri& b = tris[j];
     const Vec3 a0 = pos[a.v[0]], a1 = pos[a.v[1]], a2 = pos[a.v[2]];
@@ -556,14 +568,14 @@ void Arrangement::intersect() {
     }
     if (pos_b == 3 || neg_b == 3) return;
     if (pos_b == 0 && neg_b == 0) {
-      same_plane.unite(i, j);
+      ev.same_plane.push_back({i, j});
       int oa[3] = {0, 0, 0};
       vertices_on_edges(*this, a, b, ob, record);
       vertices_on_edges(*this, b, a, oa, record);
       const int k = dominant_axis(cross(a1 - a0, a2 - a0));
       if (coplanar_overlap(*this, a, b, k)) {
-        coplanar.unite(i, j);
-        ++pairs_hit;
+        ev.coplanar.push_back({i, j});
+        ++ev.hit;
       }
       return;
     }
@@ -594,14 +606,44 @@ void Arrangement::intersect() {
     auto touch = [&](std::uint32_t x, const Tri& y, const int o[3], int pos_y, int neg_y) {
       if (pos_y + neg_y != 2 || (pos_y != 0 && neg_y != 0)) return;
       for (int k = 0; k < 3; ++k)
-        if (o[k] == 0) touching.push_back({x, y.v[k]});
+        if (o[k] == 0) ev.touching.push_back({x, y.v[k]});
     };
     touch(i, b, ob, pos_b, neg_b);
     touch(j, a, oa, pos_a, neg_a);
     if (!cut_a && !cut_b) return;
-    crossing.push_back({i, j, static_cast<std::uint32_t>(cut_a) | (static_cast<std::uint32_t>(cut_b) << 1)});
-    ++pairs_hit;
+    ev.crossing.push_back({i, j, static_cast<std::uint32_t>(cut_a) | (static_cast<std::uint32_t>(cut_b) << 1)});
+  ++ev.hit;
+}
+
+void Arrangement::intersect(int threads) {
+  std::vector<std::array<std::uint32_t, 3>> crossing;  // i, j, which of them is cut
+  std::vector<std::array<std::uint32_t, 2>> touching;  // triangle, vertex on its plane
+  UnionFind coplanar(tris.size());
+  UnionFind same_plane(tris.size());
+  // Candidate pairs in batches, each cut into one range per thread.
+  std::vector<std::array<std::uint32_t, 2>> batch;
+  constexpr std::size_t kBatch = 1 << 16;
+  batch.reserve(kBatch);
+  auto run_batch = [&] {
+    std::vector<PairEvents> ev = parallel_ranges<PairEvents>(batch.size(), threads, [&](std::size_t lo, std::size_t hi, PairEvents& out) {
+      for (std::size_t k = lo; k < hi; ++k) test_pair(batch[k][0], batch[k][1], out);
+    });
+    for (const PairEvents& e : ev) {
+      pairs_tested += e.tested;
+      pairs_hit += e.hit;
+      for (auto [p, q, v] : e.edge_points) edge_points.push_back({edge_key(p, q), v});
+      for (auto [x, y] : e.coplanar) coplanar.unite(x, y);
+      for (auto [x, y] : e.same_plane) same_plane.unite(x, y);
+      touching.insert(touching.end(), e.touching.begin(), e.touching.end());
+      crossing.insert(crossing.end(), e.crossing.begin(), e.crossing.end());
+    }
+    batch.clear();
+  };
+  bvh.pairs([&](std::uint32_t i, std::uint32_t j) {
+    batch.push_back({i, j});
+    if (batch.size() == kBatch) run_batch();
   });
+  run_batch();
 
   // Clusters: components of the coplanar-overlap relation, numbered by their
   // smallest triangle.
@@ -634,8 +676,15 @@ void Arrangement::intersect() {
     }
     c.touched = c.tris.size() > 1;
   }
+  // A plane's clusters take the cluster of its smallest triangle (whatever the
+  // order of the joins was).
   plane_of.resize(clusters.size());
-  for (std::uint32_t t = 0; t < tris.size(); ++t) plane_of[cluster_of[t]] = cluster_of[same_plane.find(t)];
+  std::vector<std::uint32_t> first(tris.size(), kInvalidIndex);
+  for (std::uint32_t t = 0; t < tris.size(); ++t) {
+    std::uint32_t& f = first[same_plane.find(t)];
+    if (f == kInvalidIndex) f = cluster_of[t];
+    plane_of[cluster_of[t]] = f;
+  }
 
   for (auto [t, v] : touching) {
     const Tri& x = tris[t];

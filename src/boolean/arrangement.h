@@ -22,6 +22,8 @@
 #pragma once
 #include <array>
 #include <cstdint>
+#include <memory>
+#include <shared_mutex>
 #include <unordered_map>
 #include <vector>
 
@@ -121,7 +123,8 @@ class Arrangement {
               std::uint32_t operands);
 
   // Stage 1: candidate pairs, exact tests, clusters and their constraints.
-  void intersect();
+  // Stage 1 on `threads` threads (0: all); the same result at any count.
+  void intersect(int threads = 1);
   // Stage 2: each cluster cut into convex pieces.
   void split();
 
@@ -157,8 +160,10 @@ class Arrangement {
   std::vector<std::uint32_t> key_parent;
 
   std::size_t pairs_tested = 0, pairs_hit = 0;
-  // Exact homogeneous coordinates of points that needed them, computed once.
+  // Exact homogeneous coordinates of points that needed them, computed once; the lock
+  // lets stages on threads share it.
   mutable std::unordered_map<std::uint32_t, H3<Dyadic>> exact3;
+  mutable std::unique_ptr<std::shared_mutex> exact3_lock = std::make_unique<std::shared_mutex>();
 
   // ---- exact evaluation
   template <class T>
@@ -193,6 +198,8 @@ class Arrangement {
 
  private:
   std::uint32_t new_point(PointDef def, const Cluster* home);
+  struct PairEvents;
+  void test_pair(std::uint32_t i, std::uint32_t j, PairEvents& ev) const;
   std::uint32_t lpi_point(std::uint32_t p, std::uint32_t q, std::uint32_t cluster);
   // Where lines li and m of cluster ci cross: an edge's line and another plane's trace
   // meet where the edge's segment meets that plane, an lpi point of lower degree than

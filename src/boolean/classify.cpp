@@ -15,8 +15,8 @@
 // operand joined across manifold edges, consistently oriented, that touch nothing.
 #include <algorithm>
 #include <optional>
-#include <optional>
 
+#include "boolean/parallel.h"
 #include "boolean/stages.h"
 #include "cellforge/geom/predicates.h"
 #include "cellforge/geom/union_find.h"
@@ -208,49 +208,85 @@ bool covers(const Arrangement& a, std::uint32_t t, const RepPoint& r) {
 
 }  // namespace
 
-std::vector<OutPoly> classify_and_select(const Arrangement& a, const Expr& expr, Report& report) {
-  RayCaster rays(a);
-  Windings w;
-  std::vector<bool> in_front(a.operands), in_back(a.operands);
+std::vector<OutPoly> classify_and_select(const Arrangement& a, const Expr& expr, Report& report,
+                                         int threads) {
   std::vector<OutPoly> out;
+  // A ray per job on threads, each range with its own caster; verdicts read in order.
+  struct Verdict {
+    std::uint32_t source = kInvalidIndex;  // the input triangle it lies on; none: skip it
+    int keep = 0;
+  };
+  struct Part {
+    std::vector<Verdict> verdicts;
+    std::size_t rays = 0;
+  };
+  auto classify = [&](std::size_t n, auto&& job) {
+    std::vector<Part> parts = parallel_ranges<Part>(n, threads, [&](std::size_t lo, std::size_t hi, Part& part) {
+      RayCaster rays(a);
+      Windings w;
+      std::vector<bool> in_front(a.operands), in_back(a.operands);
+      for (std::size_t k = lo; k < hi; ++k) {
+        Verdict v;
+        if (std::optional<RepPoint> r = job(k, v.source)) {
+          rays.cast(*r, w);
+          v.keep = select(expr, w, in_front, in_back);
+        }
+        part.verdicts.push_back(v);
+      }
+      part.rays = rays.rays;
+    });
+    std::vector<Verdict> all;
+    for (Part& p : parts) {
+      all.insert(all.end(), p.verdicts.begin(), p.verdicts.end());
+      report.rays += p.rays;
+    }
+    return all;
+  };
 
   // Pieces of the clusters something cuts.
+  std::vector<std::array<std::uint32_t, 2>> jobs;  // cluster, piece
   for (std::uint32_t ci = 0; ci < a.clusters.size(); ++ci) {
     const Cluster& c = a.clusters[ci];
     if (!c.touched) continue;
     report.touched_triangles += c.tris.size();
-    for (const Piece& p : c.pieces) {
-      const RepPoint r = rep_of(a, ci, p);
-      std::uint32_t source = kInvalidIndex;
-      int source_sign = 0;
-      if (c.tris.size() == 1) {
-        source = c.tris[0];
-        source_sign = c.tri_sign[0];
-      } else {
-        for (std::size_t k = 0; k < c.tris.size(); ++k) {
-          if (!covers(a, c.tris[k], r)) continue;
-          if (source == kInvalidIndex || (source_sign < 0 && c.tri_sign[k] > 0)) {
-            source = c.tris[k];
-            source_sign = c.tri_sign[k];
-          }
-        }
-        if (source == kInvalidIndex) continue;  // outside every triangle of the cluster
-      }
-      ++report.pieces;
-      rays.cast(r, w);
-      const int keep = select(expr, w, in_front, in_back);
-      if (keep == 0) continue;
-      OutPoly poly;
-      poly.cluster = ci;
-      poly.normal_sign = keep;
-      poly.tri = source;
-      std::vector<std::uint32_t> pts = p.pts, keys(p.lines.size());
-      for (std::size_t k = 0; k < p.lines.size(); ++k) keys[k] = c.lines[p.lines[k]].key;
-      if (c.nk_sign * keep < 0) reverse_loop(pts, keys);
-      poly.loops.push_back(std::move(pts));
-      poly.keys.push_back(std::move(keys));
-      out.push_back(std::move(poly));
+    for (std::uint32_t pi = 0; pi < c.pieces.size(); ++pi) jobs.push_back({ci, pi});
+  }
+  const std::vector<Verdict> pieces = classify(jobs.size(), [&](std::size_t k, std::uint32_t& source) {
+    const auto [ci, pi] = jobs[k];
+    const Cluster& c = a.clusters[ci];
+    const RepPoint r = rep_of(a, ci, c.pieces[pi]);
+    if (c.tris.size() == 1) {
+      source = c.tris[0];
+      return std::optional<RepPoint>(r);
     }
+    int source_sign = 0;
+    for (std::size_t t = 0; t < c.tris.size(); ++t) {
+      if (!covers(a, c.tris[t], r)) continue;
+      if (source == kInvalidIndex || (source_sign < 0 && c.tri_sign[t] > 0)) {
+        source = c.tris[t];
+        source_sign = c.tri_sign[t];
+      }
+    }
+    // Outside every triangle of the cluster: no face.
+    return source == kInvalidIndex ? std::nullopt : std::optional<RepPoint>(r);
+  });
+  for (std::size_t k = 0; k < jobs.size(); ++k) {
+    const Verdict& v = pieces[k];
+    if (v.source == kInvalidIndex) continue;
+    ++report.pieces;
+    if (v.keep == 0) continue;
+    const Cluster& c = a.clusters[jobs[k][0]];
+    const Piece& p = c.pieces[jobs[k][1]];
+    OutPoly poly;
+    poly.cluster = jobs[k][0];
+    poly.normal_sign = v.keep;
+    poly.tri = v.source;
+    std::vector<std::uint32_t> pts = p.pts, keys(p.lines.size());
+    for (std::size_t i = 0; i < p.lines.size(); ++i) keys[i] = c.lines[p.lines[i]].key;
+    if (c.nk_sign * v.keep < 0) reverse_loop(pts, keys);
+    poly.loops.push_back(std::move(pts));
+    poly.keys.push_back(std::move(keys));
+    out.push_back(std::move(poly));
   }
 
   // Untouched triangles, a patch at a time.
@@ -290,18 +326,25 @@ std::vector<OutPoly> classify_and_select(const Arrangement& a, const Expr& expr,
     }
     i = j;
   }
-  std::vector<int> patch_keep(a.tris.size(), 2);
-  std::vector<int> tri_keep(a.tris.size(), 0);
+  // One ray per patch, from its root triangle.
+  std::vector<std::uint32_t> roots;
+  std::vector<char> is_root(a.tris.size(), 0);
   for (std::uint32_t t = 0; t < a.tris.size(); ++t) {
     if (!untouched(t)) continue;
     const std::uint32_t root = patches.find(t);
-    if (patch_keep[root] == 2) {
-      const Tri& rt = a.tris[root];
-      rays.cast({a.cluster_of[root], {rt.v[0], rt.v[1], rt.v[2]}}, w);
-      patch_keep[root] = select(expr, w, in_front, in_back);
-    }
-    tri_keep[t] = patch_keep[root];
+    if (!is_root[root]) roots.push_back(root);
+    is_root[root] = 1;
   }
+  const std::vector<Verdict> patch = classify(roots.size(), [&](std::size_t k, std::uint32_t& source) {
+    const Tri& rt = a.tris[roots[k]];
+    source = roots[k];
+    return std::optional<RepPoint>(RepPoint{a.cluster_of[roots[k]], {rt.v[0], rt.v[1], rt.v[2]}});
+  });
+  std::vector<int> patch_keep(a.tris.size(), 0);
+  for (std::size_t k = 0; k < roots.size(); ++k) patch_keep[roots[k]] = patch[k].keep;
+  std::vector<int> tri_keep(a.tris.size(), 0);
+  for (std::uint32_t t = 0; t < a.tris.size(); ++t)
+    if (untouched(t)) tri_keep[t] = patch_keep[patches.find(t)];
   auto edge_keys = [&](const std::vector<std::uint32_t>& loop) {
     std::vector<std::uint32_t> keys(loop.size());
     for (std::size_t k = 0; k < loop.size(); ++k)
@@ -360,7 +403,6 @@ std::vector<OutPoly> classify_and_select(const Arrangement& a, const Expr& expr,
       out.push_back(std::move(poly));
     }
   }
-  report.rays = rays.rays;
   return out;
 }
 

@@ -22,7 +22,9 @@ struct OutPoly {
 
 // Stages 3 and 4: winding numbers of every piece's two sides by exact ray casting,
 // the expression on them, and the kept pieces as faces.
-std::vector<OutPoly> classify_and_select(const Arrangement& a, const Expr& expr, Report& report);
+// On `threads` threads (0: all); the same result at any count.
+std::vector<OutPoly> classify_and_select(const Arrangement& a, const Expr& expr, Report& report,
+                                         int threads = 1);
 
 // Stages 5 and 6: one vertex per exact position, every vertex of a line on each edge
 // along it, coplanar neighbours and collinear edges merged, coordinates rounded, and
