@@ -763,6 +763,21 @@ void Arrangement::split() {
     if (clusters[ci].touched) split_cluster(ci);
 }
 
+void Arrangement::release_pieces() {
+  for (Cluster& c : clusters) {
+    std::vector<Piece>().swap(c.pieces);
+    std::vector<Constraint>().swap(c.constraints);
+    std::vector<std::uint32_t>().swap(c.touch_points);
+  }
+  for (SoupFace& f : faces) {
+    std::vector<std::vector<std::uint32_t>>().swap(f.loops);
+    std::vector<std::uint32_t>().swap(f.tris);
+  }
+  std::vector<Box>().swap(tri_boxes);
+  bvh = Bvh();
+  lpi_ids_ = {};
+}
+
 void Arrangement::piece_box(const Cluster& c, Piece& p) const {
   p.box2 = Box();
   for (std::uint32_t q : p.pts) {

@@ -127,6 +127,9 @@ class Arrangement {
   void intersect(int threads = 1);
   // Stage 2: each cluster cut into convex pieces.
   void split();
+  // Frees what only stages 1 to 4 read (the pieces, the constraints, the triangles'
+  // boxes and tree, the input faces' loops), before the result is built.
+  void release_pieces();
 
   // ---- data
   std::vector<Vec3> pos;

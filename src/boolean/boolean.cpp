@@ -250,6 +250,7 @@ Result<BooleanResult> evaluate(std::span<const Model* const> operands, const Exp
   t = Clock::now();
   std::vector<OutPoly> polys = classify_and_select(a, expr, report, options.threads);
   report.seconds.classify = seconds_since(t);
+  a.release_pieces();
   report.implicit_points = a.points.size();
 
   t = Clock::now();
