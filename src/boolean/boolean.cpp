@@ -254,7 +254,7 @@ Result<BooleanResult> evaluate(std::span<const Model* const> operands, const Exp
   report.implicit_points = a.points.size();
 
   t = Clock::now();
-  auto result = build_result(a, std::move(polys), report);
+  auto result = build_result(a, std::move(polys), report, options.threads);
   report.seconds.output = seconds_since(t);
   if (!result) return result.error();
 

@@ -338,7 +338,8 @@ double loop_volume6(const std::vector<Vec3>& pos, const std::vector<std::uint32_
 
 }  // namespace
 
-Result<BooleanResult> build_result(Arrangement& a, std::vector<OutPoly> polys, Report& report) {
+Result<BooleanResult> build_result(Arrangement& a, std::vector<OutPoly> polys, Report& report,
+                                   int threads) {
   // 1. One id per exact position, among the points a face or a line holds.
   std::vector<std::uint32_t> used;
   for (const OutPoly& p : polys)
@@ -549,6 +550,9 @@ Result<BooleanResult> build_result(Arrangement& a, std::vector<OutPoly> polys, R
     mf.back = cell[shells.find(f)];
     in.faces.push_back(std::move(mf));
   }
+  std::vector<char> inexact(in.positions.size(), 0);
+  for (auto [point, i] : index) inexact[i] = !a.rounds_exactly(point);
+  nudge_rounding(in, inexact, threads);
   auto built = build_mesh(result.model, in);
   if (!built) return Error{ErrorCode::kUnsupported, "boolean: the result could not be built: " + built.error().message};
   std::vector<FaceSource> by_id;
@@ -574,7 +578,7 @@ Result<BooleanResult> build_result(Arrangement& a, std::vector<OutPoly> polys, R
   for (auto [point, i] : index) {
     const VertexId v = built->vertices[i];
     if (v.value >= result.rounded.size()) result.rounded.resize(v.value + 1, false);
-    result.rounded[v.value] = !a.rounds_exactly(point);
+    result.rounded[v.value] = inexact[i];
   }
   (void)report;
   return result;

@@ -1,11 +1,13 @@
 // The Boolean's stages after the arrangement: classification and selection
-// (classify.cpp), and merging and stitching into a model (output.cpp).
+// (classify.cpp), merging and stitching into a model (output.cpp), and the choice of
+// doubles for the rounded points (rounding.cpp).
 #pragma once
 #include <cstdint>
 #include <vector>
 
 #include "boolean/arrangement.h"
 #include "cellforge/boolean/boolean.h"
+#include "cellforge/topo/builder.h"
 
 namespace cellforge::boolean {
 
@@ -29,6 +31,12 @@ std::vector<OutPoly> classify_and_select(const Arrangement& a, const Expr& expr,
 // Stages 5 and 6: one vertex per exact position, every vertex of a line on each edge
 // along it, coplanar neighbours and collinear edges merged, coordinates rounded, and
 // the faces built into one group with a cell per connected solid.
-Result<BooleanResult> build_result(Arrangement& a, std::vector<OutPoly> polys, Report& report);
+Result<BooleanResult> build_result(Arrangement& a, std::vector<OutPoly> polys, Report& report,
+                                   int threads = 1);
+
+// Where rounding made two faces' triangles cross, moves the inexact vertices of the
+// crossing triangles (inexact[i] for positions[i]) to neighbouring doubles that
+// remove crossings (rounding.cpp).
+void nudge_rounding(MeshInput& in, const std::vector<char>& inexact, int threads);
 
 }  // namespace cellforge::boolean
