@@ -1,11 +1,11 @@
 // Rounding with a check (stages.h): the result's implicit points rounded to doubles,
 // then, where two faces' triangles have come to cross, the rounded vertices of the
 // crossing triangles moved to a neighbouring double (one unit in the last place in
-// any coordinate) where that removes crossings.
+// any coordinate, else two) where that removes crossings.
 //
 // Rounding to nearest moves a point by half a unit; near-degenerate arrangements (a
 // face corner a hair off the line of its neighbours, two faces meeting at a very
-// small angle) turn over by less. Every candidate is a double within 1.5 units of the
+// small angle) turn over by less. Every candidate is a double within 2.5 units of the
 // exact point, so the result still rounds the exact one; only the choice among the
 // doubles around it changes. Faces are triangulated as io::triangulate_face does it
 // (the exporters' triangles), the test is exact (geom::triangles_meet), and the
@@ -160,12 +160,16 @@ void nudge_rounding(MeshInput& in, const std::vector<char>& inexact, int threads
       const Vec3 start = in.positions[v];
       Vec3 best = start;
       std::size_t best_count = local();
-      for (int dx = -1; dx <= 1 && best_count > 0; ++dx)
-        for (int dy = -1; dy <= 1 && best_count > 0; ++dy)
-          for (int dz = -1; dz <= 1 && best_count > 0; ++dz) {
-            if (dx == 0 && dy == 0 && dz == 0) continue;
+      // One unit in the last place first, then two.
+      for (int r = 1; r <= 2 && best_count > 0; ++r)
+      for (int dx = -r; dx <= r && best_count > 0; ++dx)
+        for (int dy = -r; dy <= r && best_count > 0; ++dy)
+          for (int dz = -r; dz <= r && best_count > 0; ++dz) {
+            if (std::max({std::abs(dx), std::abs(dy), std::abs(dz)}) != r) continue;
             const auto step = [](double x, int d) {
-              return d == 0 ? x : std::nextafter(x, d > 0 ? INFINITY : -INFINITY);
+              for (; d > 0; --d) x = std::nextafter(x, INFINITY);
+              for (; d < 0; ++d) x = std::nextafter(x, -INFINITY);
+              return x;
             };
             in.positions[v] = {step(start.x, dx), step(start.y, dy), step(start.z, dz)};
             const std::size_t n = local();
