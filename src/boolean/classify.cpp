@@ -38,8 +38,20 @@ V3<T> normal_t(const Arrangement& a, const Tri& t) {
 
 int sgn(double x) { return x > 0 ? 1 : (x < 0 ? -1 : 0); }
 
+// Winding numbers by operand on the two sides of a point; `touched` lists the
+// operands a ray met (with repeats), so that a ray over many operands costs what it
+// crosses, not the operand count.
 struct Windings {
   std::vector<int> front, back;
+  std::vector<std::uint32_t> touched;
+  void reset(std::size_t operands) {
+    if (front.size() != operands) {
+      front.assign(operands, 0);
+      back.assign(operands, 0);
+    }
+    for (std::uint32_t o : touched) front[o] = back[o] = 0;
+    touched.clear();
+  }
 };
 
 class RayCaster {
@@ -48,8 +60,7 @@ class RayCaster {
 
   void cast(const RepPoint& r, Windings& w) const {
     ++rays;
-    w.front.assign(a_.operands, 0);
-    w.back.assign(a_.operands, 0);
+    w.reset(a_.operands);
     // Along the axis closest to the piece's normal: the ray leaves the piece's plane
     // at once, so the edges lying in that plane are not met edge-on.
     k_ = a_.clusters[r.cluster].k;
@@ -149,6 +160,7 @@ class RayCaster {
     }
     if (in_front && sf == -mk) w.front[t.operand] += mk;
     if (in_back && sb == -mk) w.back[t.operand] += mk;
+    w.touched.push_back(t.operand);
   }
 
   const Arrangement& a_;
@@ -157,17 +169,61 @@ class RayCaster {
   mutable std::optional<H3<Dyadic>> exact_x_;  // and exactly, once needed
 };
 
-// +1: keep with the reference normal outward; -1: keep reversed; 0: drop.
-int select(const Expr& expr, const Windings& w, std::vector<bool>& in_front,
-           std::vector<bool>& in_back) {
-  for (std::size_t k = 0; k < w.front.size(); ++k) {
-    in_front[k] = w.front[k] > 0;
-    in_back[k] = w.back[k] > 0;
+// The expression on the windings of a point's two sides. A flat expression (one
+// union, intersection or difference of distinct operands, as a run of OpenSCAD's set
+// operations becomes) is decided from the operands the ray met alone; any other
+// through Expr::contains.
+class Selector {
+ public:
+  Selector(const Expr& expr, std::size_t operands) : expr_(expr), member_(operands, 0) {
+    flat_ = expr.kind != Expr::Kind::kOperand && !expr.children.empty();
+    for (const Expr& c : expr.children) {
+      flat_ &= c.kind == Expr::Kind::kOperand && c.operand >= 0 &&
+               static_cast<std::size_t>(c.operand) < operands && !member_[c.operand];
+      if (flat_) member_[c.operand] = 1;
+    }
+    if (flat_) first_ = static_cast<std::uint32_t>(expr.children[0].operand);
   }
-  const bool f = expr.contains(in_front), b = expr.contains(in_back);
-  if (f == b) return 0;
-  return b ? 1 : -1;
-}
+
+  // +1: keep with the reference normal outward; -1: keep reversed; 0: drop.
+  int select(const Windings& w) {
+    const bool f = contains(w, w.front), b = contains(w, w.back);
+    if (f == b) return 0;
+    return b ? 1 : -1;
+  }
+
+ private:
+  bool contains(const Windings& w, const std::vector<int>& wind) {
+    if (!flat_) {
+      inside_.assign(wind.size(), false);
+      for (std::uint32_t o : w.touched) inside_[o] = wind[o] > 0;
+      return expr_.contains(inside_);
+    }
+    seen_.clear();  // the member operands the point is inside, once each
+    for (std::uint32_t o : w.touched)
+      if (member_[o] && wind[o] > 0) seen_.push_back(o);
+    std::sort(seen_.begin(), seen_.end());
+    seen_.erase(std::unique(seen_.begin(), seen_.end()), seen_.end());
+    switch (expr_.kind) {
+      case Expr::Kind::kUnion:
+        return !seen_.empty();
+      case Expr::Kind::kIntersection:
+        return seen_.size() == expr_.children.size();
+      case Expr::Kind::kDifference:
+        return seen_.size() == 1 && seen_[0] == first_;
+      case Expr::Kind::kOperand:
+        break;
+    }
+    return false;
+  }
+
+  const Expr& expr_;
+  std::vector<char> member_;
+  bool flat_ = false;
+  std::uint32_t first_ = 0;
+  std::vector<bool> inside_;
+  std::vector<std::uint32_t> seen_;
+};
 
 // Reverses a loop and its edge keys (keys[i] belongs to the edge pts[i] -> pts[i+1]).
 void reverse_loop(std::vector<std::uint32_t>& pts, std::vector<std::uint32_t>& keys) {
@@ -224,12 +280,12 @@ std::vector<OutPoly> classify_and_select(const Arrangement& a, const Expr& expr,
     std::vector<Part> parts = parallel_ranges<Part>(n, threads, [&](std::size_t lo, std::size_t hi, Part& part) {
       RayCaster rays(a);
       Windings w;
-      std::vector<bool> in_front(a.operands), in_back(a.operands);
+      Selector selector(expr, a.operands);
       for (std::size_t k = lo; k < hi; ++k) {
         Verdict v;
         if (std::optional<RepPoint> r = job(k, v.source)) {
           rays.cast(*r, w);
-          v.keep = select(expr, w, in_front, in_back);
+          v.keep = selector.select(w);
         }
         part.verdicts.push_back(v);
       }
