@@ -227,8 +227,15 @@ int Arrangement::side(const Cluster& c, const Line& l, std::uint32_t p) const {
   if (p >= pos.size()) {
     const PointDef& d = points[p - pos.size()];
     const auto li = static_cast<std::uint32_t>(&l - c.lines.data());
-    // a crossing of this line;
-    if (d.kind == PointKind::kCross && &clusters[d.a] == &c && (d.b == li || d.c == li)) return 0;
+    // a crossing of this line, or of another trace of this line's plane;
+    if (d.kind == PointKind::kCross && &clusters[d.a] == &c) {
+      if (d.b == li || d.c == li) return 0;
+      if (l.kind == LineKind::kTrace)
+        for (std::uint32_t m : {d.b, d.c})
+          if (c.lines[m].kind == LineKind::kTrace &&
+              plane_of[cluster_of[c.lines[m].a]] == plane_of[cluster_of[l.a]])
+            return 0;
+    }
     if (d.kind == PointKind::kLpi) {
       // where this edge's segment meets a plane, or a segment meets this trace's plane;
       if (l.kind == LineKind::kThrough && ordered(l.a, l.b) == ordered(d.a, d.b)) return 0;
@@ -853,12 +860,13 @@ void Arrangement::split_cluster(std::uint32_t ci) {
         segments.push_back({through_line(a, b), a, b});
       }
   }
-  std::unordered_map<std::uint32_t, std::uint32_t> traces;  // other cluster -> line
+  // One line per other plane (the halves of a planar quad are two clusters, one plane).
+  std::unordered_map<std::uint32_t, std::uint32_t> traces;  // other plane -> line
   for (const Constraint& k2 : c.constraints) {
-    auto [it, fresh] = traces.try_emplace(k2.other_cluster, 0);
+    auto [it, fresh] = traces.try_emplace(plane_of[k2.other_cluster], 0);
     if (fresh) {
       Line l = Line::make(LineKind::kTrace, k2.other_tri);
-      l.key = pair_key(ci, k2.other_cluster);
+      l.key = pair_key(plane_of[ci], plane_of[k2.other_cluster]);
       it->second = add_line(c, std::move(l));
     }
     if (k2.p != k2.q && !equal3(k2.p, k2.q)) segments.push_back({it->second, k2.p, k2.q});
