@@ -165,6 +165,8 @@ H3<T> Arrangement::point3(std::uint32_t p) const {
   }
   if constexpr (std::is_same_v<T, Fp>) {
     return h3f[p - pos.size()];
+  } else if constexpr (std::is_same_v<T, Dd>) {
+    return compute3<T>(*this, points[p - pos.size()]);
   } else {
     {
       std::shared_lock read(*exact3_lock);
@@ -206,6 +208,8 @@ H3<T> Arrangement::rep3(const RepPoint& r) const {
 }
 
 template H3<Fp> Arrangement::rep3<Fp>(const RepPoint&) const;
+template H3<Dd> Arrangement::rep3<Dd>(const RepPoint&) const;
+template H3<Dd> Arrangement::point3<Dd>(std::uint32_t) const;
 template H3<Dyadic> Arrangement::rep3<Dyadic>(const RepPoint&) const;
 template H3<Fp> Arrangement::point3<Fp>(std::uint32_t) const;
 template H3<Dyadic> Arrangement::point3<Dyadic>(std::uint32_t) const;
