@@ -465,11 +465,26 @@ Result<BooleanResult> build_result(Arrangement& a, std::vector<OutPoly> polys, R
         }
     std::sort(nb.begin(), nb.end());
     nb.erase(std::unique(nb.begin(), nb.end()), nb.end());
+    // Three points of one recorded line are collinear without arithmetic.
+    std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> lines_at;  // point -> line roots
+    for (const auto& [root, list] : lc.points)
+      for (std::uint32_t q : list) lines_at[q].push_back(root);
+    auto on_one_line = [&](std::uint32_t x, std::uint32_t y, std::uint32_t z) {
+      const auto fx = lines_at.find(x), fy = lines_at.find(y), fz = lines_at.find(z);
+      if (fx == lines_at.end() || fy == lines_at.end() || fz == lines_at.end()) return false;
+      for (std::uint32_t r : fy->second)
+        if (std::find(fx->second.begin(), fx->second.end(), r) != fx->second.end() &&
+            std::find(fz->second.begin(), fz->second.end(), r) != fz->second.end())
+          return true;
+      return false;
+    };
     std::unordered_map<std::uint32_t, char> drop;
     for (std::size_t i = 0; i < nb.size();) {
       std::size_t j = i;
       while (j < nb.size() && nb[j].first == nb[i].first) ++j;
-      if (j - i == 2 && a.collinear3(nb[i].second, nb[i].first, nb[i + 1].second)) drop[nb[i].first] = 1;
+      if (j - i == 2 && (on_one_line(nb[i].second, nb[i].first, nb[i + 1].second) ||
+                         a.collinear3(nb[i].second, nb[i].first, nb[i + 1].second)))
+        drop[nb[i].first] = 1;
       i = j;
     }
     std::vector<OutPoly> kept;
