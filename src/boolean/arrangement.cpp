@@ -375,6 +375,14 @@ bool Arrangement::rounds_exactly(std::uint32_t p) const {
   return true;
 }
 
+bool Arrangement::coordinate_is(std::uint32_t p, int axis, double x) const {
+  if (p < pos.size()) return pos[p][axis] == x;
+  return decide([&]<class T>() {
+           const H3<T> h = point3<T>(p);
+           return h.c[axis] - T(x) * h.c[3];
+         }) == 0;
+}
+
 void Arrangement::approx2(const Cluster& c, std::uint32_t p, double& u, double& v,
                           double& err) const {
   const H2<Fp> h = point2<Fp>(c, p);

@@ -197,6 +197,8 @@ class Arrangement {
   // Whether approx3(p) is known to be p's exact position (always for input vertices;
   // for implicit points when the filter's arithmetic was exact and the quotient is).
   bool rounds_exactly(std::uint32_t p) const;
+  // Whether coordinate `axis` of point p is exactly the double x (an exact test).
+  bool coordinate_is(std::uint32_t p, int axis, double x) const;
   void approx2(const Cluster& c, std::uint32_t p, double& u, double& v, double& err) const;
 
  private:

@@ -567,7 +567,12 @@ Result<BooleanResult> build_result(Arrangement& a, std::vector<OutPoly> polys, R
   }
   std::vector<char> inexact(in.positions.size(), 0);
   for (auto [point, i] : index) inexact[i] = !a.rounds_exactly(point);
-  nudge_rounding(in, inexact, threads);
+  std::vector<std::uint32_t> point_of(in.positions.size());
+  for (auto [point, i] : index) point_of[i] = point;
+  nudge_rounding(
+      in, inexact,
+      [&](std::uint32_t i, int axis) { return a.coordinate_is(point_of[i], axis, in.positions[i][axis]); },
+      threads);
   auto built = build_mesh(result.model, in);
   if (!built) return Error{ErrorCode::kUnsupported, "boolean: the result could not be built: " + built.error().message};
   std::vector<FaceSource> by_id;

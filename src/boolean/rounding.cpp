@@ -78,7 +78,8 @@ Box grown(Box b) {
 
 }  // namespace
 
-void nudge_rounding(MeshInput& in, const std::vector<char>& inexact, int threads) {
+void nudge_rounding(MeshInput& in, const std::vector<char>& inexact,
+                    const std::function<bool(std::uint32_t, int)>& exact, int threads) {
   constexpr int kRounds = 4;
   for (int round = 0; round < kRounds; ++round) {
     // Every face's triangles, and the crossing pairs among them.
@@ -160,12 +161,14 @@ void nudge_rounding(MeshInput& in, const std::vector<char>& inexact, int threads
       const Vec3 start = in.positions[v];
       Vec3 best = start;
       std::size_t best_count = local();
+      const bool keep[3] = {exact(v, 0), exact(v, 1), exact(v, 2)};
       // One unit in the last place first, then two.
       for (int r = 1; r <= 2 && best_count > 0; ++r)
       for (int dx = -r; dx <= r && best_count > 0; ++dx)
         for (int dy = -r; dy <= r && best_count > 0; ++dy)
           for (int dz = -r; dz <= r && best_count > 0; ++dz) {
             if (std::max({std::abs(dx), std::abs(dy), std::abs(dz)}) != r) continue;
+            if ((keep[0] && dx != 0) || (keep[1] && dy != 0) || (keep[2] && dz != 0)) continue;
             const auto step = [](double x, int d) {
               for (; d > 0; --d) x = std::nextafter(x, INFINITY);
               for (; d < 0; ++d) x = std::nextafter(x, -INFINITY);

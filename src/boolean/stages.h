@@ -3,6 +3,7 @@
 // doubles for the rounded points (rounding.cpp).
 #pragma once
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "boolean/arrangement.h"
@@ -36,7 +37,9 @@ Result<BooleanResult> build_result(Arrangement& a, std::vector<OutPoly> polys, R
 
 // Where rounding made two faces' triangles cross, moves the inexact vertices of the
 // crossing triangles (inexact[i] for positions[i]) to neighbouring doubles that
-// remove crossings (rounding.cpp).
-void nudge_rounding(MeshInput& in, const std::vector<char>& inexact, int threads);
+// remove crossings, keeping the coordinates that are exact (exact(i, axis): the
+// rounded coordinate is the exact one) (rounding.cpp).
+void nudge_rounding(MeshInput& in, const std::vector<char>& inexact,
+                    const std::function<bool(std::uint32_t, int)>& exact, int threads);
 
 }  // namespace cellforge::boolean
