@@ -576,61 +576,67 @@ struct Arrangement::PairEvents {
 void Arrangement::test_pair(std::uint32_t i, std::uint32_t j, PairEvents& ev) const {
   ++ev.tested;
   auto record = [&](std::uint32_t p, std::uint32_t q, std::uint32_t v) { ev.edge_points.push_back({p, q, v}); };
-    const Tri& a = tris[i];
-    const Tri& b = tris[j];
-    const Vec3 a0 = pos[a.v[0]], a1 = pos[a.v[1]], a2 = pos[a.v[2]];
-    int ob[3], pos_b = 0, neg_b = 0;
-    for (int k = 0; k < 3; ++k) {
-      ob[k] = side_of(a, b.v[k]);
-      pos_b += ob[k] > 0;
-      neg_b += ob[k] < 0;
-    }
-    if (pos_b == 3 || neg_b == 3) return;
-    if (pos_b == 0 && neg_b == 0) {
-      ev.same_plane.push_back({i, j});
-      int oa[3] = {0, 0, 0};
-      vertices_on_edges(*this, a, b, ob, record);
-      vertices_on_edges(*this, b, a, oa, record);
-      const int k = dominant_axis(cross(a1 - a0, a2 - a0));
-      if (coplanar_overlap(*this, a, b, k)) {
-        ev.coplanar.push_back({i, j});
-        ++ev.hit;
-      }
-      return;
-    }
-    int oa[3], pos_a = 0, neg_a = 0;
-    for (int k = 0; k < 3; ++k) {
-      oa[k] = side_of(b, a.v[k]);
-      pos_a += oa[k] > 0;
-      neg_a += oa[k] < 0;
-    }
-    if (pos_a == 3 || neg_a == 3) return;
+  const Tri& a = tris[i];
+  const Tri& b = tris[j];
+  const Vec3 a0 = pos[a.v[0]], a1 = pos[a.v[1]], a2 = pos[a.v[2]];
+  int ob[3], pos_b = 0, neg_b = 0;
+  for (int k = 0; k < 3; ++k) {
+    ob[k] = side_of(a, b.v[k]);
+    pos_b += ob[k] > 0;
+    neg_b += ob[k] < 0;
+  }
+  if (pos_b == 3 || neg_b == 3) return;
+  // Neighbours in one mesh, the common case: sharing an edge and not coplanar, they
+  // meet in that edge alone; sharing a corner with the rest of b on one side of a's
+  // plane, in that corner alone. Either is each one's own boundary already.
+  int shared = 0;
+  for (std::uint32_t v : b.v) shared += v == a.v[0] || v == a.v[1] || v == a.v[2];
+  if ((shared == 2 && pos_b + neg_b == 1) || (shared == 1 && (pos_b == 2 || neg_b == 2))) return;
+  if (pos_b == 0 && neg_b == 0) {
+    ev.same_plane.push_back({i, j});
+    int oa[3] = {0, 0, 0};
     vertices_on_edges(*this, a, b, ob, record);
     vertices_on_edges(*this, b, a, oa, record);
-    // b cuts a's cluster where it crosses a's plane, or where one of its edges lies in
-    // that plane (the surfaces meet along the edge even when b stays on one side);
-    // an edge that a shares is a's own boundary already.
-    auto cuts = [&](const Tri& x, const Tri& y, const int o[3], int pos_y, int neg_y) {
-      if (pos_y > 0 && neg_y > 0) return true;
-      if (pos_y + neg_y != 1) return false;
-      std::uint32_t e[2];
-      int n = 0;
-      for (int k = 0; k < 3; ++k)
-        if (o[k] == 0) e[n++] = y.v[k];
-      return segment_enters(x, e[0], e[1]);
-    };
-    const bool cut_a = cuts(a, b, ob, pos_b, neg_b), cut_b = cuts(b, a, oa, pos_a, neg_a);
-    // A corner of one resting on the other's plane, the rest on one side: a point
-    // where the surfaces touch, a vertex of the other's arrangement if inside it.
-    auto touch = [&](std::uint32_t x, const Tri& y, const int o[3], int pos_y, int neg_y) {
-      if (pos_y + neg_y != 2 || (pos_y != 0 && neg_y != 0)) return;
-      for (int k = 0; k < 3; ++k)
-        if (o[k] == 0) ev.touching.push_back({x, y.v[k]});
-    };
-    touch(i, b, ob, pos_b, neg_b);
-    touch(j, a, oa, pos_a, neg_a);
-    if (!cut_a && !cut_b) return;
-    ev.crossing.push_back({i, j, static_cast<std::uint32_t>(cut_a) | (static_cast<std::uint32_t>(cut_b) << 1)});
+    const int k = dominant_axis(cross(a1 - a0, a2 - a0));
+    if (coplanar_overlap(*this, a, b, k)) {
+      ev.coplanar.push_back({i, j});
+      ++ev.hit;
+    }
+    return;
+  }
+  int oa[3], pos_a = 0, neg_a = 0;
+  for (int k = 0; k < 3; ++k) {
+    oa[k] = side_of(b, a.v[k]);
+    pos_a += oa[k] > 0;
+    neg_a += oa[k] < 0;
+  }
+  if (pos_a == 3 || neg_a == 3) return;
+  vertices_on_edges(*this, a, b, ob, record);
+  vertices_on_edges(*this, b, a, oa, record);
+  // b cuts a's cluster where it crosses a's plane, or where one of its edges lies in
+  // that plane (the surfaces meet along the edge even when b stays on one side);
+  // an edge that a shares is a's own boundary already.
+  auto cuts = [&](const Tri& x, const Tri& y, const int o[3], int pos_y, int neg_y) {
+    if (pos_y > 0 && neg_y > 0) return true;
+    if (pos_y + neg_y != 1) return false;
+    std::uint32_t e[2];
+    int n = 0;
+    for (int k = 0; k < 3; ++k)
+      if (o[k] == 0) e[n++] = y.v[k];
+    return segment_enters(x, e[0], e[1]);
+  };
+  const bool cut_a = cuts(a, b, ob, pos_b, neg_b), cut_b = cuts(b, a, oa, pos_a, neg_a);
+  // A corner of one resting on the other's plane, the rest on one side: a point
+  // where the surfaces touch, a vertex of the other's arrangement if inside it.
+  auto touch = [&](std::uint32_t x, const Tri& y, const int o[3], int pos_y, int neg_y) {
+    if (pos_y + neg_y != 2 || (pos_y != 0 && neg_y != 0)) return;
+    for (int k = 0; k < 3; ++k)
+      if (o[k] == 0) ev.touching.push_back({x, y.v[k]});
+  };
+  touch(i, b, ob, pos_b, neg_b);
+  touch(j, a, oa, pos_a, neg_a);
+  if (!cut_a && !cut_b) return;
+  ev.crossing.push_back({i, j, static_cast<std::uint32_t>(cut_a) | (static_cast<std::uint32_t>(cut_b) << 1)});
   ++ev.hit;
 }
 
