@@ -68,6 +68,8 @@ TEST(Cli, EveryCommandHasHelp) {
   // Unknown options are errors, not ignored.
   EXPECT_EQ(run("info " + testing::data_path("cube.off") + " --bogus").status, 2);
   EXPECT_EQ(run("convert a.obj b.stl --bogus").status, 2);
+  EXPECT_EQ(run("bool union a.stl b.stl -o c.stl --threads 1.5").status, 2);
+  EXPECT_EQ(run("demo extra").status, 2);
 }
 
 TEST(Cli, InfoStrictFailsOnAnInvalidModel) {
