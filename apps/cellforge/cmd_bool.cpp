@@ -55,7 +55,7 @@ int run(const std::vector<std::string>& args) {
   bool ascii = false;
   boolean::Options options;
   app.add_option("OPERATION", operation, "union, intersection or difference")->required();
-  app.add_option("A B ...", words, "the operands (model files), then KEY=VALUE import options");
+  app.add_option("OPERANDS", words, "the operand files, and KEY=VALUE import options");
   app.add_option("-o", out, "the result's file")->required();
   add_count(app, "--threads", options.threads, 1, "threads for the intersection stage");
   app.add_option("--report", report, "json: print counts, validity and stage times");
