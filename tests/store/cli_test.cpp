@@ -49,8 +49,10 @@ CliRun cli(std::vector<std::string> args) {
   return r;
 }
 
-// cli() with standard output sent to `path` (stderr still captured).
-CliRun cli_to(std::vector<std::string> args, const std::string& path) {
+// cli() with standard output sent to `path` (stderr captured instead), and standard
+// input read from `input` when given.
+CliRun cli_to(std::vector<std::string> args, const std::string& path,
+              const std::string& input = "") {
   args.insert(args.begin(), CELLFORGE_BIN);
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
@@ -61,6 +63,7 @@ CliRun cli_to(std::vector<std::string> args, const std::string& path) {
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_addopen(&actions, 1, path.c_str(), O_WRONLY, 0);
+  if (!input.empty()) posix_spawn_file_actions_addopen(&actions, 0, input.c_str(), O_RDONLY, 0);
   posix_spawn_file_actions_adddup2(&actions, fds[1], 2);
   posix_spawn_file_actions_addclose(&actions, fds[0]);
   pid_t pid;
@@ -214,9 +217,22 @@ TEST_P(Cli, IssueNineteenHabits) {
   EXPECT_EQ(cli({"db", "info", "box", "--version", "1", "--db", db_}).status, 1);
   EXPECT_EQ(cli({"db", "info", "box", "--version", "2", "--db", db_}).status, 0);
   EXPECT_EQ(cli({"db", "rm", "box", "--version", "1", "--db", db_}).status, 1);
-  // db save - reads standard input (tested through a file here: the format is named).
+  // db save - reads standard input, with the format and the name given.
   r = cli({"db", "save", "-", "--db", db_});
   EXPECT_EQ(r.status, 2) << r.out;  // needs --name
+  const std::string off = std::string(CELLFORGE_TEST_DATA) + "/cube.off";
+  r = cli_to({"db", "save", "-", "--name", "piped", "--format", "off", "--db", db_}, "/dev/null",
+             off);
+  EXPECT_EQ(r.status, 0) << r.out;
+  r = cli({"db", "info", "piped", "--db", db_});
+  EXPECT_NE(r.out.find("faces: 6"), std::string::npos) << r.out;
+  // db load -o - --format F writes that format to standard output.
+  r = cli({"db", "load", "piped", "-o", "-", "--format", "obj", "--db", db_});
+  EXPECT_EQ(r.status, 0);
+  EXPECT_EQ(r.out.rfind("# ", 0) == 0 || r.out.find("\nv ") != std::string::npos ||
+                r.out.rfind("v ", 0) == 0,
+            true)
+      << r.out;
 }
 
 TEST_P(Cli, SqlJsonIsJson) {
