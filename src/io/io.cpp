@@ -55,8 +55,18 @@ Result<std::vector<std::uint8_t>> read_bytes(const std::string& path, std::uint6
     if (!standard_input) std::fclose(f);
     return Error{ErrorCode::kIo, shown + ": is a directory, not a file"};
   }
+  const auto too_large_error = [&] {
+    return Error{ErrorCode::kIo, shown + ": larger than the read limit of " +
+                                     std::to_string(max_bytes) +
+                                     " bytes (the option max_bytes=N raises it, 0 lifts it)"};
+  };
+  // A regular file's size is known: refused at once past the limit, else read with
+  // one allocation.
+  if (S_ISREG(st.st_mode) && max_bytes != 0 && static_cast<std::uint64_t>(st.st_size) > max_bytes) {
+    if (!standard_input) std::fclose(f);
+    return too_large_error();
+  }
   std::vector<std::uint8_t> bytes;
-  // A regular file's size is known: one allocation when it is within the limit.
   if (S_ISREG(st.st_mode) && st.st_size > 0 &&
       (max_bytes == 0 || static_cast<std::uint64_t>(st.st_size) <= max_bytes))
     bytes.reserve(static_cast<std::size_t>(st.st_size));
@@ -74,10 +84,7 @@ Result<std::vector<std::uint8_t>> read_bytes(const std::string& path, std::uint6
   const bool failed = std::ferror(f) != 0;
   const int error = errno;
   if (!standard_input) std::fclose(f);
-  if (too_large)
-    return Error{ErrorCode::kIo, shown + ": larger than the read limit of " +
-                                     std::to_string(max_bytes) +
-                                     " bytes (the option max_bytes=N raises it, 0 lifts it)"};
+  if (too_large) return too_large_error();
   if (failed) return Error{ErrorCode::kIo, "cannot read " + shown + ": " + std::strerror(error)};
   return bytes;
 }
@@ -272,7 +279,7 @@ Result<ReadResult> read_file(Model& m, const std::string& path, const ReadOption
   auto bytes = read_bytes(path, options.max_bytes);
   if (!bytes) return bytes.error();
   ReadOptions named = options;
-  if (named.import.group_name.empty())
+  if (named.import.group_name.empty() && path != "-")
     named.import.group_name = valid_utf8(std::filesystem::path(path).stem().string());
   auto r = read_model(m, *bytes, *format, named);
   if (!r) return Error{r.error().code, path + ": " + r.error().message};
