@@ -6,8 +6,9 @@
 //   - nlohmann's DOM parse, the tables filled from the DOM, and the same restore():
 //     what replacing the parser would give, before its error positions and
 //     duplicate-key checks are added back.
-// The model: make_sphere fn=700 (245,000 vertices, 244,302 faces; 60.7 MB of JSON). "DOM MB" is what the DOM holds (malloc's count before and after, glibc).
-// docs/io.md, "The JSON parser", has the figures and the decision.
+// The model: make_sphere fn=700 (245,000 vertices, 244,302 faces; 60.7 MB of JSON). "DOM MB" is
+// what the DOM holds (malloc's count before and after, glibc). docs/io.md, "The JSON parser", has
+// the figures and the decision.
 #include <benchmark/benchmark.h>
 #include <malloc.h>
 

@@ -6,9 +6,9 @@
 #include <iostream>
 
 #include "cellforge/boolean/boolean.h"
+#include "cellforge/io/mesh_io.h"
 #include "cellforge/shape/faceting.h"
 #include "cellforge/shape/mass.h"
-#include "cellforge/io/mesh_io.h"
 #include "cellforge/topo/validate.h"
 #include "command.h"
 
@@ -140,8 +140,8 @@ int run(const std::vector<std::string>& args) {
   return 0;
 }
 
-const CommandRegistration kBool{Command{
-    "bool", "union, intersection or difference of solids, exactly", kUsage, run, true}};
+const CommandRegistration kBool{
+    Command{"bool", "union, intersection or difference of solids, exactly", kUsage, run, true}};
 
 }  // namespace
 }  // namespace cellforge::cli

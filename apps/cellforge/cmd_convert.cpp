@@ -42,7 +42,8 @@ int run(const std::vector<std::string>& args) {
   for (const std::string& a : options) {
     std::string key, value;
     if (!split_key_value(a, key, value)) {
-      std::cerr << "cellforge convert: unexpected argument '" << a << "' (IN OUT, then KEY=VALUE)\n";
+      std::cerr << "cellforge convert: unexpected argument '" << a
+                << "' (IN OUT, then KEY=VALUE)\n";
       return 2;
     }
     if (Status s = io::set_option(read, key, value); !s) {

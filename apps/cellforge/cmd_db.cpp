@@ -111,7 +111,10 @@ void print_info(const VolumeInfo& v) {
 std::size_t utf8_length(const std::string& s, std::size_t i) {
   const auto c = static_cast<unsigned char>(s[i]);
   if (c < 0x80) return 1;
-  const std::size_t n = c >= 0xC2 && c < 0xE0 ? 2 : c >= 0xE0 && c < 0xF0 ? 3 : c >= 0xF0 && c < 0xF5 ? 4 : 0;
+  const std::size_t n = c >= 0xC2 && c < 0xE0   ? 2
+                        : c >= 0xE0 && c < 0xF0 ? 3
+                        : c >= 0xF0 && c < 0xF5 ? 4
+                                                : 0;
   if (n == 0 || i + n > s.size()) return 0;
   std::uint32_t cp = c & (0x7F >> n);
   for (std::size_t k = 1; k < n; ++k) {
@@ -197,8 +200,8 @@ void print_json(const QueryResult& r) {
     std::cout << (k ? ",\n " : "\n ") << "{";
     for (std::size_t c = 0; c < r.columns.size(); ++c) {
       const auto& v = r.rows[k][c];
-      const ValueKind kind = k < r.kinds.size() && c < r.kinds[k].size() ? r.kinds[k][c]
-                                                                         : ValueKind::kText;
+      const ValueKind kind =
+          k < r.kinds.size() && c < r.kinds[k].size() ? r.kinds[k][c] : ValueKind::kText;
       std::string value;
       if (!v) {
         value = "null";
@@ -283,7 +286,8 @@ int run(const std::vector<std::string>& argv) {
   query->add_option("--timeout", timeout, "seconds before the query is cancelled (default 300)");
   query->add_option("--limit", limit, "the most rows printed (default 10000; 0: all)");
   if (auto code = parse(app, argv)) return *code;
-  if (!(timeout > 0) || !std::isfinite(timeout)) return usage_error("--timeout takes seconds above 0");
+  if (!(timeout > 0) || !std::isfinite(timeout))
+    return usage_error("--timeout takes seconds above 0");
 
   // Only save creates a database file: for the others a missing SQLite file is an
   // error, not a new empty database.
@@ -322,7 +326,8 @@ int run(const std::vector<std::string>& argv) {
     return 0;
   }
   if (load->parsed()) {
-    auto m = !faces.empty() ? store.get_faces_where(name, faces, version) : store.get(name, version);
+    auto m =
+        !faces.empty() ? store.get_faces_where(name, faces, version) : store.get(name, version);
     if (!m) return fail(m.error().message);
     io::WriteOptions write;
     if (!format.empty()) {

@@ -10,10 +10,10 @@
 #include <map>
 #include <sstream>
 
+#include "cellforge/io/mesh_io.h"
 #include "cellforge/shape/mass.h"
 #include "cellforge/shape/primitives.h"
 #include "cellforge/shape/sweep.h"
-#include "cellforge/io/mesh_io.h"
 #include "command.h"
 
 namespace cellforge::cli {
@@ -340,12 +340,11 @@ void print_summary(std::ostream& os, const Model& m, GroupId g, const std::strin
   for (FaceId x : m.faces()) f += m.group_of(x) == g;
   const MassProperties p = mass_properties(m, g);
   os << kind << ": " << v << " vertices, " << e << " edges, " << f << " faces";
-  if (!m.attribute(g, "segments").empty())
-    os << ", " << m.attribute(g, "segments") << " segments";
+  if (!m.attribute(g, "segments").empty()) os << ", " << m.attribute(g, "segments") << " segments";
   os << "\n";
   if (p.solid) os << "volume " << format_number(p.volume) << "\n";
-  os << "area " << format_number(p.area) << "\ncentroid " << p.centroid << "\nbbox "
-            << p.bbox_min << " .. " << p.bbox_max << "\n";
+  os << "area " << format_number(p.area) << "\ncentroid " << p.centroid << "\nbbox " << p.bbox_min
+     << " .. " << p.bbox_max << "\n";
 }
 
 int run(const std::vector<std::string>& args) {

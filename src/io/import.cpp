@@ -157,12 +157,14 @@ std::vector<bool> closed_patches(const std::vector<Polygon>& polys, const EdgeTa
       // Many faces on one edge (200,000 copies of one triangle): balance by patch
       // after sorting, not use against use.
       sides.clear();
-      for (std::uint32_t d : uses) sides.push_back({patch[edges.poly_of(d)], edges.forward(d) ? 1 : -1});
+      for (std::uint32_t d : uses)
+        sides.push_back({patch[edges.poly_of(d)], edges.forward(d) ? 1 : -1});
       std::sort(sides.begin(), sides.end());
       for (std::size_t i = 0; i < sides.size();) {
         int balance = 0;
         std::size_t j = i;
-        for (; j < sides.size() && sides[j].first == sides[i].first; ++j) balance += sides[j].second;
+        for (; j < sides.size() && sides[j].first == sides[i].first; ++j)
+          balance += sides[j].second;
         if (balance != 0) closed[sides[i].first] = false;
         i = j;
       }

@@ -1,17 +1,17 @@
 // Format dispatch, files, and the read/write entry points of mesh_io.h.
+#include <sys/stat.h>
+
 #include <algorithm>
 #include <cerrno>
 #include <charconv>
 #include <climits>
-#include <cstdint>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
-#include <filesystem>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
-
-#include <sys/stat.h>
 
 #include "io/formats.h"
 #include "io/text.h"
@@ -49,7 +49,8 @@ Result<std::vector<std::uint8_t>> read_bytes(const std::string& path, std::uint6
   const bool standard_input = path == "-";
   const std::string shown = standard_input ? std::string("standard input") : path;
   std::FILE* f = standard_input ? stdin : std::fopen(path.c_str(), "rb");
-  if (f == nullptr) return Error{ErrorCode::kIo, "cannot open " + path + ": " + std::strerror(errno)};
+  if (f == nullptr)
+    return Error{ErrorCode::kIo, "cannot open " + path + ": " + std::strerror(errno)};
   struct stat st {};
   if (fstat(fileno(f), &st) == 0 && S_ISDIR(st.st_mode)) {
     if (!standard_input) std::fclose(f);
@@ -204,10 +205,20 @@ Status set_option(ReadOptions& options, std::string_view key, std::string_view v
   std::string_view digits = value;
   if (!digits.empty()) {
     switch (digits.back()) {
-      case 'K': case 'k': unit = 1ull << 10; break;
-      case 'M': case 'm': unit = 1ull << 20; break;
-      case 'G': case 'g': unit = 1ull << 30; break;
-      default: break;
+      case 'K':
+      case 'k':
+        unit = 1ull << 10;
+        break;
+      case 'M':
+      case 'm':
+        unit = 1ull << 20;
+        break;
+      case 'G':
+      case 'g':
+        unit = 1ull << 30;
+        break;
+      default:
+        break;
     }
     if (unit != 1) digits.remove_suffix(1);
   }
@@ -261,7 +272,8 @@ std::vector<std::string> format_losses(const Model& m, Format format) {
   if (format != Format::kObj && (wires || points)) {
     std::string what;
     if (wires) what = plural(wires, "wire edge", "wire edges");
-    if (points) what += (what.empty() ? "" : " and ") + plural(points, "isolated point", "isolated points");
+    if (points)
+      what += (what.empty() ? "" : " and ") + plural(points, "isolated point", "isolated points");
     out.push_back(what + " not written: " + name + " holds faces only (OBJ and JSON keep them)");
   }
   if ((format == Format::kStl || format == Format::kOff) && groups > 1)
@@ -316,8 +328,8 @@ Status write_file(const Model& m, const std::string& path, const WriteOptions& o
   if (path == "-") {
     if (std::fwrite(bytes->data(), 1, bytes->size(), stdout) != bytes->size() ||
         std::fflush(stdout) != 0)
-      return Error{ErrorCode::kIo, std::string("cannot write standard output: ") +
-                                       std::strerror(errno)};
+      return Error{ErrorCode::kIo,
+                   std::string("cannot write standard output: ") + std::strerror(errno)};
     return Status::Ok();
   }
   std::ofstream out(path, std::ios::binary | std::ios::trunc);

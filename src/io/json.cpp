@@ -345,8 +345,8 @@ class JsonReader {
         if (first_keys[k].first == key) first = first_keys[k].second;
       if (const auto it = more_keys.find(key); it != more_keys.end()) first = it->second;
       if (first != std::string::npos)
-        return error_at(at, "duplicate key " + quote(key) + " (first at line " + line_col(first) +
-                                ")");
+        return error_at(at,
+                        "duplicate key " + quote(key) + " (first at line " + line_col(first) + ")");
       if (count < first_keys.size())
         first_keys[count] = {key, at};
       else

@@ -130,8 +130,8 @@ Result<PolygonSoup> parse_ascii(std::string_view text) {
 }  // namespace
 
 Result<PolygonSoup> parse_stl(std::span<const std::uint8_t> bytes) {
-  if (Status s = check_not_blank(
-          "stl", {reinterpret_cast<const char*>(bytes.data()), bytes.size()});
+  if (Status s =
+          check_not_blank("stl", {reinterpret_cast<const char*>(bytes.data()), bytes.size()});
       !s)
     return s.error();
   const bool solid = starts_with_solid(bytes);

@@ -18,10 +18,10 @@ std::uint64_t le(const std::uint8_t* p, int n) {
   return v;
 }
 
-constexpr std::uint32_t kEnd = 0x06054b50;         // end of central directory
+constexpr std::uint32_t kEnd = 0x06054b50;  // end of central directory
 constexpr std::uint32_t kEnd64Locator = 0x07064b50;
 constexpr std::uint32_t kEnd64 = 0x06064b50;
-constexpr std::uint32_t kCentral = 0x02014b50;      // central directory file header
+constexpr std::uint32_t kCentral = 0x02014b50;  // central directory file header
 
 }  // namespace
 

@@ -4,9 +4,9 @@
 #include <algorithm>
 #include <charconv>
 #include <climits>
-#include <utility>
 #include <cmath>
 #include <numbers>
+#include <utility>
 
 namespace cellforge::shape {
 
@@ -31,8 +31,8 @@ int saturated_count(double x) {
 Status check_faceting(const Faceting& f) {
   for (const auto& [name, value] : {std::pair{"fn", f.fn}, {"fa", f.fa}, {"fs", f.fs}}) {
     if (!std::isfinite(value) || value < 0)
-      return Error{ErrorCode::kInvalidInput, std::string(name) + " must be finite and >= 0, got " +
-                                                 format_number(value)};
+      return Error{ErrorCode::kInvalidInput,
+                   std::string(name) + " must be finite and >= 0, got " + format_number(value)};
   }
   return Status::Ok();
 }
@@ -40,9 +40,10 @@ Status check_faceting(const Faceting& f) {
 Status check_vertex_count(std::uint64_t vertices, std::uint64_t max_vertices,
                           const std::string& what) {
   if (vertices <= max_vertices) return Status::Ok();
-  return Error{ErrorCode::kInvalidInput,
-               what + " would make " + std::to_string(vertices) + " vertices, more than the limit of " +
-                   std::to_string(max_vertices) + " (max_vertices raises it)"};
+  return Error{ErrorCode::kInvalidInput, what + " would make " + std::to_string(vertices) +
+                                             " vertices, more than the limit of " +
+                                             std::to_string(max_vertices) +
+                                             " (max_vertices raises it)"};
 }
 
 int fragments(double r, const Faceting& f) {

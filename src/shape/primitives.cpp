@@ -138,9 +138,9 @@ Result<GroupId> make_sphere(Model& m, const SphereOptions& o) {
   if (Status s = check_faceting(o.faceting); !s) return s.error();
   const int n = fragments(o.r, o.faceting);
   const int rings = static_cast<int>((static_cast<std::int64_t>(n) + 1) / 2);
-  if (Status s = check_vertex_count(static_cast<std::uint64_t>(n) * static_cast<std::uint64_t>(rings),
-                                    o.faceting.max_vertices,
-                                    "a sphere of " + std::to_string(n) + " segments");
+  if (Status s = check_vertex_count(
+          static_cast<std::uint64_t>(n) * static_cast<std::uint64_t>(rings),
+          o.faceting.max_vertices, "a sphere of " + std::to_string(n) + " segments");
       !s)
     return s.error();
   Draft d = Draft::solid("sphere");

@@ -938,12 +938,14 @@ Status check_volume_name(const std::string& name) {
     if (c < 0xC0) continue;
     const std::size_t n = c < 0xE0 ? 2 : c < 0xF0 ? 3 : 4;
     std::uint32_t cp = c & (0x7F >> n);
-    for (std::size_t k = 1; k < n; ++k) cp = (cp << 6) | (static_cast<unsigned char>(name[i + k]) & 0x3F);
+    for (std::size_t k = 1; k < n; ++k)
+      cp = (cp << 6) | (static_cast<unsigned char>(name[i + k]) & 0x3F);
     char hex[16];
     std::snprintf(hex, sizeof hex, "U+%04X", static_cast<unsigned>(cp));
     if (cp >= 0x80 && cp <= 0x9F) {
-      return Error{ErrorCode::kInvalidInput, std::string("a volume name must not hold control characters (") +
-                                                 hex + " at byte " + std::to_string(i) + ")"};
+      return Error{ErrorCode::kInvalidInput,
+                   std::string("a volume name must not hold control characters (") + hex +
+                       " at byte " + std::to_string(i) + ")"};
     }
     if (cp == 0x061C || cp == 0x200E || cp == 0x200F || (cp >= 0x202A && cp <= 0x202E) ||
         (cp >= 0x2066 && cp <= 0x2069) || cp == 0x2028 || cp == 0x2029) {

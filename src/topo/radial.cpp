@@ -75,7 +75,6 @@ class RadialOrder {
   std::vector<Entry> entries_;
 };
 
-
 bool same_components(const Expansion& a, const Expansion& b) {
   const auto x = a.components(), y = b.components();
   return std::equal(x.begin(), x.end(), y.begin(), y.end());
@@ -134,8 +133,8 @@ void sort_by_direction(const RadialOrder& order, std::vector<Entry>& entries) {
   // along the axis first; stable otherwise.
   std::vector<std::pair<std::int64_t, std::size_t>> keyed(entries.size());
   for (std::size_t i = 0; i < entries.size(); ++i) {
-    keyed[i] = {entries[i].degenerate ? -1 : 2 * rank[group[i]] + (order.reversed(entries[i]) ? 1 : 0),
-                i};
+    keyed[i] = {
+        entries[i].degenerate ? -1 : 2 * rank[group[i]] + (order.reversed(entries[i]) ? 1 : 0), i};
   }
   std::stable_sort(keyed.begin(), keyed.end(),
                    [](const auto& a, const auto& b) { return a.first < b.first; });

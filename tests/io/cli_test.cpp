@@ -127,8 +127,9 @@ TEST(Cli, InfoToAFullDeviceFails) {
   // Standard output on /dev/full: every write fails with ENOSPC (the commands used to
   // lose the output and exit 0). run() adds 2>&1 at the end, so the status is echoed.
   const std::string off = testing::data_path("cube.off");
-  for (const std::string& args : {"info " + off, "info " + off + " --json",
-                                  "convert " + off + " - --to stl", std::string("make cube -o - --format obj")}) {
+  for (const std::string& args :
+       {"info " + off, "info " + off + " --json", "convert " + off + " - --to stl",
+        std::string("make cube -o - --format obj")}) {
     const CliRun r = run(args + " >/dev/full 2>/dev/null; echo \"exit $?\"");
     EXPECT_EQ(r.out, "exit 1\n") << args;
   }

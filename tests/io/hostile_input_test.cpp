@@ -81,8 +81,7 @@ TEST(HostileInput, BlankFilesAreEmptyInEveryTextFormat) {
   for (io::Format f : {io::Format::kStl, io::Format::kObj, io::Format::kOff, io::Format::kJson}) {
     for (const char* text : {"", " ", "\n\n\t \r\n"}) {
       const std::string e = error_of(text, f);
-      EXPECT_NE(e.find(std::string(io::format_name(f)) + ": byte 0: empty file"),
-                std::string::npos)
+      EXPECT_NE(e.find(std::string(io::format_name(f)) + ": byte 0: empty file"), std::string::npos)
           << io::format_name(f) << " '" << text << "': " << e;
     }
   }

@@ -63,7 +63,9 @@ TEST(MakeCli, ErrorsListValidChoices) {
       << r.out;
   r = run("make sphere q=1 -o x.stl");
   EXPECT_EQ(r.status, 2);
-  EXPECT_NE(r.out.find("unknown key 'q' (valid: r, d, fn, fa, fs, max_vertices)"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("unknown key 'q' (valid: r, d, fn, fa, fs, max_vertices)"),
+            std::string::npos)
+      << r.out;
   r = run("make sphere r=-1 -o x.stl");
   EXPECT_EQ(r.status, 1);
   EXPECT_NE(r.out.find("r must be positive"), std::string::npos) << r.out;

@@ -1,10 +1,9 @@
 // `cellforge db` end to end on both backends.
+#include <fcntl.h>
 #include <gtest/gtest.h>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
-
-#include <fcntl.h>
 
 #include <cstdio>
 #include <fstream>
@@ -238,8 +237,7 @@ TEST_P(Cli, IssueNineteenHabits) {
 TEST_P(Cli, SqlJsonIsJson) {
   // Blobs, non-finite reals and repeated column names: each used to give invalid or
   // ambiguous JSON.
-  const std::string blob =
-      GetParam() == "sqlite" ? "x'00ff22'" : "'\\x00ff22'::bytea";
+  const std::string blob = GetParam() == "sqlite" ? "x'00ff22'" : "'\\x00ff22'::bytea";
   const std::string inf = GetParam() == "sqlite" ? "9e999" : "'Infinity'::float8";
   const std::string nan = GetParam() == "sqlite" ? "NULL" : "'NaN'::float8";
   const CliRun r = cli({"db", "sql",
@@ -259,9 +257,11 @@ TEST_P(Cli, ACommandOnAMissingDatabaseSaysSo) {
     return;
   }
   const std::string missing = db_ + ".missing.db";
-  for (std::vector<std::string> args :
-       {std::vector<std::string>{"db", "list"}, {"db", "info", "x"}, {"db", "sql", "SELECT 1"},
-        {"db", "rm", "x"}, {"db", "load", "x", "-o", "-"}}) {
+  for (std::vector<std::string> args : {std::vector<std::string>{"db", "list"},
+                                        {"db", "info", "x"},
+                                        {"db", "sql", "SELECT 1"},
+                                        {"db", "rm", "x"},
+                                        {"db", "load", "x", "-o", "-"}}) {
     args.push_back("--db");
     args.push_back(missing);
     const CliRun r = cli_to(args, "/dev/null");  // standard error is what is read
@@ -273,9 +273,10 @@ TEST_P(Cli, ACommandOnAMissingDatabaseSaysSo) {
 
 TEST_P(Cli, WritingToAFullDeviceFails) {
   ASSERT_EQ(cli({"db", "save", "example:box", "--name", "part", "--db", db_}).status, 0);
-  for (std::vector<std::string> args :
-       {std::vector<std::string>{"db", "list"}, {"db", "load", "part", "-o", "-"},
-        {"db", "sql", "SELECT * FROM vertices"}, {"db", "info", "part"}}) {
+  for (std::vector<std::string> args : {std::vector<std::string>{"db", "list"},
+                                        {"db", "load", "part", "-o", "-"},
+                                        {"db", "sql", "SELECT * FROM vertices"},
+                                        {"db", "info", "part"}}) {
     args.push_back("--db");
     args.push_back(db_);
     const CliRun r = cli_to(args, "/dev/full");

@@ -284,7 +284,9 @@ TEST_P(StoreOps, HostileNamesAreDataOrRefused) {
       "", std::string(1025, 'n'), "bad\xff\xfe", std::string("a\0b", 3), "line\nbreak", "\xc0\xaf",
       // C1 controls (U+0085 next line, U+009B) and the bidi marks that make a name
       // read otherwise than it is stored (U+202E right-to-left override, U+2066).
-      "a\xc2\x85" "b", "c\xc2\x9b", "evil\xe2\x80\xaegpj.stl", "iso\xe2\x81\xa6x", "\xe2\x80\x8f",
+      "a\xc2\x85"
+      "b",
+      "c\xc2\x9b", "evil\xe2\x80\xaegpj.stl", "iso\xe2\x81\xa6x", "\xe2\x80\x8f",
       "para\xe2\x80\xa9"};
   for (const std::string& name : refused) {
     auto put = store_->put(name, cube);

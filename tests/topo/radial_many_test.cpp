@@ -21,7 +21,8 @@ MeshInput fan(const std::vector<Vec3>& thirds, int triangles) {
   for (int k = 0; k < triangles; ++k) {
     const auto c = static_cast<std::uint32_t>(2 + k % thirds.size());
     MeshFace f;
-    f.loops = {k % 3 == 0 ? std::vector<std::uint32_t>{1, 0, c} : std::vector<std::uint32_t>{0, 1, c}};
+    f.loops = {k % 3 == 0 ? std::vector<std::uint32_t>{1, 0, c}
+                          : std::vector<std::uint32_t>{0, 1, c}};
     in.faces.push_back(f);
   }
   return in;
@@ -38,8 +39,8 @@ EdgeId axis_edge(const Model& m) {
 TEST(RadialMany, CopiesAndTiesKeepThePairwiseOrder) {
   // Seven directions, two of them at the same angle with different lengths (a tie
   // of different directions), 200 uses: copies, reversed copies and the tie.
-  const std::vector<Vec3> thirds = {{1, 0, 0.5}, {0, 1, 0.2},  {-1, 0, 0.7}, {0, -1, 0.1},
-                                    {2, 0, 0.5}, {1, 1, 0.3},  {-1, -1, 0.9}};
+  const std::vector<Vec3> thirds = {{1, 0, 0.5}, {0, 1, 0.2}, {-1, 0, 0.7}, {0, -1, 0.1},
+                                    {2, 0, 0.5}, {1, 1, 0.3}, {-1, -1, 0.9}};
   for (int triangles : {16, 17, 200}) {
     Model m;
     auto r = build_mesh(m, fan(thirds, triangles));

@@ -13,8 +13,8 @@
 #pragma once
 
 #include <array>
-#include <optional>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -84,7 +84,7 @@ struct ImportReport {
 // such as /dev/zero, is read up to max_bytes and refused past it; a 3MF archive
 // whose entries declare more than max_3mf_bytes unpacked is refused before anything
 // is unpacked. 0 means no limit.
-inline constexpr std::uint64_t kDefaultMaxBytes = 1ull << 30;      // 1 GiB
+inline constexpr std::uint64_t kDefaultMaxBytes = 1ull << 30;       // 1 GiB
 inline constexpr std::uint64_t kDefaultMax3mfBytes = 256ull << 20;  // 256 MiB
 
 struct ReadOptions {
