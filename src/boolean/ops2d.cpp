@@ -16,6 +16,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <numbers>
 #include <optional>
 #include <string>
@@ -181,6 +182,26 @@ bool contains(const Loop2& o, const Loop2& h) {
 
 // The regions bounded by the faces on z = 0 of a Boolean result over lifted prisms.
 Shape2D read_plane(const Model& m) {
+  // Vertices by position: rounding may bring two exact points onto one double, and
+  // the boundary then passes that point twice (it is cut there below).
+  std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> by_hash;
+  std::unordered_map<std::uint32_t, std::uint32_t> canon;
+  auto canonical = [&](VertexId v) {
+    auto [it, fresh] = canon.try_emplace(v.value, v.value);
+    if (!fresh) return it->second;
+    const Vec3 p = m.position(v);
+    const double x = p.x + 0.0, y = p.y + 0.0;  // -0 and 0 are one point
+    std::uint64_t hx, hy;
+    std::memcpy(&hx, &x, sizeof hx);
+    std::memcpy(&hy, &y, sizeof hy);
+    auto& same = by_hash[hx * 0x9E3779B97F4A7C15ull ^ hy];
+    for (std::uint32_t o : same) {
+      const Vec3 q = m.position(VertexId(o));
+      if (q.x == p.x && q.y == p.y) return it->second = o;
+    }
+    same.push_back(v.value);
+    return v.value;
+  };
   // Directed edges (seen from +z), with opposite pairs cancelled.
   std::unordered_map<std::uint64_t, int> count;
   auto key = [](std::uint32_t a, std::uint32_t b) { return (std::uint64_t{a} << 32) | b; };
@@ -192,7 +213,8 @@ Shape2D read_plane(const Model& m) {
       if (m.is_point_loop(l)) continue;
       const std::vector<VertexId> vs = m.loop_vertices(l);
       for (std::size_t i = 0; i < vs.size(); ++i) {
-        const std::uint32_t a = vs[(i + 1) % vs.size()].value, b = vs[i].value;  // reversed
+        const std::uint32_t a = canonical(vs[(i + 1) % vs.size()]), b = canonical(vs[i]);  // reversed
+        if (a == b) continue;  // an edge rounding made zero length
         if (auto it = count.find(key(b, a)); it != count.end() && it->second > 0) {
           if (--it->second == 0) count.erase(it);
         } else {
@@ -222,10 +244,10 @@ Shape2D read_plane(const Model& m) {
       ends.pop_back();
       if (w != start) {
         if (auto it = at.find(w); it != at.end()) {  // a simple loop closes at w
-          std::vector<std::uint32_t> cut(chain.begin() + static_cast<std::ptrdiff_t>(it->second),
-                                         chain.end());
+          const std::size_t from = it->second;
+          std::vector<std::uint32_t> cut(chain.begin() + static_cast<std::ptrdiff_t>(from), chain.end());
           for (std::uint32_t c : cut) at.erase(c);
-          chain.resize(it->second);
+          chain.resize(from);
           loops.push_back(make_loop(m, std::move(cut)));
         }
         at[w] = chain.size();
@@ -303,10 +325,16 @@ std::optional<Expr> without_empties(const Expr& e, const std::vector<bool>& empt
 }
 
 // The Boolean of lifted models, read back on z = 0.
-Result<Shape2D> evaluate_lifted(std::span<const Model* const> models, const Expr& e) {
+Result<Evaluated2D> evaluate_counted(std::span<const Model* const> models, const Expr& e) {
   auto r = evaluate(models, e);
   if (!r) return r.error();
-  return read_plane(r->model);
+  return Evaluated2D{read_plane(r->model), r->report.rounding_self_intersections};
+}
+
+Result<Shape2D> evaluate_lifted(std::span<const Model* const> models, const Expr& e) {
+  auto r = evaluate_counted(models, e);
+  if (!r) return r.error();
+  return std::move(r->shape);
 }
 
 // Every region of `shape` normalized: the union of its regions, disjoint.
@@ -320,7 +348,7 @@ Result<Shape2D> normalized(const Shape2D& shape, const std::string& what) {
 
 }  // namespace
 
-Result<Shape2D> evaluate_2d(std::span<const Shape2D> operands, const Expr& expr) {
+Result<Evaluated2D> evaluate_2d_counted(std::span<const Shape2D> operands, const Expr& expr) {
   if (expr.max_operand() >= static_cast<int>(operands.size()))
     return invalid("2D Boolean: the expression names operand " + std::to_string(expr.max_operand()) +
                    " of " + std::to_string(operands.size()));
@@ -328,8 +356,8 @@ Result<Shape2D> evaluate_2d(std::span<const Shape2D> operands, const Expr& expr)
   for (const Shape2D& s : operands) empty.push_back(s.empty());
   std::vector<int> used;
   const std::optional<Expr> e = without_empties(expr, empty, used);
-  if (!e) return Shape2D{};
-  if (e->kind == Expr::Kind::kOperand) return operands[static_cast<std::size_t>(used[0])];
+  if (!e) return Evaluated2D{};
+  if (e->kind == Expr::Kind::kOperand) return Evaluated2D{operands[static_cast<std::size_t>(used[0])], 0};
   std::vector<Model> models;
   for (int i : used) {
     auto m = lift(operands[static_cast<std::size_t>(i)].regions, "2D operand " + std::to_string(i));
@@ -338,7 +366,13 @@ Result<Shape2D> evaluate_2d(std::span<const Shape2D> operands, const Expr& expr)
   }
   std::vector<const Model*> ptrs;
   for (const Model& m : models) ptrs.push_back(&m);
-  return evaluate_lifted(ptrs, *e);
+  return evaluate_counted(ptrs, *e);
+}
+
+Result<Shape2D> evaluate_2d(std::span<const Shape2D> operands, const Expr& expr) {
+  auto r = evaluate_2d_counted(operands, expr);
+  if (!r) return r.error();
+  return std::move(r->shape);
 }
 
 Result<Shape2D> apply_2d(Op op, std::span<const Shape2D> operands) {

@@ -37,8 +37,20 @@
 
 namespace cellforge::boolean {
 
-// `expr` (boolean.h) over the 2D operands. An empty operand is the empty set.
+// `expr` (boolean.h) over the 2D operands. An empty operand is the empty set; an
+// expression that reduces to one operand returns it as given.
 Result<shape::Shape2D> evaluate_2d(std::span<const shape::Shape2D> operands, const Expr& expr);
+
+// The same with the Boolean's rounding check: the number of pairs of result triangles
+// that rounding to doubles made cross (Report::rounding_self_intersections). When it is
+// 0 the regions' loops are simple and meet only at shared vertices; otherwise a loop
+// may touch or cross itself or another near the rounded points (docs/boolean.md).
+struct Evaluated2D {
+  shape::Shape2D shape;
+  std::size_t rounding_crossings = 0;
+};
+Result<Evaluated2D> evaluate_2d_counted(std::span<const shape::Shape2D> operands,
+                                        const Expr& expr);
 
 // The operation over all operands in order: union of all, intersection of all, or the
 // first minus the others. No operands: the empty shape.
