@@ -73,7 +73,8 @@ Status add_translated(Model& into, const Model& m, Vec3 t) {
       if (m.is_point_loop(l)) continue;
       std::vector<std::uint32_t> loop;
       for (VertexId v : m.loop_vertices(l)) {
-        auto [it, fresh] = vid.try_emplace(v.value, static_cast<std::uint32_t>(mesh.positions.size()));
+        auto [it, fresh] =
+            vid.try_emplace(v.value, static_cast<std::uint32_t>(mesh.positions.size()));
         if (fresh) mesh.positions.push_back(m.position(v) + t);
         loop.push_back(it->second);
       }

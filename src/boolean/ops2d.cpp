@@ -213,8 +213,9 @@ Shape2D read_plane(const Model& m) {
       if (m.is_point_loop(l)) continue;
       const std::vector<VertexId> vs = m.loop_vertices(l);
       for (std::size_t i = 0; i < vs.size(); ++i) {
-        const std::uint32_t a = canonical(vs[(i + 1) % vs.size()]), b = canonical(vs[i]);  // reversed
-        if (a == b) continue;  // an edge rounding made zero length
+        const std::uint32_t a = canonical(vs[(i + 1) % vs.size()]),
+                            b = canonical(vs[i]);  // reversed
+        if (a == b) continue;                      // an edge rounding made zero length
         if (auto it = count.find(key(b, a)); it != count.end() && it->second > 0) {
           if (--it->second == 0) count.erase(it);
         } else {
@@ -245,7 +246,8 @@ Shape2D read_plane(const Model& m) {
       if (w != start) {
         if (auto it = at.find(w); it != at.end()) {  // a simple loop closes at w
           const std::size_t from = it->second;
-          std::vector<std::uint32_t> cut(chain.begin() + static_cast<std::ptrdiff_t>(from), chain.end());
+          std::vector<std::uint32_t> cut(chain.begin() + static_cast<std::ptrdiff_t>(from),
+                                         chain.end());
           for (std::uint32_t c : cut) at.erase(c);
           chain.resize(from);
           loops.push_back(make_loop(m, std::move(cut)));
@@ -350,14 +352,15 @@ Result<Shape2D> normalized(const Shape2D& shape, const std::string& what) {
 
 Result<Evaluated2D> evaluate_2d_counted(std::span<const Shape2D> operands, const Expr& expr) {
   if (expr.max_operand() >= static_cast<int>(operands.size()))
-    return invalid("2D Boolean: the expression names operand " + std::to_string(expr.max_operand()) +
-                   " of " + std::to_string(operands.size()));
+    return invalid("2D Boolean: the expression names operand " +
+                   std::to_string(expr.max_operand()) + " of " + std::to_string(operands.size()));
   std::vector<bool> empty;
   for (const Shape2D& s : operands) empty.push_back(s.empty());
   std::vector<int> used;
   const std::optional<Expr> e = without_empties(expr, empty, used);
   if (!e) return Evaluated2D{};
-  if (e->kind == Expr::Kind::kOperand) return Evaluated2D{operands[static_cast<std::size_t>(used[0])], 0};
+  if (e->kind == Expr::Kind::kOperand)
+    return Evaluated2D{operands[static_cast<std::size_t>(used[0])], 0};
   std::vector<Model> models;
   for (int i : used) {
     auto m = lift(operands[static_cast<std::size_t>(i)].regions, "2D operand " + std::to_string(i));
@@ -459,7 +462,8 @@ std::vector<Region> offset_pieces(const Shape2D& shape, const OffsetOptions& o) 
       for (std::size_t i = 0; i < n; ++i) normal[i] = right_normal(loop[i], loop[(i + 1) % n]);
       for (std::size_t i = 0; i < n; ++i) {
         const Vec2 a = loop[i], b = loop[(i + 1) % n];
-        add_piece(pieces, {a, b, add(b, scaled(normal[i], delta)), add(a, scaled(normal[i], delta))});
+        add_piece(pieces,
+                  {a, b, add(b, scaled(normal[i], delta)), add(a, scaled(normal[i], delta))});
         const Vec2 c = loop[(i + 2) % n];
         const int turn = orient2d(a, b, c);
         const Vec2 nk = normal[i], nj = normal[(i + 1) % n];
@@ -489,7 +493,8 @@ Result<Shape2D> offset(const Shape2D& shape, const OffsetOptions& options) {
   }
   for (Region& r : base.regions)  // interiors on the left of every loop
     for (std::size_t li = 0; li < r.loops.size(); ++li)
-      if (area_sign(r.loops[li]) == (li == 0 ? -1 : 1)) std::reverse(r.loops[li].begin(), r.loops[li].end());
+      if (area_sign(r.loops[li]) == (li == 0 ? -1 : 1))
+        std::reverse(r.loops[li].begin(), r.loops[li].end());
   const std::vector<Region> pieces = offset_pieces(base, options);
   auto a = lift(base.regions, "offset operand");
   if (!a) return a.error();
@@ -556,7 +561,8 @@ Result<Shape2D> minkowski_pair(const Shape2D& a, const Shape2D& b) {
   const Shape2D& convex = cb ? b : a;
   std::vector<Region> pieces;
   if (ca || cb) {
-    if (Status s = add_sum_with_convex(pieces, big, convex.regions[0].loops[0]); !s) return s.error();
+    if (Status s = add_sum_with_convex(pieces, big, convex.regions[0].loops[0]); !s)
+      return s.error();
   } else {
     for (const Region& r : b.regions) {  // B as triangles, each convex
       std::vector<std::vector<Vec3>> loops3;

@@ -113,7 +113,8 @@ class Quickhull {
     for (std::uint32_t f = 0; f < f_.size(); ++f)
       for (int i = 0; i < 3; ++i) edge[key(f_[f].v[i], f_[f].v[(i + 1) % 3])] = {f, i};
     for (std::uint32_t f = 0; f < f_.size(); ++f)
-      for (int i = 0; i < 3; ++i) f_[f].nb[i] = edge.at(key(f_[f].v[(i + 1) % 3], f_[f].v[i])).first;
+      for (int i = 0; i < 3; ++i)
+        f_[f].nb[i] = edge.at(key(f_[f].v[(i + 1) % 3], f_[f].v[i])).first;
   }
   int side(std::uint32_t f, std::uint32_t q) const {
     const auto& v = f_[f].v;
@@ -224,7 +225,8 @@ std::vector<std::vector<std::uint32_t>> merged_faces(const std::vector<Vec3>& p,
       std::uint32_t far = g.v[0];
       for (std::uint32_t w : g.v)
         if (w != f[i].v[k] && w != f[i].v[(k + 1) % 3]) far = w;
-      if (orient3d(p[f[i].v[0]], p[f[i].v[1]], p[f[i].v[2]], p[far]) == 0) sets.unite(i, f[i].nb[k]);
+      if (orient3d(p[f[i].v[0]], p[f[i].v[1]], p[f[i].v[2]], p[far]) == 0)
+        sets.unite(i, f[i].nb[k]);
     }
   }
   // Boundary edges of each merged set, as start -> end.
@@ -232,7 +234,8 @@ std::vector<std::vector<std::uint32_t>> merged_faces(const std::vector<Vec3>& p,
   for (std::uint32_t i = 0; i < f.size(); ++i) {
     if (!f[i].alive) continue;
     for (int k = 0; k < 3; ++k)
-      if (sets.find(f[i].nb[k]) != sets.find(i)) next[sets.find(i)][f[i].v[k]] = f[i].v[(k + 1) % 3];
+      if (sets.find(f[i].nb[k]) != sets.find(i))
+        next[sets.find(i)][f[i].v[k]] = f[i].v[(k + 1) % 3];
   }
   std::vector<std::vector<std::uint32_t>> faces;
   for (auto& [root, edges] : next) {
@@ -253,7 +256,8 @@ std::vector<std::vector<std::uint32_t>> merged_faces(const std::vector<Vec3>& p,
     faces.push_back(std::move(kept));
   }
   // A deterministic face order: by the smallest vertex index, the loop starting there.
-  for (auto& loop : faces) std::rotate(loop.begin(), std::min_element(loop.begin(), loop.end()), loop.end());
+  for (auto& loop : faces)
+    std::rotate(loop.begin(), std::min_element(loop.begin(), loop.end()), loop.end());
   std::sort(faces.begin(), faces.end());
   return faces;
 }

@@ -42,7 +42,8 @@ Result<Shape2D> transformed(const Shape2D& shape, const Transform& t) {
       std::vector<Vec2> l;
       l.reserve(loop.size());
       for (Vec2 p : loop)
-        l.push_back({a[0][0] * p.x + a[0][1] * p.y + a[0][3], a[1][0] * p.x + a[1][1] * p.y + a[1][3]});
+        l.push_back(
+            {a[0][0] * p.x + a[0][1] * p.y + a[0][3], a[1][0] * p.x + a[1][1] * p.y + a[1][3]});
       if (det < 0) std::reverse(l.begin(), l.end());
       image.loops.push_back(std::move(l));
     }

@@ -24,10 +24,12 @@ namespace {
 Model cube(Vec3 size, Vec3 at = {}) {
   Model out;
   auto q = shape::make_polyhedron(
-      out, {.points = {at, at + Vec3{size.x, 0, 0}, at + Vec3{size.x, size.y, 0}, at + Vec3{0, size.y, 0},
-                       at + Vec3{0, 0, size.z}, at + Vec3{size.x, 0, size.z}, at + size,
-                       at + Vec3{0, size.y, size.z}},
-            .faces = {{0, 1, 2, 3}, {4, 7, 6, 5}, {0, 4, 5, 1}, {1, 5, 6, 2}, {2, 6, 7, 3}, {3, 7, 4, 0}}});
+      out,
+      {.points = {at, at + Vec3{size.x, 0, 0}, at + Vec3{size.x, size.y, 0},
+                  at + Vec3{0, size.y, 0}, at + Vec3{0, 0, size.z}, at + Vec3{size.x, 0, size.z},
+                  at + size, at + Vec3{0, size.y, size.z}},
+       .faces = {
+           {0, 1, 2, 3}, {4, 7, 6, 5}, {0, 4, 5, 1}, {1, 5, 6, 2}, {2, 6, 7, 3}, {3, 7, 4, 0}}});
   EXPECT_TRUE(q.ok()) << q.error().message;
   return out;
 }
@@ -119,7 +121,8 @@ TEST(Minkowski, FacetedSphereIsConvexAndRoundsANonConvexPrism) {
   ASSERT_OK(shape::make_sphere(sphere, {.r = 0.25, .faceting = {.fn = 8}}));
   EXPECT_TRUE(is_convex_cell(sphere, *sphere.volumes().begin()));
   Model l;
-  ASSERT_OK(shape::make_prism(l, *shape::polygon({{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}}), 1));
+  ASSERT_OK(
+      shape::make_prism(l, *shape::polygon({{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}}), 1));
   const Model* ops[] = {&l, &sphere};
   auto r = minkowski(ops);
   ASSERT_OK(r);
@@ -147,12 +150,34 @@ TEST(Minkowski, FacetedSphereIsConvexAndRoundsANonConvexPrism) {
 
 TEST(Minkowski, CellsOfAModelAreSummedPairwise) {
   Model two;  // two unit cubes 2 apart along x, as two cells
-  ASSERT_OK(shape::make_polyhedron(
-      two, {.points = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1},
-                       {3, 0, 0}, {4, 0, 0}, {4, 1, 0}, {3, 1, 0}, {3, 0, 1}, {4, 0, 1}, {4, 1, 1}, {3, 1, 1}},
-            .faces = {{0, 1, 2, 3}, {4, 7, 6, 5}, {0, 4, 5, 1}, {1, 5, 6, 2}, {2, 6, 7, 3}, {3, 7, 4, 0},
-                      {8, 9, 10, 11}, {12, 15, 14, 13}, {8, 12, 13, 9}, {9, 13, 14, 10},
-                      {10, 14, 15, 11}, {11, 15, 12, 8}}}));
+  ASSERT_OK(shape::make_polyhedron(two, {.points = {{0, 0, 0},
+                                                    {1, 0, 0},
+                                                    {1, 1, 0},
+                                                    {0, 1, 0},
+                                                    {0, 0, 1},
+                                                    {1, 0, 1},
+                                                    {1, 1, 1},
+                                                    {0, 1, 1},
+                                                    {3, 0, 0},
+                                                    {4, 0, 0},
+                                                    {4, 1, 0},
+                                                    {3, 1, 0},
+                                                    {3, 0, 1},
+                                                    {4, 0, 1},
+                                                    {4, 1, 1},
+                                                    {3, 1, 1}},
+                                         .faces = {{0, 1, 2, 3},
+                                                   {4, 7, 6, 5},
+                                                   {0, 4, 5, 1},
+                                                   {1, 5, 6, 2},
+                                                   {2, 6, 7, 3},
+                                                   {3, 7, 4, 0},
+                                                   {8, 9, 10, 11},
+                                                   {12, 15, 14, 13},
+                                                   {8, 12, 13, 9},
+                                                   {9, 13, 14, 10},
+                                                   {10, 14, 15, 11},
+                                                   {11, 15, 12, 8}}}));
   const Model grow = cube({1.5, 1, 1});
   const Model* ops[] = {&two, &grow};
   auto r = minkowski(ops);
@@ -171,7 +196,8 @@ TEST(Minkowski, CellsOfAModelAreSummedPairwise) {
 
 TEST(Minkowski, TwoNonConvexSolidsAreUnsupportedAndEmptyIsAnError) {
   Model l;
-  ASSERT_OK(shape::make_prism(l, *shape::polygon({{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}}), 1));
+  ASSERT_OK(
+      shape::make_prism(l, *shape::polygon({{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}}), 1));
   const Model* ops[] = {&l, &l};
   auto r = minkowski(ops);
   ASSERT_FALSE(r.ok());

@@ -131,8 +131,8 @@ TEST(Boolean2D, NaryExpressionsAndEmptyOperands) {
   EXPECT_DOUBLE_EQ(area(*apply_2d(Op::kIntersection, ops)), 0);
   EXPECT_TRUE(apply_2d(Op::kIntersection, ops)->empty());
   EXPECT_DOUBLE_EQ(area(*apply_2d(Op::kDifference, ops)), 9 - 4);
-  const Expr e = Expr::op(Op::kIntersection,
-                          {Expr::op(Op::kUnion, {Expr::of(0), Expr::of(2)}), Expr::of(1)});
+  const Expr e =
+      Expr::op(Op::kIntersection, {Expr::op(Op::kUnion, {Expr::of(0), Expr::of(2)}), Expr::of(1)});
   EXPECT_DOUBLE_EQ(area(*evaluate_2d(ops, e)), 4 + 4 - 1);
   EXPECT_FALSE(evaluate_2d(ops, Expr::of(7)).ok());
   EXPECT_TRUE(apply_2d(Op::kUnion, std::vector<Shape2D>{})->empty());
@@ -230,7 +230,9 @@ int cases() {
   return v ? std::atoi(v) : kDefault;
 }
 
-TEST(Boolean2D, AreaIdentitiesAndMembershipOnRandomPolygons) { check_identities(false, 1, cases()); }
+TEST(Boolean2D, AreaIdentitiesAndMembershipOnRandomPolygons) {
+  check_identities(false, 1, cases());
+}
 TEST(Boolean2D, AreaIdentitiesAndMembershipOnGridRectangles) {
   check_identities(true, 1000001, cases());
 }
@@ -349,8 +351,17 @@ TEST(Projection, CutOnTheBoundaryFollowsTheSolidAbove) {
   EXPECT_DOUBLE_EQ(area(*projection(above, {.cut = true})), 1);
   Model moved;  // a unit cube below z = 0: its top face lies on the plane
   ASSERT_OK(shape::make_polyhedron(
-      moved, {.points = {{0, 0, -1}, {1, 0, -1}, {1, 1, -1}, {0, 1, -1}, {0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}},
-              .faces = {{0, 1, 2, 3}, {4, 7, 6, 5}, {0, 4, 5, 1}, {1, 5, 6, 2}, {2, 6, 7, 3}, {3, 7, 4, 0}}}));
+      moved,
+      {.points = {{0, 0, -1},
+                  {1, 0, -1},
+                  {1, 1, -1},
+                  {0, 1, -1},
+                  {0, 0, 0},
+                  {1, 0, 0},
+                  {1, 1, 0},
+                  {0, 1, 0}},
+       .faces = {
+           {0, 1, 2, 3}, {4, 7, 6, 5}, {0, 4, 5, 1}, {1, 5, 6, 2}, {2, 6, 7, 3}, {3, 7, 4, 0}}}));
   auto none = projection(moved, {.cut = true});
   ASSERT_OK(none);
   EXPECT_TRUE(none->empty());

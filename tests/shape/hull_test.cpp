@@ -26,7 +26,7 @@ using testing::counts;
 using testing::ngon_area;
 
 TEST(Hull2D, SquareWithInteriorEdgeAndDuplicatePointsHasFourVertices) {
-  const std::vector<Vec2> pts = {{0, 0}, {2, 0}, {2, 2}, {0, 2}, {1, 0}, {2, 1},
+  const std::vector<Vec2> pts = {{0, 0}, {2, 0},     {2, 2}, {0, 2}, {1, 0}, {2, 1},
                                  {1, 1}, {0.5, 1.5}, {0, 0}, {2, 2}, {0, 1}};
   auto r = convex_hull(std::span<const Vec2>(pts));
   ASSERT_OK(r);

@@ -15,7 +15,8 @@ namespace {
 
 Shape2D framed() {  // a 4 x 2 rectangle with a 1 x 1 hole, and a unit square beside it
   Shape2D s;
-  s.regions.push_back(*polygon({{0, 0}, {4, 0}, {4, 2}, {0, 2}}, {{{1, 0.5}, {2, 0.5}, {2, 1.5}, {1, 1.5}}}));
+  s.regions.push_back(
+      *polygon({{0, 0}, {4, 0}, {4, 2}, {0, 2}}, {{{1, 0.5}, {2, 0.5}, {2, 1.5}, {1, 1.5}}}));
   s.regions.push_back(*rectangle({1, 1}));
   s.regions[1].loops[0] = {{5, 0}, {6, 0}, {6, 1}, {5, 1}};
   return s;

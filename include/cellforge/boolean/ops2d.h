@@ -49,8 +49,7 @@ struct Evaluated2D {
   shape::Shape2D shape;
   std::size_t rounding_crossings = 0;
 };
-Result<Evaluated2D> evaluate_2d_counted(std::span<const shape::Shape2D> operands,
-                                        const Expr& expr);
+Result<Evaluated2D> evaluate_2d_counted(std::span<const shape::Shape2D> operands, const Expr& expr);
 
 // The operation over all operands in order: union of all, intersection of all, or the
 // first minus the others. No operands: the empty shape.
