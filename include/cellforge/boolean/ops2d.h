@@ -62,7 +62,7 @@ enum class OffsetJoin {
 };
 
 struct OffsetOptions {
-  double amount = 0;  // r or delta; negative shrinks; 0 returns the shape normalized
+  double amount = 0;  // r or delta; negative shrinks; 0 returns the shape as given
   OffsetJoin join = OffsetJoin::kRound;
   shape::Faceting faceting = {};  // for kRound: n = fragments(|amount|, faceting)
 };
