@@ -90,23 +90,16 @@ std::string num(double d) {
   return buf;
 }
 
-// The signed volume enclosed by the faces as oriented (fan cones from the centre of
-// the bounding box, each face once, counterclockwise seen from the front positive).
+// The signed volume of the faces as oriented: each face's fan of cones from the
+// origin (counterclockwise seen from the front counts positive), as admesh and
+// trimesh sum it for a mesh that is not closed.
 double surface_volume(const Model& m) {
-  Vec3 lo{HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
-  for (VertexId v : m.vertices()) {
-    const Vec3 p = m.position(v);
-    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
-    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
-  }
-  const Vec3 ref = (lo + hi) * 0.5;
   double volume6 = 0;
   for (FaceId f : m.faces()) {
     for (LoopId l : m.loops_of(f)) {
       if (m.is_point_loop(l)) continue;
       const std::vector<Vec3> p = m.loop_points(l);
-      for (std::size_t i = 1; i + 1 < p.size(); ++i)
-        volume6 += dot(p[0] - ref, cross(p[i] - ref, p[i + 1] - ref));
+      for (std::size_t i = 1; i + 1 < p.size(); ++i) volume6 += dot(p[0], cross(p[i], p[i + 1]));
     }
   }
   return volume6 / 6;

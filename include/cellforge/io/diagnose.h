@@ -19,7 +19,7 @@ using MassProperties = shape::MassProperties;
 
 struct DiagnoseOptions {
   // Exact triangle-triangle tests between faces that share no vertex, found
-  // through a grid over their bounding boxes.
+  // through a bounding-volume hierarchy over their bounding boxes.
   bool self_intersections = true;
 };
 
@@ -47,7 +47,7 @@ struct Diagnosis {
   bool manifold = false;  // no non-manifold edge or vertex, no wire edge or isolated vertex
   // mass.volume is the volume of the cells. Without cells (an open mesh, an inside-out
   // shell), `volume` is the signed volume of the surface as its faces are oriented
-  // (each face's cone from a reference point, as admesh and trimesh report it), and
+  // (each face's cone from the origin, as admesh and trimesh report it), and
   // a warning says so; with cells it is mass.volume.
   MassProperties mass;
   double volume = 0;
