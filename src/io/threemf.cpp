@@ -37,15 +37,21 @@ constexpr std::uint64_t kMaxPart = std::uint64_t{1} << 32;
 constexpr int kMaxComponentDepth = 32;
 
 // [x y z 1] times the 4 x 3 matrix m00 m01 m02 m10 ... m32 (3MF's row-vector form).
+// The identity is kept apart: applied as arithmetic it would turn -0 into +0.
 struct Transform {
   std::array<double, 12> m{1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0};
+  bool identity = true;
   Vec3 apply(Vec3 p) const {
+    if (identity) return p;
     return {p.x * m[0] + p.y * m[3] + p.z * m[6] + m[9], p.x * m[1] + p.y * m[4] + p.z * m[7] + m[10],
             p.x * m[2] + p.y * m[5] + p.z * m[8] + m[11]};
   }
   // This transform after `inner`.
   Transform after(const Transform& inner) const {
+    if (identity) return inner;
+    if (inner.identity) return *this;
     Transform t;
+    t.identity = false;
     for (int r = 0; r < 4; ++r)
       for (int c = 0; c < 3; ++c) {
         double s = r == 3 ? m[9 + c] : 0;
@@ -125,6 +131,7 @@ class XmlReader {
   bool transform(const XML_Char** attrs, Transform& t) {
     const char* s = attribute(attrs, "transform");
     if (!s) return true;
+    t.identity = false;
     const char* e = s + std::strlen(s);
     for (double& v : t.m) {
       while (s < e && (*s == ' ' || *s == '\t' || *s == '\n' || *s == '\r')) ++s;
