@@ -18,8 +18,10 @@ constexpr const char* kUsage =
     "  default 0: only equal ones), merge_coplanar=true (coplanar triangles become\n"
     "  polygon faces), repair_orientation=true, volumes=auto|none.\n"
     "  --json prints one JSON object with the keys vertices, edges, faces, loops,\n"
-    "  volumes, groups, euler_characteristic, valid, closed, manifold, volume, area,\n"
-    "  centroid, bbox and the detailed findings (docs/io.md).";
+    "  volumes, groups, euler_characteristic_surface, euler_characteristic_solid, valid,\n"
+    "  closed, manifold, volume, area, centroid, bbox, warnings and the detailed\n"
+    "  findings (docs/io.md). Without cells (an open mesh) volume is the signed volume\n"
+    "  of the surface, with a warning.";
 
 std::string report_json(const io::ImportReport& r) {
   std::string s = "{\"input_positions\": " + std::to_string(r.input_positions) +
