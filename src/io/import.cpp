@@ -17,7 +17,6 @@
 
 #include "cellforge/geom/polygon.h"
 #include "cellforge/geom/predicates.h"
-#include "cellforge/geom/union_find.h"
 #include "cellforge/geom/volume.h"
 #include "cellforge/topo/builder.h"
 #include "cellforge/geom/winding.h"

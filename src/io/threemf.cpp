@@ -64,7 +64,6 @@ struct Transform {
 
 struct Object {
   std::string name;
-  bool mesh = false;
   std::vector<Vec3> vertices;
   std::vector<std::array<std::uint32_t, 3>> triangles;
   std::vector<std::pair<std::uint32_t, Transform>> components;
@@ -166,8 +165,6 @@ class XmlReader {
       if (out_.objects.count(id)) return fail("object id " + std::to_string(id) + " repeats");
       object_ = &out_.objects[id];
       if (const char* n = attribute(attrs, "name")) object_->name = n;
-    } else if (local == "mesh" && object_) {
-      object_->mesh = true;
     } else if (local == "vertex" && object_) {
       Vec3 v;
       if (number(attrs, "x", v.x) && number(attrs, "y", v.y) && number(attrs, "z", v.z))

@@ -68,7 +68,6 @@ Result<std::size_t> make_region_volumes(Model& m, GroupId g) {
   std::vector<std::array<std::uint32_t, 3>> triangles;
   std::vector<std::uint32_t> surface_of;
   std::vector<int> fronts(classes, 0);
-  std::vector<std::vector<std::uint32_t>> loop;
   for (std::uint32_t k = 0; k < n; ++k) {
     const FaceId f = s.faces[k / 2];
     const bool front = k % 2 == 0;
