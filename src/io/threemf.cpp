@@ -43,7 +43,8 @@ struct Transform {
   bool identity = true;
   Vec3 apply(Vec3 p) const {
     if (identity) return p;
-    return {p.x * m[0] + p.y * m[3] + p.z * m[6] + m[9], p.x * m[1] + p.y * m[4] + p.z * m[7] + m[10],
+    return {p.x * m[0] + p.y * m[3] + p.z * m[6] + m[9],
+            p.x * m[1] + p.y * m[4] + p.z * m[7] + m[10],
             p.x * m[2] + p.y * m[5] + p.z * m[8] + m[11]};
   }
   // This transform after `inner`.
@@ -86,8 +87,7 @@ class XmlReader {
     XML_SetUserData(p, this);
     XML_SetElementHandler(p, &XmlReader::start, &XmlReader::end);
     const bool ok = XML_Parse(p, text.data(), static_cast<int>(text.size()), 1) != XML_STATUS_ERROR;
-    if (!ok && !error_)
-      error_ = at() + ": " + XML_ErrorString(XML_GetErrorCode(p));
+    if (!ok && !error_) error_ = at() + ": " + XML_ErrorString(XML_GetErrorCode(p));
     XML_ParserFree(p);
     if (error_) return Error{ErrorCode::kParse, "3mf: " + *error_};
     return Status::Ok();
@@ -205,12 +205,12 @@ Status flatten(const Parsed& p, std::uint32_t id, const Transform& t, int depth,
                PolygonSoup& soup) {
   const auto it = p.objects.find(id);
   if (it == p.objects.end())
-    return Error{ErrorCode::kParse, "3mf: build item " + std::to_string(item) +
-                                        " names object " + std::to_string(id) + ", which is not defined"};
+    return Error{ErrorCode::kParse, "3mf: build item " + std::to_string(item) + " names object " +
+                                        std::to_string(id) + ", which is not defined"};
   if (depth > kMaxComponentDepth)
     return Error{ErrorCode::kParse, "3mf: components nest deeper than " +
-                                        std::to_string(kMaxComponentDepth) + " (a cycle?) at object " +
-                                        std::to_string(id)};
+                                        std::to_string(kMaxComponentDepth) +
+                                        " (a cycle?) at object " + std::to_string(id)};
   const Object& o = it->second;
   if (soup.name.empty()) soup.name = o.name;
   const auto base = static_cast<std::uint32_t>(soup.positions.size());
@@ -222,7 +222,8 @@ Status flatten(const Parsed& p, std::uint32_t id, const Transform& t, int depth,
                                           " is not finite after its transform"};
     soup.positions.push_back(v);
   }
-  for (const auto& tri : o.triangles) soup.polygons.push_back({base + tri[0], base + tri[1], base + tri[2]});
+  for (const auto& tri : o.triangles)
+    soup.polygons.push_back({base + tri[0], base + tri[1], base + tri[2]});
   for (const auto& [child, local] : o.components)
     if (Status s = flatten(p, child, t.after(local), depth + 1, item, soup); !s) return s;
   return Status::Ok();
@@ -242,11 +243,20 @@ bool attribute_text(const std::string& s, std::string& out) {
     const auto c = static_cast<unsigned char>(s[i]);
     if (c < 0x20 && c != '\t' && c != '\n' && c != '\r') return false;
     switch (c) {
-      case '&': r += "&amp;"; break;
-      case '<': r += "&lt;"; break;
-      case '>': r += "&gt;"; break;
-      case '"': r += "&quot;"; break;
-      default: r += static_cast<char>(c);
+      case '&':
+        r += "&amp;";
+        break;
+      case '<':
+        r += "&lt;";
+        break;
+      case '>':
+        r += "&gt;";
+        break;
+      case '"':
+        r += "&quot;";
+        break;
+      default:
+        r += static_cast<char>(c);
     }
   }
   if (!check_utf8("3mf", s)) return false;
@@ -287,7 +297,8 @@ Result<std::string> write_3mf(const Model& m) {
   const TriangleMesh mesh = triangle_mesh(m);
   std::string xml =
       "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<model unit=\"millimeter\" xml:lang=\"en-US\" "
-      "xmlns=\"" + std::string(kCore) + "\">\n<resources>\n";
+      "xmlns=\"" +
+      std::string(kCore) + "\">\n<resources>\n";
   std::string build = "<build>\n";
   std::uint32_t id = 0;
   std::vector<std::uint32_t> local(mesh.positions.size(), kInvalidIndex);
@@ -304,10 +315,12 @@ Result<std::string> write_3mf(const Model& m) {
           local[i] = count++;
           used.push_back(i);
           const Vec3 p = mesh.positions[i];
-          vertices += "<vertex x=\"" + number_text(p.x) + "\" y=\"" + number_text(p.y) +
-                      "\" z=\"" + number_text(p.z) + "\"/>\n";
+          vertices += "<vertex x=\"" + number_text(p.x) + "\" y=\"" + number_text(p.y) + "\" z=\"" +
+                      number_text(p.z) + "\"/>\n";
         }
-        triangles += std::string(k == 0 ? " v1=\"" : k == 1 ? " v2=\"" : " v3=\"") +
+        triangles += std::string(k == 0   ? " v1=\""
+                                 : k == 1 ? " v2=\""
+                                          : " v3=\"") +
                      std::to_string(local[i]) + "\"";
       }
       triangles += "/>\n";
@@ -333,9 +346,12 @@ Result<std::string> write_3mf(const Model& m) {
   const std::string rels =
       "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<Relationships "
       "xmlns=\"http://schemas.openxmlformats.org/package/2006/relationships\"><Relationship "
-      "Target=\"/3D/3dmodel.model\" Id=\"rel0\" Type=\"" + std::string(kModelRel) + "\"/>"
+      "Target=\"/3D/3dmodel.model\" Id=\"rel0\" Type=\"" +
+      std::string(kModelRel) +
+      "\"/>"
       "</Relationships>\n";
-  return write_zip({{"[Content_Types].xml", types}, {"_rels/.rels", rels}, {"3D/3dmodel.model", xml}});
+  return write_zip(
+      {{"[Content_Types].xml", types}, {"_rels/.rels", rels}, {"3D/3dmodel.model", xml}});
 }
 
 }  // namespace cellforge::io

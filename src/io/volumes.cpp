@@ -43,7 +43,8 @@ Sides join_sides(const Model& m, GroupId g) {
         const EdgeId e = m.edge_of(u);
         if (seen[e.value]) continue;
         seen[e.value] = true;
-        for (EdgeUseId a : m.radial(e)) s.classes.unite(side(a, true), side(m.radial_next(a), false));
+        for (EdgeUseId a : m.radial(e))
+          s.classes.unite(side(a, true), side(m.radial_next(a), false));
       }
     }
   }

@@ -127,7 +127,8 @@ Result<ZipReader> ZipReader::open(std::span<const std::uint8_t> bytes) {
   }
   if (at > limit || size > limit - at)
     return zip_error(end, "the central directory lies outside the archive");
-  if (count > size / 46) return zip_error(end, "the central directory is too short for its entries");
+  if (count > size / 46)
+    return zip_error(end, "the central directory is too short for its entries");
   std::uint64_t p = at;
   for (std::uint64_t i = 0; i < count; ++i) {
     if (p + 46 > limit || get32(bytes, p) != 0x02014b50)
@@ -166,7 +167,8 @@ Result<ZipReader> ZipReader::open(std::span<const std::uint8_t> bytes) {
 }
 
 bool ZipReader::has(const std::string& name) const {
-  return std::any_of(entries_.begin(), entries_.end(), [&](const Entry& e) { return e.name == name; });
+  return std::any_of(entries_.begin(), entries_.end(),
+                     [&](const Entry& e) { return e.name == name; });
 }
 
 Result<std::string> ZipReader::read(const std::string& name, std::uint64_t limit) const {

@@ -106,7 +106,8 @@ TEST(Winding, NestingOfShells) {
   EXPECT_EQ(n.parent[3], Nesting::kNone);
   EXPECT_EQ(n.parent[4], 0u);
   // Only marked containers contain.
-  const Nesting only_outer = nest_surfaces(pts, tris, surface, 5, {true, false, false, false, false});
+  const Nesting only_outer =
+      nest_surfaces(pts, tris, surface, 5, {true, false, false, false, false});
   EXPECT_EQ(only_outer.parent[2], 0u);
   EXPECT_EQ(only_outer.depth[2], 1u);
 }

@@ -42,12 +42,12 @@ double signed_volume(const io::PolygonSoup& soup) {
   for (const auto& p : soup.polygons)
     for (std::size_t i = 1; i + 1 < p.size(); ++i) {
       const Vec3 a = soup.positions[p[0]], b = soup.positions[p[i]], c = soup.positions[p[i + 1]];
-      v6 += static_cast<long double>(a.x) * (static_cast<long double>(b.y) * c.z -
-                                              static_cast<long double>(b.z) * c.y) +
-            static_cast<long double>(a.y) * (static_cast<long double>(b.z) * c.x -
-                                              static_cast<long double>(b.x) * c.z) +
-            static_cast<long double>(a.z) * (static_cast<long double>(b.x) * c.y -
-                                              static_cast<long double>(b.y) * c.x);
+      v6 += static_cast<long double>(a.x) *
+                (static_cast<long double>(b.y) * c.z - static_cast<long double>(b.z) * c.y) +
+            static_cast<long double>(a.y) *
+                (static_cast<long double>(b.z) * c.x - static_cast<long double>(b.x) * c.z) +
+            static_cast<long double>(a.z) *
+                (static_cast<long double>(b.x) * c.y - static_cast<long double>(b.y) * c.x);
     }
   return static_cast<double>(v6 / 6);
 }
@@ -121,12 +121,11 @@ TEST(Holdout, EveryModelOfTestData) {
       const char* what;
     };
     const bool single = float_exact(m);
-    for (const Target& t : {Target{io::Format::kStl, {.stl_binary = true}, single, "binary stl"},
-                            Target{io::Format::kStl, {.stl_binary = false}, true, "ascii stl"},
-                            Target{io::Format::kObj, {}, true, "obj"},
-                            Target{io::Format::kOff, {}, true, "off"},
-                            Target{io::Format::k3mf, {}, true, "3mf"},
-                            Target{io::Format::kJson, {}, true, "json"}}) {
+    for (const Target& t :
+         {Target{io::Format::kStl, {.stl_binary = true}, single, "binary stl"},
+          Target{io::Format::kStl, {.stl_binary = false}, true, "ascii stl"},
+          Target{io::Format::kObj, {}, true, "obj"}, Target{io::Format::kOff, {}, true, "off"},
+          Target{io::Format::k3mf, {}, true, "3mf"}, Target{io::Format::kJson, {}, true, "json"}}) {
       SCOPED_TRACE(t.what);
       if (d.faces == 0 && t.format != io::Format::kJson && t.format != io::Format::kObj &&
           t.format != io::Format::k3mf)

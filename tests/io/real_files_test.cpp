@@ -6,8 +6,8 @@
 #include <cmath>
 #include <random>
 
-#include "cellforge/io/diagnose.h"
 #include "cellforge/geom/intersect.h"
+#include "cellforge/io/diagnose.h"
 #include "cellforge/io/triangulate.h"
 #include "cellforge/topo/validate.h"
 #include "io/intersect.h"
@@ -118,10 +118,9 @@ TEST(BackToBack, PairsAndFinsImportIntoValidModels) {
     std::size_t cells;
     double volume;
   };
-  for (const Case& c : {Case{"back_to_back/two_cubes_face.obj", 2, 2},
-                        Case{"back_to_back/pair_in_cube.obj", 1, 1},
-                        Case{"back_to_back/fin_in_cube.obj", 1, 1},
-                        Case{"back_to_back/diagonal_wall.obj", 2, 1}}) {
+  for (const Case& c :
+       {Case{"back_to_back/two_cubes_face.obj", 2, 2}, Case{"back_to_back/pair_in_cube.obj", 1, 1},
+        Case{"back_to_back/fin_in_cube.obj", 1, 1}, Case{"back_to_back/diagonal_wall.obj", 2, 1}}) {
     for (bool merge : {false, true}) {
       SCOPED_TRACE(std::string(c.file) + (merge ? " merged" : ""));
       const Model m = read_fixture(c.file, {.import = {.merge_coplanar = merge}});

@@ -38,9 +38,7 @@ std::vector<std::array<std::uint64_t, 3>> position_bits(const Model& m) {
 }
 
 // A package whose model part is `xml`, as a producer other than io/ might write it.
-std::string package(const std::string& xml) {
-  return io::write_zip({{"3D/3dmodel.model", xml}});
-}
+std::string package(const std::string& xml) { return io::write_zip({{"3D/3dmodel.model", xml}}); }
 
 std::string model_xml(const std::string& resources, const std::string& build) {
   return "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<model unit=\"millimeter\" "
@@ -76,8 +74,8 @@ TEST(ThreeMf, CoordinatesRoundTripBitForBit) {
 
 TEST(ThreeMf, ANumberNoDoubleHoldsIsAnErrorThatSaysSo) {
   const std::string bad = package(model_xml(
-      triangle_object(1, "<vertex x=\"0\" y=\"0\" z=\"0\"/>\n", "<vertex x=\"1e400\" y=\"0\" z=\"0\"/>",
-                      "<vertex x=\"0\" y=\"1\" z=\"0\"/>"),
+      triangle_object(1, "<vertex x=\"0\" y=\"0\" z=\"0\"/>\n",
+                      "<vertex x=\"1e400\" y=\"0\" z=\"0\"/>", "<vertex x=\"0\" y=\"1\" z=\"0\"/>"),
       "<item objectid=\"1\"/>"));
   Model m;
   auto r = io::read_model(m, bytes_of(bad), io::Format::k3mf);
@@ -119,7 +117,8 @@ TEST(ThreeMf, TransformsAndComponentsApply) {
   for (VertexId v : m.vertices()) got.push_back(m.position(v));
   EXPECT_EQ(got, (std::vector<Vec3>{{10, 0, 0}, {12, 0, 0}, {10, 2, 0}}));
   const std::string loop = model_xml(
-      "<object id=\"1\" type=\"model\"><components><component objectid=\"1\"/></components></object>",
+      "<object id=\"1\" type=\"model\"><components><component "
+      "objectid=\"1\"/></components></object>",
       "<item objectid=\"1\"/>");
   auto r = io::read_model(m, bytes_of(package(loop)), io::Format::k3mf);
   ASSERT_FALSE(r.ok());
