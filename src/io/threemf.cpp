@@ -32,8 +32,9 @@ namespace {
 
 constexpr const char* kCore = "http://schemas.microsoft.com/3dmanufacturing/core/2015/02";
 constexpr const char* kModelRel = "http://schemas.microsoft.com/3dmanufacturing/2013/01/3dmodel";
-// What one part may unpack to: far above any real model's XML, far below memory.
-constexpr std::uint64_t kMaxPart = std::uint64_t{1} << 32;
+// What one part may unpack to: far above any real model's XML (about 100 bytes per
+// vertex and per triangle: 10 M triangles), below what a machine has to spare.
+constexpr std::uint64_t kMaxPart = std::uint64_t{1} << 30;
 constexpr int kMaxComponentDepth = 32;
 
 // [x y z 1] times the 4 x 3 matrix m00 m01 m02 m10 ... m32 (3MF's row-vector form).

@@ -185,6 +185,11 @@ Result<std::string> ZipReader::read(const std::string& name, std::uint64_t limit
   if (e.size > limit)
     return zip_error(h, name + " would unpack to " + std::to_string(e.size) +
                             " bytes, more than the limit of " + std::to_string(limit));
+  // Deflate expands at most 1032 to 1 (a run of 258 bytes per 2 bits): a larger size
+  // is a lie, and would be allocated before the data could refute it.
+  if (e.method == 8 && e.size > 1032 * e.packed + 1032)
+    return zip_error(h, name + " declares " + std::to_string(e.size) + " bytes from " +
+                            std::to_string(e.packed) + " deflated ones, more than deflate can make");
   std::string out(e.size, '\0');
   const std::uint8_t* in = bytes_.data() + data;
   if (e.method == 0) {

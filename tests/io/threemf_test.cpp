@@ -136,6 +136,23 @@ TEST(ThreeMf, DamagedPackagesAreErrors) {
   EXPECT_TRUE(m.empty());
   std::string cut = good->substr(0, good->size() - 10);
   EXPECT_FALSE(io::read_model(m, bytes_of(cut), io::Format::k3mf).ok());
+  // A part that claims to unpack to 512 MB from a few hundred bytes is refused before
+  // anything is allocated: the size field of the model part's central directory entry.
+  std::string lie = *good;
+  const auto u32 = [&](std::size_t at) {
+    std::uint32_t v = 0;
+    for (int k = 3; k >= 0; --k) v = v << 8 | static_cast<unsigned char>(lie[at + k]);
+    return v;
+  };
+  const std::size_t end = lie.size() - 22;
+  std::size_t p = u32(end + 16);
+  while (lie.compare(p + 46, 16, "3D/3dmodel.model") != 0)
+    p += 46 + (u32(p + 28) & 0xffff) + (u32(p + 30) & 0xffff) + (u32(p + 32) & 0xffff);
+  for (int k = 0; k < 4; ++k) lie[p + 24 + k] = static_cast<char>(k == 3 ? 0x20 : 0);
+  auto big = io::read_model(m, bytes_of(lie), io::Format::k3mf);
+  ASSERT_FALSE(big.ok());
+  EXPECT_NE(big.error().message.find("more than deflate can make"), std::string::npos)
+      << big.error().message;
 }
 
 #ifdef CELLFORGE_TEST_LIB3MF
