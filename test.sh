@@ -1,7 +1,10 @@
 #!/usr/bin/env bash
 # Builds and runs every test: the normal build in build/, a separate project built
 # against its `cmake --install`, then the same tests once more under
-# AddressSanitizer + UndefinedBehaviorSanitizer in build-asan/.
+# AddressSanitizer + UndefinedBehaviorSanitizer in build-asan/. Among the tests, the
+# holdout check (tests/holdout/) reads, diagnoses, converts to every format and back,
+# saves and loads every model of tests/data/, its volumes checked against a signed
+# volume computed from the files' own polygons.
 # The store tests run against a real PostgreSQL server started here (and stopped at
 # exit); if it cannot start, this script fails. Then each file parser is fuzzed for
 # FUZZ_SECONDS (default 30) seconds. Exits non-zero on any failure.

@@ -19,11 +19,6 @@ JOBS=$(nproc 2>/dev/null || echo 2)
 
 command -v "$CXX" > /dev/null || { echo "fuzz.sh: $CXX not found (apt-get install clang)"; exit 1; }
 
-if [ ! -f /usr/include/lib3mf/Model/COM/NMR_DLLInterfaces.h ]; then
-  FORMATS=${FORMATS//3mf/}
-  echo "fuzz.sh: lib3mf-dev not installed; skipping the 3mf target"
-fi
-
 # The fuzzers link the io layer target (and so the layers io/ stands on: geom, topo,
 # shape; no database code, which needs server libraries), built with clang, -O1 and
 # the sanitizers by the CELLFORGE_FUZZ configuration of CMakeLists.txt.
@@ -50,9 +45,7 @@ for fmt in $FORMATS; do
   mkdir -p "$corpus" "$crashes"
   cp "$ROOT"/tests/data/*."$fmt" "$corpus"/ 2>/dev/null || true
   echo "fuzz.sh: $fmt for ${SECONDS_EACH}s on $(ls "$corpus" | wc -l) inputs"
-  # lib3mf keeps some allocations for the process lifetime: no leak check there.
-  leaks=1; [ "$fmt" = 3mf ] && leaks=0
-  if ! ASAN_OPTIONS=detect_leaks=$leaks:abort_on_error=1 \
+  if ! ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 \
        "$bin" -max_total_time="$SECONDS_EACH" -max_len=65536 -timeout=10 -rss_limit_mb=2048 \
        -artifact_prefix="$crashes/" -print_final_stats=1 "$corpus" > "$OUT/fuzz_$fmt.log" 2>&1; then
     echo "fuzz.sh: $fmt FAILED; see $OUT/fuzz_$fmt.log and $crashes/"

@@ -23,8 +23,10 @@ constexpr const char* kUsage =
     "  polygon faces), repair_orientation=true, volumes=auto|none; read limits\n"
     "  max_bytes=N and max_3mf_bytes=N (K, M, G suffixes; 0: none; docs/io.md).\n"
     "  --json prints one JSON object with the keys vertices, edges, faces, loops,\n"
-    "  volumes, groups, euler_characteristic, valid, closed, manifold, volume, area,\n"
-    "  centroid, bbox and the detailed findings (docs/io.md).\n"
+    "  volumes, groups, euler_characteristic_surface, euler_characteristic_solid, valid,\n"
+    "  closed, manifold, volume, area, centroid, bbox, warnings and the detailed\n"
+    "  findings (docs/io.md). Without cells (an open mesh) volume is the signed volume\n"
+    "  of the surface, with a warning.\n"
     "  --strict exits 1 when the model is not valid (after printing the report).";
 
 std::string report_json(const io::ImportReport& r) {

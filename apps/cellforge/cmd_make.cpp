@@ -33,10 +33,12 @@ constexpr const char* kUsage =
     "    frustum         n r1 r2 h center\n"
     "    polyhedron      points=X,Y,Z;X,Y,Z;... faces=I,J,K;...  (clockwise from outside)\n"
     "    linear_extrude  shape=square|circle|ngon size r|d n x y height|h center twist\n"
-    "                    scale=S|SX,SY slices fn fa fs\n"
+    "                    scale=S|SX,SY slices fn fa fs shape_fn shape_fa shape_fs\n"
     "    rotate_extrude  shape=square|circle|ngon size r|d n x y angle start fn fa fs\n"
+    "                    shape_fn shape_fa shape_fs\n"
     "  (the 2D shape of a sweep is OpenSCAD's square(size) (center_shape=true centres it),\n"
-    "   circle(r) or a regular n-gon of circumradius r, translated by [x, y])\n"
+    "   circle(r) or a regular n-gon of circumradius r, translated by [x, y]; shape_fn,\n"
+    "   shape_fa, shape_fs facet the circle apart from the sweep, default fn, fa, fs)\n"
     "  Every kind also takes max_vertices=N: the most vertices it may make (default\n"
     "  10000000, checked before anything is built; docs/shape.md).\n"
     "  OUT: .stl .obj .off .3mf .json, or - for standard output with --format F;\n"
@@ -102,8 +104,12 @@ class Reader {
     }
     return number(r, fallback);
   }
-  Result<Faceting> faceting() const {
-    auto fn = number("fn", 0), fa = number("fa", 12), fs = number("fs", 2);
+  // fn, fa, fs; with a prefix ("shape_"), the prefixed keys where given and the plain
+  // ones elsewhere (a sweep's profile takes the sweep's faceting unless told apart, as
+  // a child in OpenSCAD inherits $fn unless it sets its own).
+  Result<Faceting> faceting(const std::string& prefix = "") const {
+    const auto key = [&](const std::string& k) { return has(prefix + k) ? prefix + k : k; };
+    auto fn = number(key("fn"), 0), fa = number(key("fa"), 12), fs = number(key("fs"), 2);
     if (!fn) return fn.error();
     if (!fa) return fa.error();
     if (!fs) return fs.error();
@@ -243,7 +249,7 @@ Result<Region> shape(const Params& p) {
     region = rectangle(size, center);
   } else if (kind == "circle" || kind == "ngon") {
     TRY(radius, r.radius("r", "d", 1));
-    TRY(f, r.faceting());
+    TRY(f, r.faceting("shape_"));
     TRY(n, r.count("n", 6));
     region = kind == "circle" ? circle(radius, f) : regular_polygon(n, radius);
   } else {
@@ -317,11 +323,11 @@ const std::vector<Kind>& kinds() {
       {"polyhedron", {"points", "faces"}, polyhedron},
       {"linear_extrude",
        {"shape", "size", "r", "d", "n", "x", "y", "center_shape", "height", "h", "center", "twist",
-        "scale", "slices", "fn", "fa", "fs"},
+        "scale", "slices", "fn", "fa", "fs", "shape_fn", "shape_fa", "shape_fs"},
        extrude},
       {"rotate_extrude",
        {"shape", "size", "r", "d", "n", "x", "y", "center_shape", "angle", "start", "fn", "fa",
-        "fs"},
+        "fs", "shape_fn", "shape_fa", "shape_fs"},
        revolve},
   };
   return k;

@@ -27,7 +27,7 @@
 #include <unordered_map>
 #include <vector>
 
-#include "boolean/bvh.h"
+#include "cellforge/geom/bvh.h"
 #include "boolean/filtered.h"
 #include "cellforge/geom/vec.h"
 #include "cellforge/ids.h"

@@ -15,9 +15,9 @@
 #include <numeric>
 #include <unordered_map>
 
-#include "boolean/bvh.h"
 #include "boolean/parallel.h"
 #include "boolean/stages.h"
+#include "cellforge/geom/bvh.h"
 #include "cellforge/geom/intersect.h"
 #include "cellforge/geom/polygon.h"
 #include "cellforge/io/triangulate.h"

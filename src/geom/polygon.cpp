@@ -22,8 +22,8 @@ constexpr double kEps = 0x1p-53;
 
 Vec3 newell_normal(std::span<const Vec3> loop, Vec3 sum) {
   if (loop.size() < 3) return sum;
-  for (std::size_t i = 0; i < loop.size(); ++i)
-    sum = sum + cross(loop[i], loop[(i + 1) % loop.size()]);
+  const Vec3 o = loop[0];
+  for (std::size_t i = 1; i + 1 < loop.size(); ++i) sum = sum + cross(loop[i] - o, loop[i + 1] - o);
   return sum;
 }
 

@@ -4,6 +4,7 @@
 #include "cellforge/io/diagnose.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <numeric>
 
@@ -89,6 +90,50 @@ std::string num(double d) {
   return buf;
 }
 
+// The signed volume of the faces as oriented: each face's fan of cones from the
+// origin (counterclockwise seen from the front counts positive), as admesh and
+// trimesh sum it for a mesh that is not closed.
+double surface_volume(const Model& m) {
+  double volume6 = 0;
+  for (FaceId f : m.faces()) {
+    for (LoopId l : m.loops_of(f)) {
+      if (m.is_point_loop(l)) continue;
+      const std::vector<Vec3> p = m.loop_points(l);
+      for (std::size_t i = 1; i + 1 < p.size(); ++i) volume6 += dot(p[0], cross(p[i], p[i + 1]));
+    }
+  }
+  return volume6 / 6;
+}
+
+// A warning for each closed shell (faces joined through edges, every edge of them
+// used at least twice) none of whose faces bounds a cell.
+void shells_without_cells(const Model& m, std::vector<std::string>& warnings) {
+  UnionFind shell(m.face_slots());
+  for (EdgeId e : m.edges()) {
+    FaceId first;
+    for (EdgeUseId u : m.radial(e)) {
+      if (first.is_valid())
+        shell.unite(first.value, m.face_of(u).value);
+      else
+        first = m.face_of(u);
+    }
+  }
+  std::vector<char> open(m.face_slots(), 0), solid(m.face_slots(), 0);
+  for (EdgeId e : m.edges())
+    if (m.use_count(e) == 1) open[shell.find(m.face_of(m.first_use(e)).value)] = 1;
+  for (FaceId f : m.faces())
+    if (m.front_volume(f).is_valid() || m.back_volume(f).is_valid()) solid[shell.find(f.value)] = 1;
+  std::size_t count = 0;
+  for (FaceId f : m.faces()) {
+    const std::uint32_t r = shell.find(f.value);
+    if (r != f.value || open[r] || solid[r]) continue;
+    if (++count <= 10)
+      warnings.push_back("the closed shell of " + f.str() +
+                         " bounds no cell (inside out, or a cavity with no solid around it)");
+  }
+  if (count > 10) warnings.push_back(std::to_string(count - 10) + " more closed shells bound no cell");
+}
+
 std::string vec_json(Vec3 v) { return "[" + num(v.x) + ", " + num(v.y) + ", " + num(v.z) + "]"; }
 
 }  // namespace
@@ -101,7 +146,11 @@ Diagnosis diagnose(const Model& m, const DiagnoseOptions& options) {
   d.loops = m.num_loops();
   d.volumes = m.num_volumes();
   d.groups = m.num_groups();
-  d.euler_characteristic = euler_figures(m).lhs();
+  {
+    const EulerFigures fig = euler_figures(m);
+    d.euler_characteristic_surface = fig.v - fig.e + (fig.f - fig.r);
+    d.euler_characteristic_solid = fig.lhs();
+  }
   const auto violations = validate(m);
   d.valid = violations.empty();
   for (std::size_t i = 0; i < violations.size() && i < 10; ++i)
@@ -154,6 +203,17 @@ Diagnosis diagnose(const Model& m, const DiagnoseOptions& options) {
   d.manifold = d.non_manifold_edges.empty() && d.non_manifold_vertices.empty() &&
                d.wire_edges == 0 && d.isolated_vertices == 0;
   d.mass = shape::mass_properties(m);
+  d.volume = d.mass.volume;
+  if (!d.mass.solid && d.faces > 0) {
+    d.volume = surface_volume(m);
+    d.warnings.push_back(std::string("no face bounds a cell (") +
+                         (d.closed ? "the surface is closed but bounds no solid"
+                                   : "the surface is open: " +
+                                         std::to_string(d.boundary_edges.size()) +
+                                         " boundary edges") +
+                         "): volume is the signed volume of the faces as they are oriented");
+  }
+  shells_without_cells(m, d.warnings);
   return d;
 }
 
@@ -166,7 +226,8 @@ std::string to_text(const Diagnosis& d) {
   line("loops", std::to_string(d.loops));
   line("volumes", std::to_string(d.volumes));
   line("groups", std::to_string(d.groups));
-  line("euler_characteristic", std::to_string(d.euler_characteristic));
+  line("euler_characteristic_surface", std::to_string(d.euler_characteristic_surface));
+  line("euler_characteristic_solid", std::to_string(d.euler_characteristic_solid));
   line("valid", d.valid ? "yes" : "no");
   for (const auto& v : d.violations) line("  violation", v);
   line("closed", d.closed ? "yes" : "no");
@@ -181,7 +242,8 @@ std::string to_text(const Diagnosis& d) {
        d.self_intersections_checked ? list_text(d.self_intersections) : "not checked");
   line("wire_edges", std::to_string(d.wire_edges));
   line("isolated_vertices", std::to_string(d.isolated_vertices));
-  line("volume", num(d.mass.volume));
+  for (const auto& w : d.warnings) line("warning", w);
+  line("volume", num(d.volume));
   line("area", num(d.mass.area));
   const auto v = [](Vec3 p) { return num(p.x) + " " + num(p.y) + " " + num(p.z); };
   line("centroid", v(d.mass.centroid));
@@ -200,11 +262,12 @@ std::string to_json(const Diagnosis& d) {
   field("loops", std::to_string(d.loops));
   field("volumes", std::to_string(d.volumes));
   field("groups", std::to_string(d.groups));
-  field("euler_characteristic", std::to_string(d.euler_characteristic));
+  field("euler_characteristic_surface", std::to_string(d.euler_characteristic_surface));
+  field("euler_characteristic_solid", std::to_string(d.euler_characteristic_solid));
   field("valid", d.valid ? "true" : "false");
   field("closed", d.closed ? "true" : "false");
   field("manifold", d.manifold ? "true" : "false");
-  field("volume", num(d.mass.volume));
+  field("volume", num(d.volume));
   field("area", num(d.mass.area));
   field("centroid", vec_json(d.mass.centroid));
   field("bbox",
@@ -221,17 +284,21 @@ std::string to_json(const Diagnosis& d) {
     put_ids(s, "self_intersections", d.self_intersections);
   else
     field("self_intersections", "null");
-  std::string v = "[";
-  for (std::size_t i = 0; i < d.violations.size(); ++i) {
-    if (i) v += ", ";
-    v += '"';
-    for (char c : d.violations[i]) {
-      if (c == '"' || c == '\\') v += '\\';
-      if (static_cast<unsigned char>(c) >= 0x20) v += c;
+  const auto strings = [](const std::vector<std::string>& list) {
+    std::string v = "[";
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      if (i) v += ", ";
+      v += '"';
+      for (char c : list[i]) {
+        if (c == '"' || c == '\\') v += '\\';
+        if (static_cast<unsigned char>(c) >= 0x20) v += c;
+      }
+      v += '"';
     }
-    v += '"';
-  }
-  field("violations", v + "]");
+    return v + "]";
+  };
+  field("violations", strings(d.violations));
+  field("warnings", strings(d.warnings));
   return s + "\n}\n";
 }
 

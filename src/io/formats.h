@@ -35,7 +35,7 @@ Result<std::string> write_obj(const Model& m, const WriteOptions& options);
 // off.cpp
 Result<PolygonSoup> parse_off(std::string_view text);
 Result<std::string> write_off(const Model& m, const WriteOptions& options);
-// threemf.cpp (an error of kind kUnsupported when built without lib3mf)
+// threemf.cpp
 Result<std::vector<PolygonSoup>> parse_3mf(std::span<const std::uint8_t> bytes);
 Result<std::string> write_3mf(const Model& m);
 // zip_size.cpp: an error when the entries of the ZIP archive in `bytes` declare more

@@ -3,12 +3,13 @@
 // 1. weld positions (weld.h) and rewrite the polygons; drop repeated consecutive
 //    corners, and polygons left with fewer than 3 distinct corners (reported);
 // 2. repair orientation (optional): flip faces across two-face edges so that
-//    neighbours agree, then turn closed patches of negative volume outward;
+//    neighbours agree, then orient each closed patch by its nesting: outward when
+//    an even number of closed patches contain it (a solid, or an island in a
+//    cavity), inward when an odd number do (a cavity);
 // 3. merge coplanar triangles (optional) into polygons, with holes, when the
 //    boundary of the merged patch is a set of simple loops;
-// 4. give each closed, consistently oriented face-connected shell of positive
-//    volume its own cell (VolumeMode::kAuto);
-// 5. build_mesh, with the positions no face, wire or point uses left out.
+// 4. build_mesh, with the positions no face, wire or point uses left out;
+// 5. make the cells of the regions the faces bound (VolumeMode::kAuto, volumes.h).
 #include <algorithm>
 #include <numeric>
 #include <optional>
@@ -16,10 +17,11 @@
 
 #include "cellforge/geom/polygon.h"
 #include "cellforge/geom/predicates.h"
-#include "cellforge/geom/union_find.h"
 #include "cellforge/geom/volume.h"
 #include "cellforge/topo/builder.h"
+#include "cellforge/geom/winding.h"
 #include "io/formats.h"
+#include "io/volumes.h"
 #include "io/weld.h"
 
 namespace cellforge::io {
@@ -147,41 +149,46 @@ std::vector<std::uint32_t> patches(const std::vector<Polygon>& polys, const Edge
 
 // Whether every edge used by a patch is used by it equally often in both
 // directions (a closed, consistently oriented shell).
-std::vector<bool> closed_patches(const std::vector<Polygon>& polys, const EdgeTable& edges,
-                                 const std::vector<std::uint32_t>& patch, std::uint32_t count) {
+std::vector<bool> closed_patches(const EdgeTable& edges, const std::vector<std::uint32_t>& patch,
+                                 std::uint32_t count) {
   std::vector<bool> closed(count, true);
-  std::vector<std::pair<std::uint32_t, int>> sides;  // (patch, +1 forward / -1 backward)
+  std::vector<std::pair<std::uint32_t, int>> balance;  // (patch, +1 forward / -1 backward)
   for (std::uint32_t e = 0; e < edges.num_edges(); ++e) {
     const auto uses = edges.uses(e);
-    if (uses.size() > 8) {
-      // Many faces on one edge (200,000 copies of one triangle): balance by patch
-      // after sorting, not use against use.
-      sides.clear();
-      for (std::uint32_t d : uses)
-        sides.push_back({patch[edges.poly_of(d)], edges.forward(d) ? 1 : -1});
-      std::sort(sides.begin(), sides.end());
-      for (std::size_t i = 0; i < sides.size();) {
-        int balance = 0;
-        std::size_t j = i;
-        for (; j < sides.size() && sides[j].first == sides[i].first; ++j)
-          balance += sides[j].second;
-        if (balance != 0) closed[sides[i].first] = false;
-        i = j;
-      }
-      continue;
-    }
-    // Balance per patch among this edge's few uses.
-    for (std::uint32_t c : uses) {
-      const std::uint32_t pa = patch[edges.poly_of(c)];
-      if (!closed[pa]) continue;
-      int balance = 0;
-      for (std::uint32_t d : uses)
-        if (patch[edges.poly_of(d)] == pa) balance += edges.forward(d) ? 1 : -1;
-      if (balance != 0) closed[pa] = false;
+    if (uses.size() == 2 && patch[edges.poly_of(uses[0])] == patch[edges.poly_of(uses[1])] &&
+        edges.forward(uses[0]) != edges.forward(uses[1]))
+      continue;  // the common case, balanced
+    balance.clear();
+    for (std::uint32_t c : uses) balance.push_back({patch[edges.poly_of(c)], edges.forward(c) ? 1 : -1});
+    std::sort(balance.begin(), balance.end());
+    for (std::size_t i = 0; i < balance.size();) {
+      int sum = 0;
+      std::size_t j = i;
+      for (; j < balance.size() && balance[j].first == balance[i].first; ++j) sum += balance[j].second;
+      if (sum != 0) closed[balance[i].first] = false;
+      i = j;
     }
   }
-  (void)polys;
   return closed;
+}
+
+// The depth of each closed patch: how many other closed patches contain it (exact,
+// geom/winding.h).
+std::vector<std::uint32_t> patch_depths(const std::vector<Vec3>& pos,
+                                        const std::vector<Polygon>& polys,
+                                        const std::vector<std::uint32_t>& patch,
+                                        const std::vector<bool>& closed) {
+  std::vector<std::array<std::uint32_t, 3>> triangles;
+  std::vector<std::uint32_t> surface_of;
+  for (std::size_t p = 0; p < polys.size(); ++p) {
+    if (!closed[patch[p]]) continue;
+    for (std::size_t i = 1; i + 1 < polys[p].size(); ++i) {
+      triangles.push_back({polys[p][0], polys[p][i], polys[p][i + 1]});
+      surface_of.push_back(patch[p]);
+    }
+  }
+  return nest_surfaces(pos, triangles, surface_of, static_cast<std::uint32_t>(closed.size()))
+      .depth;
 }
 
 std::size_t repair_orientation(const std::vector<Vec3>& pos, std::vector<Polygon>& polys) {
@@ -200,13 +207,17 @@ std::size_t repair_orientation(const std::vector<Vec3>& pos, std::vector<Polygon
       count);
   for (std::size_t p = 0; p < polys.size(); ++p)
     if (flip[p] == 1) std::reverse(polys[p].begin(), polys[p].end());
-  // Closed patches enclosing negative volume are inside out.
+  // A closed patch points outward at even depth and inward (a cavity) at odd depth.
   const EdgeTable fixed(polys);
-  const auto closed = closed_patches(polys, fixed, patch, count);
+  const auto closed = closed_patches(fixed, patch, count);
   const std::vector<int> volume = patch_volume_signs(pos, polys, patch, closed);
+  std::vector<std::uint32_t> depth;
+  if (std::count(closed.begin(), closed.end(), true) > 1)
+    depth = patch_depths(pos, polys, patch, closed);
   std::size_t flipped = 0;
   for (std::size_t p = 0; p < polys.size(); ++p) {
-    const bool turn = closed[patch[p]] && volume[patch[p]] < 0;
+    const int want = depth.empty() || depth[patch[p]] % 2 == 0 ? 1 : -1;
+    const bool turn = closed[patch[p]] && volume[patch[p]] == -want;
     if (turn) std::reverse(polys[p].begin(), polys[p].end());
     flipped += (turn != (flip[p] == 1)) ? 1 : 0;
   }
@@ -381,47 +392,6 @@ Result<ReadResult> import_soup(Model& m, const PolygonSoup& soup, const ImportOp
   }
   report.merged_faces = faces.size();
 
-  // Cells: closed, consistently oriented shells of positive volume (outer loops
-  // only decide closedness; inner loops of merged faces lie inside them).
-  std::vector<int> cell(faces.size(), -1);
-  int cells = 0;
-  if (options.volumes == VolumeMode::kAuto && !faces.empty()) {
-    std::vector<Polygon> all;  // every loop, as the edge table sees it
-    std::vector<std::uint32_t> face_of_loop;
-    for (std::size_t f = 0; f < faces.size(); ++f)
-      for (const Polygon& l : faces[f]) {
-        all.push_back(l);
-        face_of_loop.push_back(static_cast<std::uint32_t>(f));
-      }
-    const EdgeTable edges(all);
-    std::uint32_t count = 0;
-    auto patch = patches(
-        all, edges,
-        [&](std::uint32_t c, std::uint32_t o) { return edges.forward(c) != edges.forward(o); },
-        count);
-    // Loops of one face belong to one patch.
-    std::vector<std::uint32_t> face_patch(faces.size(), kNoRep);
-    UnionFind joined(count);
-    for (std::size_t l = 0; l < all.size(); ++l) {
-      std::uint32_t& fp = face_patch[face_of_loop[l]];
-      if (fp == kNoRep)
-        fp = patch[l];
-      else
-        joined.unite(fp, patch[l]);
-    }
-    for (auto& p : patch) p = joined.find(p);
-    const auto closed = closed_patches(all, edges, patch, count);
-    const std::vector<int> volume = patch_volume_signs(welded, all, patch, closed);
-    std::vector<int> cell_of_patch(count, -1);
-    for (std::size_t l = 0; l < all.size(); ++l) {
-      const std::uint32_t p = patch[l];
-      if (!closed[p] || volume[p] <= 0) continue;
-      if (cell_of_patch[p] < 0) cell_of_patch[p] = cells++;
-      cell[face_of_loop[l]] = cell_of_patch[p];
-    }
-    report.closed_shells = static_cast<std::size_t>(cells);
-  }
-
   // Keep the positions something uses, in input order.
   std::vector<bool> used(welded.size(), false);
   for (const auto& f : faces)
@@ -450,7 +420,6 @@ Result<ReadResult> import_soup(Model& m, const PolygonSoup& soup, const ImportOp
       for (std::uint32_t& i : l) i = compact[i];
       face.loops.push_back(std::move(l));
     }
-    face.back = cell[f];
     in.faces.push_back(std::move(face));
   }
   // Wires duplicating a face edge or another wire are left out.
@@ -467,11 +436,15 @@ Result<ReadResult> import_soup(Model& m, const PolygonSoup& soup, const ImportOp
       if (known.insert(key(a, b)).second) in.wires.push_back({a, b});
     }
   }
-  in.volumes = cells;
   in.group_name = !options.group_name.empty() ? options.group_name : soup.name;
   auto built = build_mesh(m, in);
   if (!built) return built.error();
   result.group = built->group;
+  if (options.volumes == VolumeMode::kAuto) {
+    auto cells = make_region_volumes(m, built->group);
+    if (!cells) return cells.error();
+    report.closed_shells = *cells;
+  }
   return result;
 }
 

@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "cellforge/topo/validate.h"
 #include "io/formats.h"
 #include "io/text.h"
 
@@ -315,6 +316,12 @@ Result<std::string> write_model(const Model& m, Format format, const WriteOption
     case Format::k3mf:
       return write_3mf(m);
     case Format::kJson:
+      // The reader validates what it restores: an invalid model would be written
+      // but never read back, so it is refused here with the reader's reasons.
+      if (auto violations = validate(m); !violations.empty())
+        return Error{ErrorCode::kInvalidInput,
+                     "json: the model is invalid, so the file could not be read back: " +
+                         to_string(violations)};
       return write_json(m);
   }
   return Error{ErrorCode::kUnsupported, "unknown format"};

@@ -26,14 +26,16 @@ struct Vec3BitsHash {
   }
 };
 
-// Interns positions into `out`, returning each one's index there.
+// Interns positions into `out`, returning each one's index there. -0 and +0 are one
+// coordinate for the lookup, but `out` keeps the first position as it was given, bit
+// for bit (a file's -0 stays -0 through import, export and the database).
 class PositionIndex {
  public:
   explicit PositionIndex(std::vector<Vec3>& out) : out_(out) {}
   std::uint32_t add(Vec3 p) {
     const auto plus_zero = [](double d) { return d == 0 ? 0.0 : d; };
-    p = {plus_zero(p.x), plus_zero(p.y), plus_zero(p.z)};
-    auto [it, fresh] = index_.try_emplace(p, static_cast<std::uint32_t>(out_.size()));
+    const Vec3 key{plus_zero(p.x), plus_zero(p.y), plus_zero(p.z)};
+    auto [it, fresh] = index_.try_emplace(key, static_cast<std::uint32_t>(out_.size()));
     if (fresh) out_.push_back(p);
     return it->second;
   }

@@ -163,6 +163,22 @@ void extrude_attributes(Draft& d, const LinearExtrudeOptions& o, int slices) {
   d.attribute("slices", slices);
 }
 
+// Which diagonal splits the side quad a b c e (a, b in slice k, c above b, e above a;
+// a b runs along the profile): OpenSCAD's rule (linear_extrude's add_slice_indices),
+// so that twisted and non-uniformly scaled extrusions match it face for face. The
+// diagonals' lengths are compared in the plane (both rise by the same height): the
+// shorter one wins, and lengths within 10 ppm of each other count as equal, as they
+// do there. On a tie (a profile vertex on the twist axis, say) a c is taken for an
+// outer loop twisted forward (twist > 0), b e for a hole, and the other way round when
+// twist <= 0. This choice builds a shape, it decides no topology: the tolerance is
+// OpenSCAD's definition of its output, not a robustness device.
+bool split_along_ac(Vec2 a, Vec2 b, Vec2 c, Vec2 e, bool hole, bool back_twist) {
+  constexpr double kRatio = 1e5;
+  const double ac = std::hypot(c.x - a.x, c.y - a.y), be = std::hypot(e.x - b.x, e.y - b.y);
+  const int shorter = 2 * std::fabs(ac - be) * kRatio > ac + be ? (ac < be ? -1 : 1) : 0;
+  return shorter == -1 || (shorter == 0 && hole == back_twist);
+}
+
 // ring[k][l][i]: vertex of profile point i of loop l in slice k.
 void extrude_into(Draft& d, const Profile& p, const LinearExtrudeOptions& o, int slices) {
   const bool apex = o.scale_x == 0 && o.scale_y == 0;
@@ -198,9 +214,8 @@ void extrude_into(Draft& d, const Profile& p, const LinearExtrudeOptions& o, int
         } else if (!split) {
           d.face(Loop{a, b, c, e});
         } else {
-          const Vec3 pa = d.mesh.positions[a], pb = d.mesh.positions[b];
-          const Vec3 pc = d.mesh.positions[c], pe = d.mesh.positions[e];
-          if (dot(pc - pa, pc - pa) <= dot(pe - pb, pe - pb)) {
+          if (split_along_ac(at[k][l][i], at[k][l][j], at[k + 1][l][j], at[k + 1][l][i],
+                             l > 0, o.twist <= 0)) {
             d.face(Loop{a, b, c});
             d.face(Loop{a, c, e});
           } else {

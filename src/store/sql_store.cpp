@@ -8,6 +8,7 @@
 #include <thread>
 #include <cstdlib>
 
+#include "cellforge/topo/validate.h"
 #include "store/connection.h"
 #include "store/model_rows.h"
 
@@ -230,6 +231,12 @@ class SqlStore final : public Store {
 
   Result<VolumeInfo> put(const std::string& name, const Model& m,
                          const PutOptions& options) override {
+    // get() validates what it rebuilds: an invalid model would be stored but never
+    // loaded, so it is refused before anything is written.
+    if (auto violations = validate(m); !violations.empty())
+      return Error{ErrorCode::kInvalidInput,
+                   "the model is invalid, so the stored version could not be loaded: " +
+                       to_string(violations)};
     VolumeInfo info;
     const ModelRows rows = to_rows(m, info);
     if (Status s = check_strings(name, rows, options); !s) return s.error();

@@ -30,7 +30,25 @@ struct Entry {
   EdgeUseId use;
   ExactVec3 dir;
   bool degenerate;
+  std::uint32_t twin;  // the first entry of a face on the same vertex cycle, used the same way
 };
+
+// Uses of faces on the same vertex cycle (a stack of equal triangles), running the
+// same way along the edge, leave it in the same direction: they are tied without
+// the exact comparison, which would cost an expansion evaluation for each pair.
+std::vector<std::uint32_t> twins(const Model& m, const std::vector<EdgeUseId>& uses) {
+  std::map<std::pair<std::vector<std::uint32_t>, bool>, std::uint32_t> first;
+  std::vector<std::uint32_t> out(uses.size());
+  for (std::size_t i = 0; i < uses.size(); ++i) {
+    std::vector<std::uint32_t> cycle;
+    for (VertexId v : m.loop_vertices(m.outer_loop(m.face_of(uses[i])))) cycle.push_back(v.value);
+    std::rotate(cycle.begin(), std::min_element(cycle.begin(), cycle.end()), cycle.end());
+    out[i] = first.try_emplace({std::move(cycle), m.is_reversed(uses[i])},
+                               static_cast<std::uint32_t>(i))
+                 .first->second;
+  }
+  return out;
+}
 
 // Orders uses by angle from the reference direction d0. Where two faces leave the
 // edge at the same angle (coincident faces), the one whose front looks towards
@@ -42,10 +60,11 @@ class RadialOrder {
   RadialOrder(const Model& m, EdgeId e, const std::vector<EdgeUseId>& uses)
       : axis_(exact_sub(m.position(m.end_of(e)), m.position(m.start_of(e)))), m_(m) {
     entries_.reserve(uses.size());
-    for (EdgeUseId u : uses) {
-      ExactVec3 d = interior_direction(m, u);
+    const std::vector<std::uint32_t> twin = twins(m, uses);
+    for (std::size_t i = 0; i < uses.size(); ++i) {
+      ExactVec3 d = twin[i] == i ? interior_direction(m, uses[i]) : entries_[twin[i]].dir;
       const bool degenerate = is_zero(d);
-      entries_.push_back({u, std::move(d), degenerate});
+      entries_.push_back({uses[i], std::move(d), degenerate, twin[i]});
     }
     const auto ref = std::find_if(entries_.begin(), entries_.end(),
                                   [](const Entry& x) { return !x.degenerate; });
@@ -54,6 +73,7 @@ class RadialOrder {
   }
 
   bool less(const Entry& a, const Entry& b) const {
+    if (a.twin == b.twin) return false;
     if (a.degenerate || b.degenerate) return a.degenerate && !b.degenerate;
     if (angle_less(a.dir, b.dir)) return true;
     if (angle_less(b.dir, a.dir)) return false;

@@ -110,3 +110,84 @@ write("bad_index.off", b"OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n")
 write("bad_not_zip.3mf", b"<?xml version=\"1.0\"?><model/>")
 write("bad_truncated.json", b'{"format":"cellforge-model","version":1,"groups":[{"name":"a"')
 write("bad_format.json", b'{"format":"other","version":1}')
+
+# ---- Real-file kinds (issue 19), one folder per what they exercise.
+import math
+
+
+def reversed_tris(tris):
+    return [(a, c, b) for a, b, c in tris]
+
+
+def uv_sphere(centre, r, n=16, m=8):
+    """A closed UV sphere, outward: poles shared, the seam welded (i % n)."""
+    def p(i, j):
+        if j == 0:
+            return (centre[0], centre[1], centre[2] + r)
+        if j == m:
+            return (centre[0], centre[1], centre[2] - r)
+        th, ph = math.pi * j / m, 2 * math.pi * (i % n) / n
+        return (centre[0] + r * math.sin(th) * math.cos(ph),
+                centre[1] + r * math.sin(th) * math.sin(ph), centre[2] + r * math.cos(th))
+    tris = []
+    for j in range(m):
+        for i in range(n):
+            a, b, c, d = p(i, j), p(i + 1, j), p(i + 1, j + 1), p(i, j + 1)
+            if j > 0:
+                tris.append((a, d, b))
+            if j < m - 1:
+                tris.append((b, d, c))
+    return tris
+
+
+def octahedron(centre, r):
+    x, y, z = centre
+    px, nx, py, ny, pz, nz = (x + r, y, z), (x - r, y, z), (x, y + r, z), (x, y - r, z), \
+        (x, y, z + r), (x, y, z - r)
+    return [(px, py, pz), (py, nx, pz), (nx, ny, pz), (ny, px, pz),
+            (py, px, nz), (nx, py, nz), (ny, nx, nz), (px, ny, nz)]
+
+
+def obj_text(points, faces):
+    return "\n".join(["v %r %r %r" % tuple(float(c) for c in p) for p in points] +
+                     ["f " + " ".join(str(i + 1) for i in f) for f in faces]) + "\n"
+
+
+def sub(name, data):
+    os.makedirs(os.path.join(HERE, os.path.dirname(name)), exist_ok=True)
+    write(name, data)
+
+
+big = cube_triangles((0, 0, 0), (10, 10, 10))
+# Hollow solids: the inner shells face inward (cavities) or outward (nested solids).
+sub("nested/cube_sphere_cavity.stl",
+    ascii_stl(big + reversed_tris(uv_sphere((5, 5, 5), 3)), "hollow"))
+sub("nested/cube_octahedron_cavity.stl",  # 1000 - 4/3 * 3^3 = 964
+    binary_stl(big + reversed_tris(octahedron((5, 5, 5), 3))))
+sub("nested/nested_cubes.stl",  # 1000 - 216 + 8 = 792
+    ascii_stl(big + reversed_tris(cube_triangles((2, 2, 2), (8, 8, 8))) +
+              cube_triangles((4, 4, 4), (6, 6, 6)), "nested"))
+sub("nested/nested_cubes_outward.stl",  # every shell outward: repair_orientation gives 792
+    ascii_stl(big + cube_triangles((2, 2, 2), (8, 8, 8)) + cube_triangles((4, 4, 4), (6, 6, 6)),
+              "nested_outward"))
+sub("nested/cavity_alone.stl", ascii_stl(reversed_tris(cube), "cavity"))  # bounds no cell
+
+# Back-to-back faces: zero-thickness pairs and fins on the edges of a solid.
+unit = [tuple(float(c) for c in p) for p in CORNERS]
+unit_faces = [(q[0], q[1], q[2]) for q in QUADS] + [(q[0], q[2], q[3]) for q in QUADS]
+two = unit + [(p[0] + 1, p[1], p[2]) for p in unit]
+sub("back_to_back/two_cubes_face.obj",  # the common face twice, once per cube
+    obj_text(two, unit_faces + [tuple(i + 8 for i in f) for f in unit_faces]))
+centre = unit + [(0.5, 0.5, 0.5)]
+sub("back_to_back/pair_in_cube.obj",  # a pair on cube edge 0-1, inside the cube
+    obj_text(centre, unit_faces + [(0, 1, 8), (1, 0, 8)]))
+sub("back_to_back/fin_in_cube.obj", obj_text(centre, unit_faces + [(0, 1, 8)]))
+sub("back_to_back/diagonal_wall.obj",  # a pair from edge 0-4 to edge 3-7: two prisms
+    obj_text(unit, unit_faces + [(0, 3, 7), (0, 7, 4), (0, 7, 3), (0, 4, 7)]))
+
+# Precision: -0 and coordinates 6 decimals cannot hold.
+sub("precision/negative_zero.obj",
+    obj_text([(-0.0, -0.0, -0.0), (1.0, -0.0, 0.0), (0.0, 1.0, -0.0), (-0.0, 0.0, 1.0)],
+             [(0, 2, 1), (0, 1, 3), (1, 2, 3), (2, 0, 3)]))
+tiny = [(1e-9 * x + 0.1, 1e-9 * y + 0.2, 1e-9 * z + 1.0 / 3) for x, y, z in CORNERS]
+sub("precision/tiny_cube.obj", obj_text(tiny, [q for q in QUADS]))

@@ -21,7 +21,8 @@ TEST(Cli, InfoJsonOfTheNonManifoldStl) {
   ASSERT_EQ(r.status, 0) << r.out;
   for (const char* field :
        {"\"vertices\": 14", "\"edges\": 35", "\"faces\": 24", "\"loops\": 24", "\"volumes\": 2",
-        "\"groups\": 1", "\"euler_characteristic\": 1", "\"valid\": true", "\"closed\": true",
+        "\"groups\": 1", "\"euler_characteristic_surface\": 3",
+        "\"euler_characteristic_solid\": 1", "\"valid\": true", "\"closed\": true",
         "\"manifold\": false", "\"volume\": 2", "\"area\": 12", "\"centroid\": [1, 1, 0.5]",
         "\"bbox\": {\"min\": [0, 0, 0], \"max\": [2, 2, 1]}", "\"non_manifold_edges_count\": 1"})
     EXPECT_NE(r.out.find(field), std::string::npos) << field << "\n" << r.out;

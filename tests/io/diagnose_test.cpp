@@ -142,10 +142,13 @@ TEST(Diagnose, SharedFaceCountsForBothCells) {
 TEST(Diagnose, JsonHasTheKeysOfTheIssue) {
   const std::string json = io::to_json(io::diagnose(read_fixture("cube.obj")));
   for (const char* key :
-       {"vertices", "edges", "faces", "loops", "volumes", "groups", "euler_characteristic", "valid",
-        "closed", "manifold", "volume", "area", "centroid", "bbox"})
+       {"vertices", "edges", "faces", "loops", "volumes", "groups", "euler_characteristic_surface",
+        "euler_characteristic_solid", "valid", "closed", "manifold", "volume", "area", "centroid",
+        "bbox", "warnings"})
     EXPECT_NE(json.find("\"" + std::string(key) + "\": "), std::string::npos) << key;
-  EXPECT_NE(json.find("\"euler_characteristic\": 1,"), std::string::npos) << json;
+  // The surface of a cube is a sphere (2); the solid cube is a ball (1).
+  EXPECT_NE(json.find("\"euler_characteristic_surface\": 2,"), std::string::npos) << json;
+  EXPECT_NE(json.find("\"euler_characteristic_solid\": 1,"), std::string::npos) << json;
   EXPECT_NE(json.find("\"volume\": 1,"), std::string::npos) << json;
 }
 

@@ -56,6 +56,20 @@ TEST(MakeCli, OpenScadParameterNames) {
   std::filesystem::remove(path);
 }
 
+// linear_extrude(height=5, twist=90, $fn=40) circle(r=2, $fn=6): the hexagon keeps its
+// own faceting, the sweep takes ceil(90 / 360 * 40) = 10 slices from the extrusion's.
+TEST(MakeCli, ProfileAndSweepFacetedApart) {
+  const std::string path = temp_path("le.stl");
+  CliRun r = run("make linear_extrude shape=circle r=2 shape_fn=6 fn=40 height=5 twist=90 -o " +
+                 path);
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("66 vertices"), std::string::npos) << r.out;  // 6 x 11 rings
+  r = run("make linear_extrude shape=circle r=2 fn=6 height=5 twist=90 -o " + path);
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("18 vertices"), std::string::npos) << r.out;  // fn=6 for both: 2 slices
+  std::filesystem::remove(path);
+}
+
 TEST(MakeCli, ErrorsListValidChoices) {
   CliRun r = run("make blob -o x.stl");
   EXPECT_EQ(r.status, 2);

@@ -110,6 +110,39 @@ TEST(LinearExtrude, TwistTurnsClockwise) {
   EXPECT_TRUE(found);
 }
 
+// OpenSCAD 2021+ gives linear_extrude(height=5, twist=90) square(2); the volume
+// 22.0438 (4 slices by its $fa/$fs rule). The corner (0, 0) lies on the twist axis, so
+// the side quads at it have diagonals of equal length: OpenSCAD's tie rule decides,
+// and mirrored (twist = -90) the square gives the same volume.
+TEST(LinearExtrude, TwistedSquareOnTheAxisMatchesOpenScad) {
+  auto sq = rectangle({2, 2});
+  ASSERT_OK(sq);
+  for (double twist : {90.0, -90.0}) {
+    SCOPED_TRACE(twist);
+    Model m;
+    auto g = linear_extrude(m, *sq, {.height = 5, .twist = twist});
+    ASSERT_OK(g);
+    EXPECT_VALID(m);
+    EXPECT_EQ(m.num_vertices(), 20u);  // 4 corners x 5 rings
+    EXPECT_NEAR(mass_properties(m).volume, 22.0438, 5e-5);
+  }
+}
+
+// A ring (outer circle, inner hole) twisted both ways: the tie rule flips for holes,
+// so the volume is the same for either direction of twist.
+TEST(LinearExtrude, TwistedRingIsTheSameEitherWay) {
+  auto ring = polygon({{2, 0}, {0, 2}, {-2, 0}, {0, -2}}, {{{1, 0}, {0, -1}, {-1, 0}, {0, 1}}});
+  ASSERT_OK(ring);
+  double volume[2];
+  for (int k = 0; k < 2; ++k) {
+    Model m;
+    ASSERT_OK(linear_extrude(m, *ring, {.height = 4, .twist = k ? -60.0 : 60.0, .slices = 3}));
+    EXPECT_VALID(m);
+    volume[k] = mass_properties(m).volume;
+  }
+  EXPECT_NEAR(volume[0], volume[1], 1e-12);
+}
+
 TEST(LinearExtrude, OpenScadSliceCounts) {
   auto c = circle(10, {.fn = 20});
   ASSERT_OK(c);

@@ -17,7 +17,10 @@ namespace cellforge::inline geom {
 
 // The Newell normal sum_i p_i x p_(i+1) of a loop, added to `sum` (so the loops of one
 // face can be summed in one pass): twice the vector area, pointing to the side from
-// which the loop runs counterclockwise. Zero for fewer than three points.
+// which the loop runs counterclockwise. Zero for fewer than three points. Computed
+// about the loop's first point (the sum does not depend on the origin), so a small
+// face far from the origin keeps its direction: about the origin, the products of
+// large coordinates round away a normal of 1e-18 at 0.1 from the origin.
 Vec3 newell_normal(std::span<const Vec3> loop, Vec3 sum = {});
 
 // The area of a loop in space (half the length of its Newell normal).

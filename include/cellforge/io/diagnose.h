@@ -19,13 +19,17 @@ using MassProperties = shape::MassProperties;
 
 struct DiagnoseOptions {
   // Exact triangle-triangle tests between faces that share no vertex, found
-  // through a grid over their bounding boxes.
+  // through a bounding-volume hierarchy over their bounding boxes.
   bool self_intersections = true;
 };
 
 struct Diagnosis {
   std::size_t vertices = 0, edges = 0, faces = 0, loops = 0, volumes = 0, groups = 0;
-  long euler_characteristic = 0;        // v - e + (f - r) - (V - Vh + Vc) (validate.h)
+  // The Euler characteristic of the surface, v - e + (f - r) (2 for a sphere, the value
+  // mesh tools report), and of the cell complex with its 3-cells,
+  // v - e + (f - r) - (V - Vh + Vc) (validate.h; 1 for a ball).
+  long euler_characteristic_surface = 0;
+  long euler_characteristic_solid = 0;
   bool valid = false;                   // validate() found nothing
   std::vector<std::string> violations;  // the first few, when not valid
   std::size_t wire_edges = 0, isolated_vertices = 0;
@@ -41,14 +45,22 @@ struct Diagnosis {
   bool self_intersections_checked = false;
   bool closed = false;    // faces present, no boundary edge
   bool manifold = false;  // no non-manifold edge or vertex, no wire edge or isolated vertex
+  // mass.volume is the volume of the cells. Without cells (an open mesh, an inside-out
+  // shell), `volume` is the signed volume of the surface as its faces are oriented
+  // (each face's cone from the origin, as admesh and trimesh report it), and
+  // a warning says so; with cells it is mass.volume.
   MassProperties mass;
+  double volume = 0;
+  // Closed shells that bound no cell, the volume of a surface that is not a solid.
+  std::vector<std::string> warnings;
 };
 
 Diagnosis diagnose(const Model& m, const DiagnoseOptions& options = {});
 
 // The report as text (one "key: value" per line) and as a JSON object whose keys
-// include vertices, edges, faces, loops, volumes, groups, euler_characteristic,
-// valid, closed, manifold, volume, area, centroid, bbox.
+// include vertices, edges, faces, loops, volumes, groups, euler_characteristic_surface,
+// euler_characteristic_solid, valid, closed, manifold, volume, area, centroid, bbox,
+// warnings.
 std::string to_text(const Diagnosis& d);
 std::string to_json(const Diagnosis& d);
 

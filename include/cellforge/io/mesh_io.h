@@ -31,7 +31,8 @@ enum class Format { kStl, kObj, kOff, k3mf, kJson };
 std::string_view format_name(Format f);
 // From a file name's extension (case-insensitive); an error names the extension.
 Result<Format> format_from_path(std::string_view path);
-// Whether this build can read and write 3MF (lib3mf was found at configure time).
+// Whether this build can read and write 3MF (always, since io/ reads and writes it
+// itself; kept for callers written when 3MF depended on lib3mf).
 bool has_3mf();
 
 // What a mesh parser produces: polygons as index cycles into `positions` (a

@@ -11,9 +11,10 @@
 // -twist * t degrees, then scaled by (1 + (scale_x - 1) t, 1 + (scale_y - 1) t), at
 // z = height * t (minus height / 2 when centred). Side quads stay quads when they are
 // planar by construction (no twist, scale_x == scale_y); otherwise each is split along
-// its shorter diagonal. scale 0 on both axes closes the top in an apex (regions
-// without holes only). slices = 0 picks OpenSCAD's count (1 without twist or
-// non-uniform scale; else its helix / diagonal rules with the faceting).
+// its shorter diagonal with OpenSCAD's tie rule, so the faces match OpenSCAD's. scale 0
+// on both axes closes the top in an apex (regions without holes only). slices = 0
+// picks OpenSCAD's count (1 without twist or non-uniform scale; else its helix /
+// diagonal rules with the faceting).
 //
 // rotate_extrude: point (x, y) of the profile goes to (x cos a, x sin a, y) for
 // a = start + j * angle / segments, segments = arc_fragments(max |x|, angle). A full

@@ -1,7 +1,10 @@
 // A bounding-volume hierarchy over axis-aligned boxes: median splits on the longest
 // axis, leaves of up to four boxes. Boxes of triangles with double vertices are
 // exact, so the pairs and the ray candidates it reports are a superset of the ones
-// that can meet; the exact tests come after.
+// that can meet; the exact tests come after. Building takes O(n log n); the tree is
+// balanced whatever the boxes (equal boxes included), so a query descends O(log n)
+// levels. Used by boolean/ (the arrangement's candidate pairs) and io/ (self-
+// intersections, nesting of shells).
 #pragma once
 #include <algorithm>
 #include <array>
@@ -11,7 +14,7 @@
 
 #include "cellforge/geom/vec.h"
 
-namespace cellforge::boolean {
+namespace cellforge::inline geom {
 
 struct Box {
   Vec3 lo{1e308, 1e308, 1e308}, hi{-1e308, -1e308, -1e308};
@@ -137,4 +140,4 @@ class Bvh {
   std::vector<Node> nodes_;
 };
 
-}  // namespace cellforge::boolean
+}  // namespace cellforge::inline geom
