@@ -148,7 +148,7 @@ TEST(ThreeMf, DamagedPackagesAreErrors) {
   std::size_t p = u32(end + 16);
   while (lie.compare(p + 46, 16, "3D/3dmodel.model") != 0)
     p += 46 + (u32(p + 28) & 0xffff) + (u32(p + 30) & 0xffff) + (u32(p + 32) & 0xffff);
-  for (int k = 0; k < 4; ++k) lie[p + 24 + k] = static_cast<char>(k == 3 ? 0x20 : 0);
+  for (int k = 0; k < 4; ++k) lie[p + 24 + k] = static_cast<char>(k == 3 ? 0x01 : 0);  // 16 MiB: under max_3mf_bytes
   auto big = io::read_model(m, bytes_of(lie), io::Format::k3mf);
   ASSERT_FALSE(big.ok());
   EXPECT_NE(big.error().message.find("more than deflate can make"), std::string::npos)
