@@ -13,10 +13,15 @@
 #include <functional>
 
 #include "cellforge/boolean/boolean.h"
+#include "cellforge/boolean/minkowski.h"
+#include "cellforge/boolean/ops2d.h"
 #include "cellforge/io/mesh_io.h"
+#include "cellforge/shape/hull.h"
 #include "cellforge/shape/mass.h"
 #include "cellforge/shape/primitives.h"
 #include "cellforge/shape/region.h"
+#include "cellforge/shape/resize.h"
+#include "cellforge/shape/shape2d.h"
 #include "cellforge/topo/builder.h"
 #include "tree_private.h"
 
@@ -121,12 +126,12 @@ class Builder {
       auto s = collect2(root, shape::Transform::identity());
       out.dimension = s ? 2 : 0;
       if (s) {
-        if (s->regions.size() != 1 || s->expr.kind != boolean::Expr::Kind::kOperand) {
-          fail(root.pos, "a 2D result of several shapes needs 2D Booleans (not supported yet); "
-                         "extrude it to build it");
+        const shape::Shape2D flat = to_shape(*s, root);
+        for (const shape::Region& r : flat.regions) {
+          auto g = shape::make_region_face(out.model, r);
+          if (!g) fail(root.pos, g.error().message);
         }
-        auto g = shape::make_region_face(out.model, s->regions[0]);
-        if (!g) fail(root.pos, g.error().message);
+        if (flat.empty()) out.dimension = 0;
       }
       out.stats = stats_;
       return out;
@@ -318,36 +323,101 @@ class Builder {
         return extrude(n);
       case NodeKind::kResize:
         return resize(n);
-      case NodeKind::kHull: case NodeKind::kMinkowski: case NodeKind::kOffset:
-      case NodeKind::kProjection:
-        fail(n.pos, std::string(node_name(n.kind)) + "() is not supported yet");
+      case NodeKind::kHull:
+        return hull3(n);
+      case NodeKind::kMinkowski:
+        return minkowski3(n);
       default:
         fail(n.pos, std::string(node_name(n.kind)) + "() is a 2D object where a 3D one is needed");
     }
   }
 
-  Model resize(const Node& n) {
-    Builder inner(options_);
+  // The children of n built into one model (a subtree of its own).
+  Model build_children(const Node& n) {
+    std::vector<Leaf> leaves;
     Node group;
     group.kind = NodeKind::kGroup;
     group.children = n.children;
-    BuildOutput sub = inner.run(group);
-    stats_.booleans += sub.stats.booleans;
-    if (sub.dimension != 3) fail(n.pos, "resize() of a 2D or empty object is not supported yet");
-    const shape::MassProperties mp = shape::mass_properties(sub.model);
-    const Vec3 size = mp.bbox_max - mp.bbox_min;
-    double s[3] = {1, 1, 1};
-    double given = 0;
-    for (int i = 0; i < 3; ++i) {
-      if (n.size[i] > 0 && size[i] > 0) {
-        s[i] = n.size[i] / size[i];
-        given = std::max(given, s[i]);
-      }
+    auto expr = collect3(group, shape::Transform::identity(), std::nullopt, leaves);
+    if (!expr) return Model();
+    return combine(*expr, leaves, n.pos, nullptr);
+  }
+
+  Model resize(const Node& n) {
+    Model sub = build_children(n);
+    if (sub.num_faces() == 0) return sub;
+    const shape::MassProperties mp = shape::mass_properties(sub);
+    auto f = shape::resize_factors(mp.bbox_max - mp.bbox_min, {.size = n.size, .autosize = n.auto_size});
+    check(f, n);
+    return copy_transformed(sub, shape::Transform::scale(*f));
+  }
+
+  Model hull3(const Node& n) {
+    std::vector<Leaf> leaves;
+    Node group;
+    group.kind = NodeKind::kGroup;
+    group.children = n.children;
+    // The hull of a union is the hull of all the vertices: no Boolean is needed.
+    collect3(group, shape::Transform::identity(), std::nullopt, leaves);
+    std::vector<Vec3> points;
+    for (const Leaf& l : leaves) {
+      for (Vec3 p : shape::vertex_positions(l.model)) points.push_back(p);
     }
-    for (int i = 0; i < 3; ++i) {
-      if (!(n.size[i] > 0) && n.auto_size[static_cast<std::size_t>(i)] && given > 0) s[i] = given;
+    Model m;
+    if (points.empty()) return m;
+    check(shape::convex_hull(m, points), n);
+    return m;
+  }
+
+  Model minkowski3(const Node& n) {
+    std::vector<Model> parts;
+    for (const Node* c : active_children(n)) {
+      Node one;
+      one.kind = NodeKind::kGroup;
+      one.children = {std::make_shared<Node>(*c)};
+      Model m = build_children(one);
+      if (m.num_faces() == 0) return Model();
+      parts.push_back(std::move(m));
     }
-    return copy_transformed(sub.model, shape::Transform::scale({s[0], s[1], s[2]}));
+    if (parts.empty()) return Model();
+    std::vector<const Model*> operands;
+    for (const Model& m : parts) operands.push_back(&m);
+    auto r = boolean::minkowski(operands);
+    check(r, n);
+    return std::move(*r);
+  }
+
+  // A 2D subtree as one shape: its set operations evaluated (2D Booleans).
+  shape::Shape2D to_shape(const Shape2& s, const Node& at) {
+    if (s.expr.kind == boolean::Expr::Kind::kOperand) return shape::shape_of(s.regions[static_cast<std::size_t>(s.expr.operand)]);
+    std::vector<shape::Shape2D> operands;
+    for (const shape::Region& r : s.regions) operands.push_back(shape::shape_of(r));
+    const auto start = Clock::now();
+    auto r = boolean::evaluate_2d(operands, s.expr);
+    stats_.boolean_seconds += seconds_since(start);
+    ++stats_.booleans;
+    check(r, at);
+    return std::move(*r);
+  }
+
+  // A shape (disjoint regions) as a Shape2: the union of its regions.
+  static std::optional<Shape2> from_shape(shape::Shape2D shape) {
+    if (shape.empty()) return std::nullopt;
+    Shape2 s;
+    std::vector<boolean::Expr> parts;
+    for (auto& r : shape.regions) {
+      parts.push_back(boolean::Expr::of(static_cast<int>(s.regions.size())));
+      s.regions.push_back(std::move(r));
+    }
+    s.expr = parts.size() == 1 ? std::move(parts[0]) : boolean::Expr::op(boolean::Op::kUnion, std::move(parts));
+    return s;
+  }
+
+  std::optional<Shape2> children2(const Node& n, const shape::Transform& t) {
+    Node group;
+    group.kind = NodeKind::kGroup;
+    group.children = n.children;
+    return collect2(group, t);
   }
 
   // ---- 2D
@@ -378,6 +448,10 @@ class Builder {
       default:
         break;
     }
+    if (n.kind == NodeKind::kHull || n.kind == NodeKind::kMinkowski || n.kind == NodeKind::kOffset ||
+        n.kind == NodeKind::kProjection || n.kind == NodeKind::kResize) {
+      return operation2(n, t);
+    }
     Result<shape::Region> region = Error{ErrorCode::kUnsupported, ""};
     switch (n.kind) {
       case NodeKind::kSquare:
@@ -405,9 +479,6 @@ class Builder {
         region = shape::polygon(loop(paths[0]), std::move(holes));
         break;
       }
-      case NodeKind::kHull: case NodeKind::kMinkowski: case NodeKind::kOffset:
-      case NodeKind::kProjection:
-        fail(n.pos, std::string(node_name(n.kind)) + "() is not supported yet");
       default:
         fail(n.pos, std::string(node_name(n.kind)) + "() is a 3D object where a 2D one is needed");
     }
@@ -437,6 +508,63 @@ class Builder {
     return s;
   }
 
+  // hull, minkowski, offset, projection and resize of 2D children (projection: of 3D
+  // ones), in the children's own frame, then moved by t.
+  std::optional<Shape2> operation2(const Node& n, const shape::Transform& t) {
+    shape::Shape2D result;
+    if (n.kind == NodeKind::kProjection) {
+      Node group;
+      group.kind = NodeKind::kGroup;
+      group.children = n.children;
+      if (dimension(group) == 2) fail(n.pos, "projection() of a 2D object");
+      Model m = build_children(n);
+      if (m.num_faces() == 0) return std::nullopt;
+      auto r = boolean::projection(m, {.cut = n.cut});
+      check(r, n);
+      result = std::move(*r);
+    } else if (n.kind == NodeKind::kMinkowski) {
+      std::vector<shape::Shape2D> parts;
+      for (const Node* c : active_children(n)) {
+        auto s = collect2(*c, shape::Transform::identity());
+        if (!s) return std::nullopt;
+        parts.push_back(to_shape(*s, n));
+      }
+      if (parts.empty()) return std::nullopt;
+      auto r = boolean::minkowski_2d(parts);
+      check(r, n);
+      result = std::move(*r);
+    } else {
+      auto s = children2(n, shape::Transform::identity());
+      if (!s) return std::nullopt;
+      if (n.kind == NodeKind::kHull) {
+        std::vector<Vec2> points;
+        for (const auto& reg : s->regions) {
+          for (const auto& l : reg.loops) points.insert(points.end(), l.begin(), l.end());
+        }
+        auto r = shape::convex_hull(points);
+        check(r, n);
+        result = shape::shape_of(std::move(*r));
+      } else if (n.kind == NodeKind::kOffset) {
+        const boolean::OffsetJoin join = n.round ? boolean::OffsetJoin::kRound
+                                         : n.chamfer ? boolean::OffsetJoin::kChamfer
+                                                     : boolean::OffsetJoin::kMiter;
+        auto r = boolean::offset(to_shape(*s, n), {.amount = n.delta, .join = join, .faceting = n.faceting});
+        check(r, n);
+        result = std::move(*r);
+      } else {
+        auto r = shape::resized(to_shape(*s, n), {.size = n.size, .autosize = n.auto_size});
+        check(r, n);
+        result = std::move(*r);
+      }
+    }
+    if (!is_identity(t)) {
+      auto moved = shape::transformed(result, t);
+      check(moved, n);
+      result = std::move(*moved);
+    }
+    return from_shape(std::move(result));
+  }
+
   static void shift(boolean::Expr& e, int offset) {
     if (e.kind == boolean::Expr::Kind::kOperand) {
       e.operand += offset;
@@ -461,24 +589,33 @@ class Builder {
     if (dimension(group) == 3) fail(n.pos, std::string(node_name(n.kind)) + "() of a 3D object");
     auto s = collect2(group, shape::Transform::identity());
     if (!s) return Model();
-    const bool several = s->regions.size() > 1;
+    bool several = s->regions.size() > 1;
+    // A set operation of regions extrudes as that set operation of the extrusions when
+    // the sweep maps every plane section the same way (straight linear_extrude; a
+    // rotate_extrude of a union with shared segments); otherwise it is evaluated in 2D.
+    const bool distributes = n.kind == NodeKind::kLinearExtrude
+                                 ? n.linear.twist == 0 && n.linear.scale_x == n.linear.scale_y
+                                 : union_only(s->expr);
+    if (several && !distributes) {
+      s = from_shape(to_shape(*s, n));
+      if (!s) return Model();
+      several = s->regions.size() > 1;
+    }
     std::vector<Leaf> leaves(s->regions.size());
     if (n.kind == NodeKind::kLinearExtrude) {
       if (n.linear.height <= 0) return Model();
-      if (several && (n.linear.twist != 0 || n.linear.scale_x != n.linear.scale_y)) {
-        fail(n.pos, "linear_extrude() with twist or unequal scale of a 2D set operation needs 2D "
-                    "Booleans (not supported yet)");
-      }
       shape::LinearExtrudeOptions o = n.linear;
       if (o.scale_x < 0 || o.scale_y < 0) fail(n.pos, "linear_extrude(): scale must not be negative");
+      if (several && o.slices == 0) {
+        // OpenSCAD's slice count is the whole profile's.
+        shape::Region all;
+        for (const auto& reg : s->regions) all.loops.insert(all.loops.end(), reg.loops.begin(), reg.loops.end());
+        o.slices = shape::extrude_slices(all, o);
+      }
       for (std::size_t i = 0; i < s->regions.size(); ++i) {
         check(shape::linear_extrude(leaves[i].model, s->regions[i], o), n);
       }
     } else {
-      if (several && !union_only(s->expr)) {
-        fail(n.pos, "rotate_extrude() of a 2D difference or intersection needs 2D Booleans (not "
-                    "supported yet)");
-      }
       shape::RotateExtrudeOptions o = n.rotate;
       if (o.angle == 0) return Model();
       o.angle = std::clamp(o.angle, -360.0, 360.0);
