@@ -1,0 +1,3 @@
+// expect pending: projection (shape-ops)
+// expect volume: 4
+linear_extrude(1) projection() cube(2);
