@@ -46,7 +46,7 @@ compare() {
   rm -f "$tmp"/oc.stl "$tmp"/cf.stl
   (cd "$(dirname "$file")" && timeout "$T" openscad "${defines[@]}" -o "$tmp/oc.stl" "$(basename "$file")") > "$tmp/oc.out" 2>&1
   local oc_rc=$?
-  (cd "$(dirname "$file")" && timeout "$T" "$CF" build "$(basename "$file")" "${defines[@]}" -o "$tmp/cf.stl" --report json) \
+  (cd "$(dirname "$file")" && timeout "$T" "$CF" build --no-cache "$(basename "$file")" "${defines[@]}" -o "$tmp/cf.stl" --report json) \
     > "$tmp/cf.out" 2> "$tmp/cf.err"
   local cf_rc=$?
   grep '^ECHO:' "$tmp/oc.out" > "$tmp/oc.echo"

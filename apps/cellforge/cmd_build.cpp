@@ -3,6 +3,7 @@
 // lines go to standard output, warnings and errors to standard error. Exit codes: 0
 // success, 1 a model or input error, 2 a usage error.
 #include <chrono>
+#include <cstdlib>
 #include <fstream>
 #include <iostream>
 #include <sstream>
@@ -24,20 +25,24 @@ namespace {
 constexpr const char* kUsage =
     "usage: cellforge build IN.scad|IN.json -o OUT [-o OUT ...] [-D NAME=VALUE ...]\n"
     "                       [--save NAME] [--db DB] [--report json] [--ascii] [--tree OUT.json]\n"
+    "                       [--cache DIR | --no-cache]\n"
     "  IN: an OpenSCAD script, or a CSG tree in cellforge's JSON form (docs/csg.md).\n"
     "  OUT: .stl .obj .off .3mf .json by extension (several -o allowed; none: only check).\n"
     "  -D NAME=VALUE: sets a top-level variable as `openscad -D` does (VALUE is an\n"
     "  expression; strings need their quotes). --save NAME stores the result and the\n"
     "  script in the model database (--db, default cellforge.db). --report json prints\n"
     "  counts, validity, volume, area, centroid, bounding box and seconds per stage.\n"
-    "  --tree OUT.json writes the evaluated CSG tree. Exit: 0 ok, 1 model or input\n"
-    "  error, 2 usage error.";
+    "  --tree OUT.json writes the evaluated CSG tree. --cache DIR keeps each top-level\n"
+    "  part built under its content key, so a rebuild after an edit rebuilds only the\n"
+    "  parts it changed (default: $XDG_CACHE_HOME/cellforge or ~/.cache/cellforge;\n"
+    "  --no-cache builds everything). Exit: 0 ok, 1 model or input error, 2 usage error.";
 
 struct BuildArgs {
   std::string input;
   std::vector<std::string> outputs;
   std::vector<std::pair<std::string, std::string>> defines;
-  std::string save, db, tree;
+  std::string save, db, tree, cache;
+  bool no_cache = false;
   bool json_report = false;
   bool ascii = false;
 };
@@ -73,6 +78,10 @@ std::string parse_args(const std::vector<std::string>& args, BuildArgs& out) {
     } else if (a == "--report") {
       if (!value(v) || v != "json") return "--report takes 'json'";
       out.json_report = true;
+    } else if (a == "--cache") {
+      if (!value(out.cache)) return "--cache needs a folder";
+    } else if (a == "--no-cache") {
+      out.no_cache = true;
     } else if (a == "--ascii") {
       out.ascii = true;
     } else if (!a.empty() && a[0] != '-' && out.input.empty()) {
@@ -82,6 +91,16 @@ std::string parse_args(const std::vector<std::string>& args, BuildArgs& out) {
     }
   }
   if (out.input.empty()) return "no input file";
+  if (out.no_cache && !out.cache.empty()) return "--cache and --no-cache together";
+  if (!out.no_cache && out.cache.empty()) {
+    const char* xdg = std::getenv("XDG_CACHE_HOME");
+    const char* home = std::getenv("HOME");
+    if (xdg != nullptr && *xdg != '\0') {
+      out.cache = std::string(xdg) + "/cellforge";
+    } else if (home != nullptr && *home != '\0') {
+      out.cache = std::string(home) + "/.cache/cellforge";
+    }
+  }
   for (const std::string& o : out.outputs) {
     if (auto f = io::format_from_path(o); !f) return f.error().message;
   }
@@ -155,6 +174,7 @@ int run(const std::vector<std::string>& argv) {
   const auto t1 = Clock::now();
   csg::BuildOptions bo;
   bo.sources = sources.get();
+  bo.cache_dir = a.cache;
   auto built = csg::build(*root, bo);
   if (!built) {
     std::cerr << built.error().message << '\n';

@@ -23,6 +23,8 @@
 #include "cellforge/shape/resize.h"
 #include "cellforge/shape/shape2d.h"
 #include "cellforge/topo/builder.h"
+#include "cache.h"
+#include "cellforge/csg/tree_json.h"
 #include "tree_private.h"
 
 namespace cellforge::csg {
@@ -47,9 +49,16 @@ std::optional<NodeKind> node_kind(const std::string& name) {
 
 Model copy_transformed(const Model& src, const shape::Transform& t) {
   Model out;
+  copy_into(out, src, t);
+  return out;
+}
+
+std::vector<FaceId> copy_into(Model& out, const Model& src, const shape::Transform& t) {
+  std::vector<FaceId> faces(src.face_slots());
   const bool flip = t.determinant() < 0;
   for (GroupId g : src.groups()) {
     MeshInput mesh;
+    std::vector<FaceId> face_ids;
     mesh.group_name = src.name(g);
     std::unordered_map<std::uint32_t, std::uint32_t> vertex, volume;
     for (VertexId v : src.vertices()) {
@@ -72,6 +81,7 @@ Model copy_transformed(const Model& src, const shape::Transform& t) {
       if (src.front_volume(f).is_valid()) face.front = static_cast<int>(volume.at(src.front_volume(f).value));
       if (src.back_volume(f).is_valid()) face.back = static_cast<int>(volume.at(src.back_volume(f).value));
       mesh.faces.push_back(std::move(face));
+      face_ids.push_back(f);
     }
     for (EdgeId e : src.edges()) {
       if (src.group_of(e) == g && src.is_wire(e)) {
@@ -81,8 +91,9 @@ Model copy_transformed(const Model& src, const shape::Transform& t) {
     auto built = build_mesh(out, mesh);
     if (!built) continue;  // the source was built by build_mesh too; this cannot fail
     for (const auto& a : src.attributes(g)) out.set_attribute(built->group, a.key, a.value);
+    for (std::size_t i = 0; i < face_ids.size(); ++i) faces[face_ids[i].value] = built->faces[i];
   }
-  return out;
+  return faces;
 }
 
 bool is_identity(const shape::Transform& t) {
@@ -117,7 +128,7 @@ struct Shape2 {
 
 class Builder {
  public:
-  explicit Builder(const BuildOptions& o) : options_(o) {}
+  explicit Builder(const BuildOptions& o) : options_(o), cache_(o.cache_dir) {}
 
   BuildOutput run(const Node& root) {
     BuildOutput out;
@@ -136,6 +147,11 @@ class Builder {
       out.stats = stats_;
       return out;
     }
+    if (root.kind == NodeKind::kGroup) {
+      run_parts(root, out);
+      out.stats = stats_;
+      return out;
+    }
     std::vector<Leaf> leaves;
     auto expr = collect3(root, shape::Transform::identity(), std::nullopt, leaves);
     if (!expr) {
@@ -146,6 +162,95 @@ class Builder {
     out.model = combine(*expr, leaves, root.pos, &out.face_colors);
     out.stats = stats_;
     return out;
+  }
+
+  // The top-level parts (the root's children, and the children of unions among them)
+  // are built one by one — found in the cache by their content key when there is one,
+  // so that an edit rebuilds only the parts it touched — then parts whose boxes are
+  // apart are put side by side (their union, exactly, without a Boolean) and others
+  // united by one more Boolean. Separate parts are the common case of a file with
+  // many parts, and one arrangement per part is faster than one for all of them.
+  void run_parts(const Node& root, BuildOutput& out) {
+    struct Part {
+      Model model;
+      std::vector<Color> colors;
+      Vec3 lo, hi;
+    };
+    std::vector<Part> parts;
+    std::vector<const Node*> pieces;
+    std::function<void(const Node&)> split = [&](const Node& n) {
+      for (const Node* c : active_children(n)) {
+        if (c->kind == NodeKind::kGroup || c->kind == NodeKind::kUnion) {
+          split(*c);
+        } else {
+          pieces.push_back(c);
+        }
+      }
+    };
+    split(root);
+    for (const Node* c : pieces) {
+      Part p;
+      const std::string key = content_key(*c);
+      if (cache_.load(key, p.model, p.colors)) {
+        ++stats_.cache_hits;
+      } else {
+        ++stats_.cache_misses;
+        std::vector<Leaf> leaves;
+        auto expr = collect3(*c, shape::Transform::identity(), std::nullopt, leaves);
+        if (expr) p.model = combine(*expr, leaves, c->pos, &p.colors);
+        cache_.store(key, p.model, p.colors);
+      }
+      if (p.model.num_faces() == 0) continue;
+      const shape::MassProperties mp = shape::mass_properties(p.model);
+      p.lo = mp.bbox_min;
+      p.hi = mp.bbox_max;
+      parts.push_back(std::move(p));
+    }
+    if (parts.empty()) {
+      out.dimension = 0;
+      return;
+    }
+    bool apart = true;
+    for (std::size_t i = 0; i < parts.size() && apart; ++i) {
+      for (std::size_t j = i + 1; j < parts.size() && apart; ++j) {
+        bool separated = false;
+        for (int k = 0; k < 3; ++k) {
+          separated |= parts[i].hi[k] < parts[j].lo[k] || parts[j].hi[k] < parts[i].lo[k];
+        }
+        apart = separated;
+      }
+    }
+    if (parts.size() == 1) {
+      out.model = std::move(parts[0].model);
+      out.face_colors = std::move(parts[0].colors);
+      return;
+    }
+    if (apart) {
+      for (Part& p : parts) {
+        const std::vector<FaceId> ids = copy_into(out.model, p.model, shape::Transform::identity());
+        out.face_colors.resize(out.model.face_slots());
+        for (FaceId f : p.model.faces()) {
+          if (ids[f.value].is_valid() && f.value < p.colors.size()) out.face_colors[ids[f.value].value] = p.colors[f.value];
+        }
+      }
+      return;
+    }
+    std::vector<const Model*> operands;
+    for (const Part& p : parts) operands.push_back(&p.model);
+    const auto start = Clock::now();
+    auto r = boolean::apply(boolean::Op::kUnion, operands);
+    stats_.boolean_seconds += seconds_since(start);
+    ++stats_.booleans;
+    stats_.boolean_operands += operands.size();
+    if (!r) fail(root.pos, "the Boolean operation failed: " + r.error().message);
+    out.face_colors.assign(r->model.face_slots(), std::nullopt);
+    for (std::size_t f = 0; f < r->sources.size() && f < out.face_colors.size(); ++f) {
+      const auto& src = r->sources[f];
+      if (src.operand < 0) continue;
+      const Part& p = parts[static_cast<std::size_t>(src.operand)];
+      if (src.face < p.colors.size()) out.face_colors[f] = p.colors[src.face];
+    }
+    out.model = std::move(r->model);
   }
 
   [[noreturn]] void fail(SourcePos pos, const std::string& message) const {
@@ -637,6 +742,7 @@ class Builder {
   }
 
   const BuildOptions& options_;
+  DiskCache cache_;
   BuildStats stats_;
 };
 

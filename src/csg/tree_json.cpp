@@ -149,13 +149,13 @@ struct Json {
   bool b = false;
   double n = 0;
   std::string s;
-  std::vector<Json> items;
-  std::vector<std::pair<std::string, Json>> fields;
+  std::vector<Json> items;        // an array's elements; an object's values
+  std::vector<std::string> keys;  // an object's keys, beside items
   std::size_t offset = 0;
 
   const Json* get(const std::string& key) const {
-    for (const auto& [k, v] : fields) {
-      if (k == key) return &v;
+    for (std::size_t i = 0; i < keys.size(); ++i) {
+      if (keys[i] == key) return &items[i];
     }
     return nullptr;
   }
@@ -208,7 +208,8 @@ class Reader {
         space();
         if (i_ >= t_.size() || t_[i_] != ':') fail("expected ':'");
         ++i_;
-        v.fields.emplace_back(std::move(k), value(depth + 1));
+        v.keys.push_back(std::move(k));
+        v.items.push_back(value(depth + 1));
         space();
         if (i_ < t_.size() && t_[i_] == ',') {
           ++i_;

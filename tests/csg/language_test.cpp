@@ -3,6 +3,7 @@
 // face, and the `cellforge build` command's exit codes.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -197,9 +198,44 @@ TEST(Build, OneBooleanForARunOfSetOperations) {
   EXPECT_NEAR(shape::mass_properties(b->model).volume, 7 * 4 * 4 - 4 * 0.25 * 4, 1e-9);
 }
 
+TEST(Build, CacheRebuildsOnlyTheEditedPart) {
+  const std::string dir = testing::TempDir() + "cf_cache_test";
+  std::filesystem::remove_all(dir);
+  auto script = [](int r) {
+    return "for (i = [0 : 3]) translate([i * 10, 0, 0]) difference() { cube(5); translate([2.5, 2.5, -1]) "
+           "cylinder(h = 7, r = 1, $fn = 8); }\ntranslate([0, 20, 0]) difference() { cube(5); "
+           "translate([2.5, 2.5, -1]) cylinder(h = 7, r = " + std::to_string(r) + ", $fn = 8); }";
+  };
+  BuildOptions o;
+  o.cache_dir = dir;
+  auto first = run(script(1));
+  ASSERT_TRUE(first);
+  auto a = build(*first->root, o);
+  ASSERT_TRUE(a) << a.error().message;
+  EXPECT_EQ(a->stats.cache_misses, 5u);
+  EXPECT_EQ(a->stats.cache_hits, 0u);
+  auto b = build(*first->root, o);
+  ASSERT_TRUE(b);
+  EXPECT_EQ(b->stats.cache_hits, 5u);
+  EXPECT_EQ(b->stats.booleans, 0u);
+  auto edited = run(script(2));
+  ASSERT_TRUE(edited);
+  auto c = build(*edited->root, o);
+  ASSERT_TRUE(c);
+  EXPECT_EQ(c->stats.cache_hits, 4u);
+  EXPECT_EQ(c->stats.cache_misses, 1u);
+  // An octagon of circumradius r has area 2 sqrt(2) r^2.
+  const double octagon = 2 * std::sqrt(2.0);
+  EXPECT_NEAR(shape::mass_properties(a->model).volume, 5 * (125 - 5 * octagon), 1e-9);
+  EXPECT_NEAR(shape::mass_properties(b->model).volume, 5 * (125 - 5 * octagon), 1e-9);
+  EXPECT_NEAR(shape::mass_properties(c->model).volume, 4 * (125 - 5 * octagon) + 125 - 5 * 4 * octagon, 1e-9);
+  EXPECT_EQ(c->model.num_volumes(), 5u);
+  std::filesystem::remove_all(dir);
+}
+
 // ---- the command
 int cellforge(const std::string& args) {
-  const int rc = std::system((std::string(CELLFORGE_BIN) + " build " + args + " > /dev/null 2>&1").c_str());
+  const int rc = std::system((std::string(CELLFORGE_BIN) + " build --no-cache " + args + " > /dev/null 2>&1").c_str());
   return WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
 }
 
