@@ -3,8 +3,10 @@
 # against its `cmake --install`, then the same tests once more under
 # AddressSanitizer + UndefinedBehaviorSanitizer in build-asan/.
 # The store tests run against a real PostgreSQL server started here (and stopped at
-# exit); if it cannot start, this script fails. Then each file parser is fuzzed for
-# FUZZ_SECONDS (default 30) seconds. Exits non-zero on any failure.
+# exit); if it cannot start, this script fails. OpenSCAD files are built by cellforge
+# and by Debian's openscad and compared (scripts/openscad_compare.sh). Then each file
+# parser and the OpenSCAD language are fuzzed for FUZZ_SECONDS (default 30) seconds.
+# Exits non-zero on any failure.
 set -euo pipefail
 cd "$(dirname "$0")"
 
@@ -15,6 +17,11 @@ trap 'scripts/pg_test_server.sh stop' EXIT
 export CI="${CI:-1}"  # without the server URL the PostgreSQL tests fail, never skip
 
 (cd build && ctest --output-on-failure -j"$(nproc)")
+
+# Agreement with OpenSCAD itself: the corpus, the openscad package's examples and
+# MCAD, built by both and compared (docs/compatibility.md lists the known differences;
+# a new one fails).
+scripts/openscad_compare.sh --all build
 
 # The installed library as another project sees it: find_package(cellforge) and
 # <cellforge/cellforge.h> (tests/consumer/).

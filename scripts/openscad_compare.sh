@@ -68,7 +68,10 @@ compare() {
     return
   fi
   if [ $cf_rc -eq 124 ]; then result="FAIL: cellforge took more than ${T}s"; return; fi
-  if [ $cf_rc -ne 0 ]; then result="FAIL: cellforge: $(head -n 1 "$tmp/cf.err" | cut -c1-160)"; return; fi
+  if [ $cf_rc -ne 0 ]; then
+    result="FAIL: cellforge: $(grep -v '^ ' "$tmp/cf.err" | grep -v ': warning: ' | head -n 1 | cut -c1-160)"
+    return
+  fi
   if ! diff -q "$tmp/oc.echo" "$tmp/cf.echo" > /dev/null; then
     result="FAIL: echo differs: $(diff "$tmp/oc.echo" "$tmp/cf.echo" | grep '^[<>]' | head -n 2 | tr '\n' ' ' | cut -c1-200)"
     return

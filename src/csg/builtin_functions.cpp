@@ -388,6 +388,7 @@ bool Interp::call_builtin_function(const std::string& name, const Args& args, So
     out = Value::string(module_stack_[module_stack_.size() - 1 - static_cast<std::size_t>(n)]);
     return true;
   }
+  if (name == "dxf_dim" || name == "dxf_cross") fail(pos, name + "() is not supported yet (it reads DXF files)");
   (void)env;
   return false;
 }

@@ -4,6 +4,9 @@
 // their body in a scope whose parent is the scope they were defined in and whose
 // caller is the scope they were called from; children() instantiates the caller's
 // child statements in the caller's scope, below the module's $ variables.
+#include <algorithm>
+#include <cmath>
+
 #include "interp.h"
 
 namespace cellforge::csg {
@@ -153,7 +156,7 @@ std::vector<NodePtr> Interp::instantiate(const Stmt& s, const EnvPtr& env) {
                                std::move(all), s.pos));
           break;
         }
-        if (s.name == "let") {
+        if (s.name == "let" || s.name == "assign") {  // assign(): OpenSCAD's deprecated let
           made = children_of(s, bind_let(s.args, env));
           break;
         }

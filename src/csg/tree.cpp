@@ -103,6 +103,12 @@ bool is_identity(const shape::Transform& t) {
 
 namespace {
 
+bool is_2d_file(const std::string& path) {
+  std::string ext = path.substr(path.find_last_of('.') == std::string::npos ? path.size() : path.find_last_of('.'));
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext == ".dxf" || ext == ".svg";
+}
+
 using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t) {
   return std::chrono::duration<double>(Clock::now() - t).count();
@@ -137,7 +143,9 @@ class Builder {
       auto s = collect2(root, shape::Transform::identity());
       out.dimension = s ? 2 : 0;
       if (s) {
-        const shape::Shape2D flat = to_shape(*s, root);
+        // Messages about the whole result name its first object.
+        const auto first = active_children(root);
+        const shape::Shape2D flat = to_shape(*s, root.pos.line == 0 && !first.empty() ? *first[0] : root);
         for (const shape::Region& r : flat.regions) {
           auto g = shape::make_region_face(out.model, r);
           if (!g) fail(root.pos, g.error().message);
@@ -261,12 +269,14 @@ class Builder {
   int dimension(const Node& n) const {
     switch (n.kind) {
       case NodeKind::kCube: case NodeKind::kSphere: case NodeKind::kCylinder:
-      case NodeKind::kPolyhedron: case NodeKind::kImport: case NodeKind::kLinearExtrude:
+      case NodeKind::kPolyhedron: case NodeKind::kLinearExtrude:
       case NodeKind::kRotateExtrude:
         return 3;
       case NodeKind::kSquare: case NodeKind::kCircle: case NodeKind::kPolygon:
       case NodeKind::kProjection: case NodeKind::kOffset:
         return 2;
+      case NodeKind::kImport:
+        return is_2d_file(n.path) ? 2 : 3;
       default: {
         int d = 0;
         for (const NodePtr& c : n.children) {
@@ -556,6 +566,9 @@ class Builder {
     if (n.kind == NodeKind::kHull || n.kind == NodeKind::kMinkowski || n.kind == NodeKind::kOffset ||
         n.kind == NodeKind::kProjection || n.kind == NodeKind::kResize) {
       return operation2(n, t);
+    }
+    if (n.kind == NodeKind::kImport) {
+      fail(n.pos, "import() of a 2D file (DXF, SVG) is not supported yet");
     }
     Result<shape::Region> region = Error{ErrorCode::kUnsupported, ""};
     switch (n.kind) {
