@@ -69,9 +69,16 @@ class Lexer {
         return true;
       }
       const char c = t_[i_];
-      if (ident_start(c)) {
-        std::size_t j = i_;
-        while (j < t_.size() && ident_char(t_[j])) ++j;
+      // OpenSCAD's lexer takes the longest match, and a name may start with digits
+      // ("8bit_font"): a run of name characters longer than the number there is a name.
+      std::size_t name_end = i_ + (c == '$' ? 1 : 0);
+      while (name_end < t_.size() && ident_char(t_[name_end]) && t_[name_end] != '$') ++name_end;
+      const bool digits_first = digit(c) && name_end > number_end(i_);
+      if (ident_start(c) || digits_first) {
+        std::size_t j = digits_first ? name_end : i_;
+        if (!digits_first) {
+          while (j < t_.size() && ident_char(t_[j])) ++j;
+        }
         tok.text = std::string(t_.substr(i_, j - i_));
         tok.kind = keyword(tok.text);
         advance(j - i_);
@@ -181,8 +188,9 @@ class Lexer {
     return Tok::kIdent;
   }
 
-  bool number(Token& tok, LexError& err) {
-    std::size_t j = i_;
+  // Where a number starting at i ends.
+  std::size_t number_end(std::size_t i) const {
+    std::size_t j = i;
     while (j < t_.size() && digit(t_[j])) ++j;
     if (j < t_.size() && t_[j] == '.') {
       ++j;
@@ -196,6 +204,11 @@ class Lexer {
         while (j < t_.size() && digit(t_[j])) ++j;
       }
     }
+    return j;
+  }
+
+  bool number(Token& tok, LexError& err) {
+    const std::size_t j = number_end(i_);
     const std::string s(t_.substr(i_, j - i_));
     tok.kind = Tok::kNumber;
     tok.text = s;
