@@ -163,21 +163,23 @@ bool Interp::call_builtin_module(const Stmt& s, const Args& args, const EnvPtr& 
     if (p.has(d)) return number(p, d, 0) / 2;
     return number(p, r, fallback);
   };
-  auto vec = [&](const Params& p, const char* key, Vec3 fallback, double z_default) {
+  // A vector of 2 or 3 finite numbers. A transform given anything else is left out
+  // with a warning, as OpenSCAD does; a size (strict) is an error.
+  auto vec = [&](const Params& p, const char* key, Vec3 fallback, double z_default, bool strict = false) {
     const Value& v = p.get(key);
     if (v.is_undef()) return fallback;
-    Vec3 out3{0, 0, z_default};
-    if (!v.is_vector() || v.as_vector().empty() || v.as_vector().size() > 3) {
-      fail(p.pos(key), name + "(): " + key + " must be a vector of 2 or 3 numbers, not " + v.to_echo());
-    }
+    bool ok = v.is_vector() && !v.as_vector().empty() && v.as_vector().size() <= 3;
     double c[3] = {0, 0, z_default};
-    for (std::size_t i = 0; i < v.as_vector().size(); ++i) {
-      if (!to_number(v.as_vector()[i], c[i]) || !std::isfinite(c[i])) {
-        fail(p.pos(key), name + "(): " + key + " must hold finite numbers, not " + v.to_echo());
-      }
+    for (std::size_t i = 0; ok && i < v.as_vector().size(); ++i) {
+      ok = to_number(v.as_vector()[i], c[i]) && std::isfinite(c[i]);
     }
-    out3 = Vec3{c[0], c[1], c[2]};
-    return out3;
+    if (!ok) {
+      const std::string what = name + "(): " + key + " must be a vector of 2 or 3 finite numbers, not " + v.to_echo();
+      if (strict) fail(p.pos(key), what);
+      warn(p.pos(key), what + " (ignored, as OpenSCAD does)");
+      return fallback;
+    }
+    return Vec3{c[0], c[1], c[2]};
   };
   auto leaf = [&](NodeKind k) {
     node->kind = k;
@@ -202,7 +204,7 @@ bool Interp::call_builtin_module(const Stmt& s, const Args& args, const EnvPtr& 
       if (!size.is_vector() || size.as_vector().size() != 3) {
         fail(p.pos("size"), "cube(): size must be a number or [x, y, z], not " + size.to_echo());
       }
-      node->size = vec(p, "size", {1, 1, 1}, 0);
+      node->size = vec(p, "size", {1, 1, 1}, 0, true);
     }
     node->center = flag(p, "center");
     return leaf(NodeKind::kCube);
@@ -274,7 +276,7 @@ bool Interp::call_builtin_module(const Stmt& s, const Args& args, const EnvPtr& 
       if (!size.is_vector() || size.as_vector().size() != 2) {
         fail(p.pos("size"), "square(): size must be a number or [x, y], not " + size.to_echo());
       }
-      node->size = vec(p, "size", {1, 1, 0}, 0);
+      node->size = vec(p, "size", {1, 1, 0}, 0, true);
     } else {
       node->size = Vec3{1, 1, 0};
     }

@@ -235,7 +235,7 @@ class Lexer {
         return true;
       }
       if (c != '\\') {
-        tok.text += c;
+        if (c != '\n') tok.text += c;  // OpenSCAD drops a line break written in a string
         advance(1);
         continue;
       }
