@@ -10,7 +10,8 @@
 # (/usr/share/openscad/examples) and every MCAD file that instantiates geometry or
 # echoes. A file whose results differ must be listed, with the reason, in
 # docs/compatibility.md (as `label`); a difference that is not listed fails the
-# script. The per-file results go to BUILD_DIR/openscad-compare.txt.
+# script. The per-file results and both programs' times go to
+# BUILD_DIR/openscad-compare.txt.
 #   COMPARE_TIMEOUT=120  seconds each program may take on one file
 set -uo pipefail
 
@@ -44,11 +45,15 @@ compare() {
   d=$(grep -o '// expect define: .*' "$file" | sed 's|// expect define: ||')
   [ -n "$d" ] && defines=(-D "$d")
   rm -f "$tmp"/oc.stl "$tmp"/cf.stl
+  local t0=$EPOCHREALTIME
   (cd "$(dirname "$file")" && timeout "$T" openscad "${defines[@]}" -o "$tmp/oc.stl" "$(basename "$file")") > "$tmp/oc.out" 2>&1
   local oc_rc=$?
+  local t1=$EPOCHREALTIME
   (cd "$(dirname "$file")" && timeout "$T" "$CF" build --no-cache "$(basename "$file")" "${defines[@]}" -o "$tmp/cf.stl" --report json) \
     > "$tmp/cf.out" 2> "$tmp/cf.err"
   local cf_rc=$?
+  local t2=$EPOCHREALTIME
+  times=$(awk -v a="$t0" -v b="$t1" -v c="$t2" 'BEGIN { printf "openscad %.3f s, cellforge %.3f s", b - a, c - b }')
   grep '^ECHO:' "$tmp/oc.out" > "$tmp/oc.echo"
   grep '^ECHO:' "$tmp/cf.out" > "$tmp/cf.echo"
   grep '^{' "$tmp/cf.out" | tail -n 1 > "$tmp/cf.json"
@@ -116,6 +121,7 @@ compare() {
 
 record() {  # LABEL FILE
   local label=$1 file=$2 why
+  times=""
   why=$(grep -o '// expect no-openscad: .*' "$file" 2> /dev/null | sed 's|// expect no-openscad: ||')
   if [ -n "$why" ]; then
     result="skip: $why"
@@ -135,7 +141,7 @@ record() {  # LABEL FILE
       fi
       ;;
   esac
-  printf '%s\t%s\n' "$label" "$result" >> "$OUT"
+  printf '%s\t%s\t%s\n' "$label" "$result" "$times" >> "$OUT"
 }
 
 for f in "$ROOT"/tests/scad/*.scad; do
