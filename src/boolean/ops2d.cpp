@@ -1,23 +1,612 @@
+// 2D operations through the exact 3D Boolean (ops2d.h): shapes lifted to prisms over
+// z in [0, 1], the expression evaluated, the result's faces on z = 0 read back.
+//
+// Reading back: the faces on z = 0 point down (-z), so their loops reversed run with
+// the result's interior on the left seen from +z. Faces of one region may come apart
+// (the Boolean leaves a face whose boundary would pass a vertex twice unmerged), so
+// the loops are not taken face by face: their directed edges are pooled, an edge met
+// in both directions (between two faces of the result) cancels, the rest are walked
+// into closed chains, and a chain that passes a vertex twice is cut there into simple
+// loops. Counterclockwise loops are outer boundaries; each clockwise loop is a hole of
+// the smallest outer loop that contains it. Containment is exact: a hole vertex off
+// the outer loop is tested by its winding number; a hole vertex on it by the side of
+// the outer loop the hole's next edge leaves into (orient2d against the outer loop's
+// edges there).
 #include "cellforge/boolean/ops2d.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <optional>
+#include <string>
+#include <unordered_map>
+#include <unordered_set>
+
+#include "cellforge/geom/intersect.h"
+#include "cellforge/geom/polygon.h"
+#include "cellforge/geom/predicates.h"
+#include "cellforge/io/triangulate.h"
+#include "cellforge/shape/hull.h"
+#include "cellforge/shape/primitives.h"
+#include "cellforge/topo/builder.h"
 
 namespace cellforge::boolean {
 
+using shape::Region;
 using shape::Shape2D;
 
-Result<Shape2D> evaluate_2d(std::span<const Shape2D>, const Expr&) {
-  return Error{ErrorCode::kUnsupported, "2D Booleans: not implemented yet"};
+namespace {
+
+Error invalid(std::string message) { return Error{ErrorCode::kInvalidInput, std::move(message)}; }
+
+// ---------------------------------------------------------------- lifting
+
+// Appends the prism over each loop set (loops[0] outer, the rest holes; oriented here:
+// outer counterclockwise, holes clockwise) between z = 0 and z = height as cell `cell`.
+void add_prism(MeshInput& mesh, const std::vector<std::vector<Vec2>>& loops, int cell,
+               double height = 1) {
+  MeshFace bottom, top;
+  bottom.back = top.back = cell;
+  std::vector<MeshFace> walls;
+  for (std::size_t li = 0; li < loops.size(); ++li) {
+    std::vector<Vec2> loop = loops[li];
+    const int want = li == 0 ? 1 : -1;
+    if (area_sign(loop) == -want) std::reverse(loop.begin(), loop.end());
+    const auto base = static_cast<std::uint32_t>(mesh.positions.size());
+    const auto n = static_cast<std::uint32_t>(loop.size());
+    for (Vec2 p : loop) mesh.positions.push_back({p.x, p.y, 0});
+    for (Vec2 p : loop) mesh.positions.push_back({p.x, p.y, height});
+    std::vector<std::uint32_t> b, t;
+    for (std::uint32_t i = 0; i < n; ++i) {
+      b.push_back(base + (n - 1 - i));  // reversed: the bottom points down
+      t.push_back(base + n + i);
+      MeshFace w;
+      w.back = cell;
+      const std::uint32_t j = (i + 1) % n;
+      w.loops = {{base + i, base + j, base + n + j, base + n + i}};
+      walls.push_back(std::move(w));
+    }
+    bottom.loops.push_back(std::move(b));
+    top.loops.push_back(std::move(t));
+  }
+  mesh.faces.push_back(std::move(bottom));
+  mesh.faces.push_back(std::move(top));
+  for (MeshFace& w : walls) mesh.faces.push_back(std::move(w));
+  mesh.volumes = std::max(mesh.volumes, cell + 1);
 }
-Result<Shape2D> apply_2d(Op, std::span<const Shape2D>) {
-  return Error{ErrorCode::kUnsupported, "2D Booleans: not implemented yet"};
+
+Status check_region(const Region& r, const std::string& where) {
+  if (r.loops.empty()) return invalid(where + " has no loops");
+  for (std::size_t li = 0; li < r.loops.size(); ++li) {
+    const auto& loop = r.loops[li];
+    const std::string name = where + (li == 0 ? " outer loop" : " hole " + std::to_string(li - 1));
+    if (loop.size() < 3) return invalid(name + " has " + std::to_string(loop.size()) + " vertices");
+    for (std::size_t i = 0; i < loop.size(); ++i) {
+      if (!std::isfinite(loop[i].x) || !std::isfinite(loop[i].y))
+        return invalid(name + " vertex " + std::to_string(i) + " is not finite");
+      if (loop[i] == loop[(i + 1) % loop.size()])
+        return invalid(name + " repeats vertex " + std::to_string(i) + " at once");
+    }
+    if (area_sign(loop) == 0) return invalid(name + " has zero area");
+  }
+  return Status::Ok();
 }
-Result<Shape2D> offset(const Shape2D&, const OffsetOptions&) {
-  return Error{ErrorCode::kUnsupported, "offset: not implemented yet"};
+
+// Every region of `pieces` as one cell of one model (their union, as a Boolean operand).
+Result<Model> lift(std::span<const Region> pieces, const std::string& what) {
+  MeshInput mesh;
+  mesh.group_name = what;
+  for (std::size_t i = 0; i < pieces.size(); ++i) {
+    if (Status s = check_region(pieces[i], what + " region " + std::to_string(i)); !s)
+      return s.error();
+    add_prism(mesh, pieces[i].loops, static_cast<int>(i));
+  }
+  Model m;
+  auto built = build_mesh(m, mesh);
+  if (!built) return Error{built.error().code, what + ": " + built.error().message};
+  return m;
 }
-Result<Shape2D> minkowski_2d(std::span<const Shape2D>) {
-  return Error{ErrorCode::kUnsupported, "minkowski (2D): not implemented yet"};
+
+// ---------------------------------------------------------------- reading back
+
+struct Loop2 {
+  std::vector<std::uint32_t> v;  // vertex ids of the result model
+  std::vector<Vec2> p;
+  Vec2 lo, hi;  // bounding box
+  double area = 0;
+};
+
+Loop2 make_loop(const Model& m, std::vector<std::uint32_t> ids) {
+  Loop2 l;
+  l.v = std::move(ids);
+  for (std::uint32_t id : l.v) {
+    const Vec3 q = m.position(VertexId(id));
+    l.p.push_back({q.x, q.y});
+  }
+  l.lo = l.hi = l.p[0];
+  for (Vec2 q : l.p) {
+    l.lo = {std::min(l.lo.x, q.x), std::min(l.lo.y, q.y)};
+    l.hi = {std::max(l.hi.x, q.x), std::max(l.hi.y, q.y)};
+  }
+  l.area = signed_area2(l.p) / 2;
+  return l;
 }
-Result<Shape2D> projection(const Model&, const ProjectionOptions&) {
-  return Error{ErrorCode::kUnsupported, "projection: not implemented yet"};
+
+bool box_inside(const Loop2& inner, const Loop2& outer) {
+  return inner.lo.x >= outer.lo.x && inner.lo.y >= outer.lo.y && inner.hi.x <= outer.hi.x &&
+         inner.hi.y <= outer.hi.y;
+}
+
+// Whether direction a -> b leaves the point a into the interior of `o` (on the left of
+// o's edges), given that a lies on o; nullopt when b runs along o's boundary there.
+std::optional<bool> leaves_into(const Loop2& o, Vec2 a, std::uint32_t a_id, Vec2 b) {
+  const std::size_t n = o.p.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec2 p = o.p[(i + n - 1) % n], q = o.p[i], r = o.p[(i + 1) % n];
+    if (o.v[i] == a_id) {  // a is vertex q of o: the interior is the wedge from r to p
+      const int to_r = orient2d(q, r, b), to_p = orient2d(q, p, b);
+      if ((to_r == 0 && dot_sign({q.x, q.y, 0}, {r.x, r.y, 0}, {q.x, q.y, 0}, {b.x, b.y, 0}) > 0) ||
+          (to_p == 0 && dot_sign({q.x, q.y, 0}, {p.x, p.y, 0}, {q.x, q.y, 0}, {b.x, b.y, 0}) > 0))
+        return std::nullopt;
+      if (orient2d(q, r, p) > 0) return to_r > 0 && to_p < 0;  // convex corner
+      return to_r > 0 || to_p < 0;
+    }
+    if (o.v[i] != a_id && o.v[(i + 1) % n] != a_id && point_on_segment(q, r, a)) {
+      const int s = orient2d(q, r, b);
+      if (s == 0) return std::nullopt;
+      return s > 0;
+    }
+  }
+  return std::nullopt;
+}
+
+bool on_loop(const Loop2& o, Vec2 a, std::uint32_t a_id) {
+  const std::size_t n = o.p.size();
+  for (std::size_t i = 0; i < n; ++i)
+    if (o.v[i] == a_id || point_on_segment(o.p[i], o.p[(i + 1) % n], a)) return true;
+  return false;
+}
+
+// Hole h (clockwise) lies inside outer loop o (counterclockwise); the two loops do
+// not cross (they come from one arrangement).
+bool contains(const Loop2& o, const Loop2& h) {
+  if (!box_inside(h, o)) return false;
+  const std::size_t n = h.p.size();
+  for (std::size_t i = 0; i < n; ++i)
+    if (!on_loop(o, h.p[i], h.v[i])) return winding_number(o.p, h.p[i]) != 0;
+  for (std::size_t i = 0; i < n; ++i)
+    if (auto in = leaves_into(o, h.p[i], h.v[i], h.p[(i + 1) % n])) return *in;
+  return false;
+}
+
+// The regions bounded by the faces on z = 0 of a Boolean result over lifted prisms.
+Shape2D read_plane(const Model& m) {
+  // Directed edges (seen from +z), with opposite pairs cancelled.
+  std::unordered_map<std::uint64_t, int> count;
+  auto key = [](std::uint32_t a, std::uint32_t b) { return (std::uint64_t{a} << 32) | b; };
+  for (FaceId f : m.faces()) {
+    bool flat = true;
+    for (const Vec3& q : m.loop_points(m.outer_loop(f))) flat &= q.z == 0;
+    if (!flat) continue;
+    for (LoopId l : m.loops_of(f)) {
+      if (m.is_point_loop(l)) continue;
+      const std::vector<VertexId> vs = m.loop_vertices(l);
+      for (std::size_t i = 0; i < vs.size(); ++i) {
+        const std::uint32_t a = vs[(i + 1) % vs.size()].value, b = vs[i].value;  // reversed
+        if (auto it = count.find(key(b, a)); it != count.end() && it->second > 0) {
+          if (--it->second == 0) count.erase(it);
+        } else {
+          ++count[key(a, b)];
+        }
+      }
+    }
+  }
+  std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> out;  // start -> ends
+  std::vector<std::uint64_t> keys;
+  for (const auto& [k, c] : count)
+    for (int i = 0; i < c; ++i) keys.push_back(k);
+  std::sort(keys.begin(), keys.end());  // a walk that does not depend on hashing
+  for (std::uint64_t k : keys) out[static_cast<std::uint32_t>(k >> 32)].push_back(k & 0xffffffffu);
+  // Walk closed chains; cut each at repeated vertices into simple loops.
+  std::vector<Loop2> loops;
+  for (std::uint64_t k : keys) {
+    const std::uint32_t start = static_cast<std::uint32_t>(k >> 32);
+    if (out[start].empty()) continue;
+    std::vector<std::uint32_t> chain{start};
+    std::unordered_map<std::uint32_t, std::size_t> at{{start, 0}};
+    std::uint32_t v = start;
+    do {
+      auto& ends = out[v];
+      if (ends.empty()) break;  // not closed: cannot happen for a closed result
+      const std::uint32_t w = ends.back();
+      ends.pop_back();
+      if (w != start) {
+        if (auto it = at.find(w); it != at.end()) {  // a simple loop closes at w
+          std::vector<std::uint32_t> cut(chain.begin() + static_cast<std::ptrdiff_t>(it->second),
+                                         chain.end());
+          for (std::uint32_t c : cut) at.erase(c);
+          chain.resize(it->second);
+          loops.push_back(make_loop(m, std::move(cut)));
+        }
+        at[w] = chain.size();
+        chain.push_back(w);
+      }
+      v = w;
+    } while (v != start);
+    if (v == start) loops.push_back(make_loop(m, std::move(chain)));
+  }
+  // Outer loops, largest first; each hole joins the last (smallest) one containing it.
+  std::vector<const Loop2*> outers, holes;
+  for (const Loop2& l : loops) {
+    const int sign = l.p.size() >= 3 ? area_sign(l.p) : 0;
+    if (sign != 0) (sign > 0 ? outers : holes).push_back(&l);
+  }
+  std::stable_sort(outers.begin(), outers.end(),
+                   [](const Loop2* a, const Loop2* b) { return a->area > b->area; });
+  Shape2D s;
+  for (const Loop2* o : outers) s.regions.push_back(Region{{o->p}});
+  for (const Loop2* h : holes) {
+    for (std::size_t i = outers.size(); i-- > 0;) {
+      if (contains(*outers[i], *h)) {
+        s.regions[i].loops.push_back(h->p);
+        break;
+      }
+    }
+  }
+  return s;
+}
+
+// ---------------------------------------------------------------- expressions
+
+// `e` with empty operands replaced by the empty set and the rest renumbered into
+// `used`; nullopt when the whole expression is empty.
+std::optional<Expr> without_empties(const Expr& e, const std::vector<bool>& empty,
+                                    std::vector<int>& used) {
+  switch (e.kind) {
+    case Expr::Kind::kOperand: {
+      if (empty[static_cast<std::size_t>(e.operand)]) return std::nullopt;
+      auto it = std::find(used.begin(), used.end(), e.operand);
+      if (it == used.end()) it = used.insert(used.end(), e.operand);
+      return Expr::of(static_cast<int>(it - used.begin()));
+    }
+    case Expr::Kind::kUnion: {
+      std::vector<Expr> kids;
+      for (const Expr& c : e.children)
+        if (auto k = without_empties(c, empty, used)) kids.push_back(std::move(*k));
+      if (kids.empty()) return std::nullopt;
+      if (kids.size() == 1) return kids[0];
+      return Expr::op(Op::kUnion, std::move(kids));
+    }
+    case Expr::Kind::kIntersection: {
+      std::vector<Expr> kids;
+      for (const Expr& c : e.children) {
+        auto k = without_empties(c, empty, used);
+        if (!k) return std::nullopt;
+        kids.push_back(std::move(*k));
+      }
+      if (kids.empty()) return std::nullopt;
+      if (kids.size() == 1) return kids[0];
+      return Expr::op(Op::kIntersection, std::move(kids));
+    }
+    case Expr::Kind::kDifference: {
+      if (e.children.empty()) return std::nullopt;
+      auto first = without_empties(e.children[0], empty, used);
+      if (!first) return std::nullopt;
+      std::vector<Expr> kids{std::move(*first)};
+      for (std::size_t i = 1; i < e.children.size(); ++i)
+        if (auto k = without_empties(e.children[i], empty, used)) kids.push_back(std::move(*k));
+      if (kids.size() == 1) return kids[0];
+      return Expr::op(Op::kDifference, std::move(kids));
+    }
+  }
+  return std::nullopt;
+}
+
+// The Boolean of lifted models, read back on z = 0.
+Result<Shape2D> evaluate_lifted(std::span<const Model* const> models, const Expr& e) {
+  auto r = evaluate(models, e);
+  if (!r) return r.error();
+  return read_plane(r->model);
+}
+
+// Every region of `shape` normalized: the union of its regions, disjoint.
+Result<Shape2D> normalized(const Shape2D& shape, const std::string& what) {
+  if (shape.empty()) return shape;
+  auto m = lift(shape.regions, what);
+  if (!m) return m.error();
+  const Model* ms[] = {&*m};
+  return evaluate_lifted(ms, Expr::of(0));
+}
+
+}  // namespace
+
+Result<Shape2D> evaluate_2d(std::span<const Shape2D> operands, const Expr& expr) {
+  if (expr.max_operand() >= static_cast<int>(operands.size()))
+    return invalid("2D Boolean: the expression names operand " + std::to_string(expr.max_operand()) +
+                   " of " + std::to_string(operands.size()));
+  std::vector<bool> empty;
+  for (const Shape2D& s : operands) empty.push_back(s.empty());
+  std::vector<int> used;
+  const std::optional<Expr> e = without_empties(expr, empty, used);
+  if (!e) return Shape2D{};
+  if (e->kind == Expr::Kind::kOperand) return operands[static_cast<std::size_t>(used[0])];
+  std::vector<Model> models;
+  for (int i : used) {
+    auto m = lift(operands[static_cast<std::size_t>(i)].regions, "2D operand " + std::to_string(i));
+    if (!m) return m.error();
+    models.push_back(std::move(*m));
+  }
+  std::vector<const Model*> ptrs;
+  for (const Model& m : models) ptrs.push_back(&m);
+  return evaluate_lifted(ptrs, *e);
+}
+
+Result<Shape2D> apply_2d(Op op, std::span<const Shape2D> operands) {
+  if (operands.empty()) return Shape2D{};
+  return evaluate_2d(operands, Expr::over(op, static_cast<int>(operands.size())));
+}
+
+// ---------------------------------------------------------------- offset
+
+namespace {
+
+Vec2 add(Vec2 a, Vec2 b) { return {a.x + b.x, a.y + b.y}; }
+Vec2 scaled(Vec2 a, double s) { return {a.x * s, a.y * s}; }
+double cross2(Vec2 a, Vec2 b) { return a.x * b.y - a.y * b.x; }
+double dot2(Vec2 a, Vec2 b) { return a.x * b.x + a.y * b.y; }
+
+// The unit normal on the right of a -> b (outward: interiors lie on the left).
+Vec2 right_normal(Vec2 a, Vec2 b) {
+  const double dx = b.x - a.x, dy = b.y - a.y, len = std::hypot(dx, dy);
+  return {dy / len, -dx / len};
+}
+
+// A convex piece as a region (counterclockwise), or nothing when it has no area.
+void add_piece(std::vector<Region>& pieces, std::vector<Vec2> loop) {
+  loop.erase(std::unique(loop.begin(), loop.end()), loop.end());
+  while (loop.size() > 1 && loop.front() == loop.back()) loop.pop_back();
+  if (loop.size() < 3) return;
+  const int s = area_sign(loop);
+  if (s == 0) return;
+  if (s < 0) std::reverse(loop.begin(), loop.end());
+  pieces.push_back(Region{{std::move(loop)}});
+}
+
+// The join at vertex v between the edge before it (normal nk) and the edge after it
+// (normal nj), on the side the offset moves to, as Clipper makes it (clipper.cpp,
+// ClipperOffset::DoRound / DoMiter / DoSquare).
+std::vector<Vec2> join_piece(Vec2 v, Vec2 nk, Vec2 nj, double delta, const OffsetOptions& o,
+                             int fragments) {
+  const double sin_a = cross2(nk, nj), cos_a = dot2(nk, nj);
+  const Vec2 first = add(v, scaled(nk, delta)), last = add(v, scaled(nj, delta));
+  std::vector<Vec2> loop{v, first};
+  switch (o.join) {
+    case OffsetJoin::kRound: {
+      const double a = std::atan2(sin_a, cos_a);
+      const int steps = std::max(
+          static_cast<int>(std::lround(fragments / (2 * std::numbers::pi) * std::fabs(a))), 1);
+      const double step = (a >= 0 ? 1 : -1) * 2 * std::numbers::pi / fragments;
+      for (int i = 1; i < steps; ++i) {
+        const double c = std::cos(i * step), s = std::sin(i * step);
+        loop.push_back(add(v, scaled({nk.x * c - nk.y * s, nk.x * s + nk.y * c}, delta)));
+      }
+      break;
+    }
+    case OffsetJoin::kMiter: {
+      const double r = 1 + cos_a;
+      constexpr double kMiterLimit = 1e6;  // OpenSCAD's offset(delta) miter limit
+      if (r >= 2 / (kMiterLimit * kMiterLimit)) {
+        loop.push_back(add(v, scaled(add(nk, nj), delta / r)));
+        break;
+      }
+      [[fallthrough]];  // a spike beyond the limit is squared off, as Clipper does
+    }
+    case OffsetJoin::kChamfer: {
+      const double dx = std::tan(std::atan2(sin_a, cos_a) / 4);
+      loop.push_back(add(v, scaled({nk.x - nk.y * dx, nk.y + nk.x * dx}, delta)));
+      loop.push_back(add(v, scaled({nj.x + nj.y * dx, nj.y - nj.x * dx}, delta)));
+      break;
+    }
+  }
+  loop.push_back(last);
+  return loop;
+}
+
+// The strips and joins of every loop of a normalized shape.
+std::vector<Region> offset_pieces(const Shape2D& shape, const OffsetOptions& o) {
+  const double delta = o.amount;
+  const int fragments = shape::fragments(std::fabs(delta), o.faceting);
+  const int side = delta > 0 ? 1 : -1;
+  std::vector<Region> pieces;
+  for (const Region& r : shape.regions) {
+    for (const auto& loop : r.loops) {
+      const std::size_t n = loop.size();
+      std::vector<Vec2> normal(n);  // of edge i -> i + 1
+      for (std::size_t i = 0; i < n; ++i) normal[i] = right_normal(loop[i], loop[(i + 1) % n]);
+      for (std::size_t i = 0; i < n; ++i) {
+        const Vec2 a = loop[i], b = loop[(i + 1) % n];
+        add_piece(pieces, {a, b, add(b, scaled(normal[i], delta)), add(a, scaled(normal[i], delta))});
+        const Vec2 c = loop[(i + 2) % n];
+        const int turn = orient2d(a, b, c);
+        const Vec2 nk = normal[i], nj = normal[(i + 1) % n];
+        if (turn == side) {
+          add_piece(pieces, join_piece(b, nk, nj, delta, o, fragments));
+        } else if (turn == 0) {  // the two strips' ends may differ by rounding
+          add_piece(pieces, {b, add(b, scaled(nk, delta)), add(b, scaled(nj, delta))});
+        }
+      }
+    }
+  }
+  return pieces;
+}
+
+}  // namespace
+
+Result<Shape2D> offset(const Shape2D& shape, const OffsetOptions& options) {
+  if (!std::isfinite(options.amount))
+    return invalid("offset: the amount is " + shape::format_number(options.amount) +
+                   " (must be finite)");
+  if (options.amount == 0 || shape.empty()) return shape;
+  Shape2D base = shape;
+  if (shape.regions.size() > 1) {
+    auto n = normalized(shape, "offset operand");
+    if (!n) return n.error();
+    base = std::move(*n);
+  }
+  for (Region& r : base.regions)  // interiors on the left of every loop
+    for (std::size_t li = 0; li < r.loops.size(); ++li)
+      if (area_sign(r.loops[li]) == (li == 0 ? -1 : 1)) std::reverse(r.loops[li].begin(), r.loops[li].end());
+  const std::vector<Region> pieces = offset_pieces(base, options);
+  auto a = lift(base.regions, "offset operand");
+  if (!a) return a.error();
+  auto b = lift(pieces, "offset pieces");
+  if (!b) return b.error();
+  const Model* ms[] = {&*a, &*b};
+  return evaluate_lifted(ms, Expr::over(options.amount > 0 ? Op::kUnion : Op::kDifference, 2));
+}
+
+// ---------------------------------------------------------------- minkowski
+
+namespace {
+
+bool is_convex(const Shape2D& s) {
+  if (s.regions.size() != 1 || s.regions[0].loops.size() != 1) return false;
+  const auto& l = s.regions[0].loops[0];
+  const std::size_t n = l.size();
+  for (std::size_t i = 0; i < n; ++i)
+    if (orient2d(l[i], l[(i + 1) % n], l[(i + 2) % n]) < 0) return false;
+  return area_sign(l) > 0;
+}
+
+Result<Region> hull_of_sums(std::span<const Vec2> a, std::span<const Vec2> b) {
+  std::vector<Vec2> sums;
+  sums.reserve(a.size() * b.size());
+  for (Vec2 p : a)
+    for (Vec2 q : b) sums.push_back(add(p, q));
+  return shape::convex_hull(sums);
+}
+
+Shape2D translated(const Shape2D& s, Vec2 t) {
+  Shape2D out = s;
+  for (Region& r : out.regions)
+    for (auto& loop : r.loops)
+      for (Vec2& p : loop) p = add(p, t);
+  return out;
+}
+
+// Pieces whose union is A + B for convex B: A + b0 and the hull of e + B for every
+// boundary edge e of A.
+Status add_sum_with_convex(std::vector<Region>& pieces, const Shape2D& a, std::span<const Vec2> b) {
+  for (const Region& r : translated(a, b[0]).regions) pieces.push_back(r);
+  for (const Region& r : a.regions) {
+    for (const auto& loop : r.loops) {
+      for (std::size_t i = 0; i < loop.size(); ++i) {
+        const Vec2 e[2] = {loop[i], loop[(i + 1) % loop.size()]};
+        auto h = hull_of_sums(e, b);
+        if (!h) return h.error();
+        pieces.push_back(std::move(*h));
+      }
+    }
+  }
+  return Status::Ok();
+}
+
+Result<Shape2D> minkowski_pair(const Shape2D& a, const Shape2D& b) {
+  const bool ca = is_convex(a), cb = is_convex(b);
+  if (ca && cb) {
+    auto h = hull_of_sums(a.regions[0].loops[0], b.regions[0].loops[0]);
+    if (!h) return h.error();
+    return shape::shape_of(std::move(*h));
+  }
+  const Shape2D& big = cb ? a : b;  // the operand summed edge by edge
+  const Shape2D& convex = cb ? b : a;
+  std::vector<Region> pieces;
+  if (ca || cb) {
+    if (Status s = add_sum_with_convex(pieces, big, convex.regions[0].loops[0]); !s) return s.error();
+  } else {
+    for (const Region& r : b.regions) {  // B as triangles, each convex
+      std::vector<std::vector<Vec3>> loops3;
+      for (const auto& loop : r.loops) {
+        std::vector<Vec3> l3;
+        for (Vec2 p : loop) l3.push_back({p.x, p.y, 0});
+        loops3.push_back(std::move(l3));
+      }
+      std::vector<Vec2> flat;
+      for (const auto& loop : r.loops) flat.insert(flat.end(), loop.begin(), loop.end());
+      for (const auto& t : io::triangulate_polygon(loops3, {0, 0, 1})) {
+        const Vec2 tri[3] = {flat[t[0]], flat[t[1]], flat[t[2]]};
+        if (orient2d(tri[0], tri[1], tri[2]) == 0) continue;
+        if (Status s = add_sum_with_convex(pieces, a, tri); !s) return s.error();
+      }
+    }
+  }
+  auto m = lift(pieces, "minkowski pieces");
+  if (!m) return m.error();
+  const Model* ms[] = {&*m};
+  return evaluate_lifted(ms, Expr::of(0));
+}
+
+}  // namespace
+
+Result<Shape2D> minkowski_2d(std::span<const Shape2D> operands) {
+  if (operands.empty()) return Shape2D{};
+  for (const Shape2D& s : operands)
+    if (s.empty()) return Shape2D{};
+  Shape2D acc = operands[0];
+  if (operands.size() == 1) return acc;
+  for (std::size_t i = 1; i < operands.size(); ++i) {
+    auto next = minkowski_pair(acc, operands[i]);
+    if (!next) return next.error();
+    acc = std::move(*next);
+  }
+  return acc;
+}
+
+// ---------------------------------------------------------------- projection
+
+Result<Shape2D> projection(const Model& solid, const ProjectionOptions& options) {
+  if (solid.num_faces() == 0) return Shape2D{};
+  if (options.cut) {
+    Vec3 lo = solid.position(*solid.vertices().begin()), hi = lo;
+    for (VertexId v : solid.vertices()) {
+      const Vec3 p = solid.position(v);
+      lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+      hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+    }
+    if (hi.z <= 0 || lo.z > 0) return Shape2D{};
+    // A box from z = 0 to above the solid, wider than it: the solid's part above z = 0.
+    const Vec2 a{lo.x - 1, lo.y - 1}, b{hi.x + 1, hi.y + 1};
+    MeshInput mesh;
+    add_prism(mesh, {{a, {b.x, a.y}, b, {a.x, b.y}}}, 0, hi.z + 1);
+    Model slab;
+    if (auto built = build_mesh(slab, mesh); !built) return built.error();
+    const Model* ms[] = {&solid, &slab};
+    auto r = evaluate(ms, Expr::over(Op::kIntersection, 2));
+    if (!r) return r.error();
+    return read_plane(r->model);
+  }
+  // The shadow: the union of the faces that look up (outward normal with z > 0).
+  std::vector<Region> faces;
+  for (FaceId f : solid.faces()) {
+    const bool front = solid.front_volume(f).is_valid(), back = solid.back_volume(f).is_valid();
+    if (front == back) continue;
+    Region r;
+    for (LoopId l : solid.loops_of(f)) {
+      if (solid.is_point_loop(l)) continue;
+      std::vector<Vec2> loop;
+      for (const Vec3& p : solid.loop_points(l)) loop.push_back({p.x, p.y});
+      if (front) std::reverse(loop.begin(), loop.end());
+      r.loops.push_back(std::move(loop));
+    }
+    // A face that is not vertical projects one to one (its edges stay edges).
+    if (r.loops.empty() || area_sign(r.loops[0]) <= 0) continue;
+    faces.push_back(std::move(r));
+  }
+  if (faces.empty()) return Shape2D{};
+  auto m = lift(faces, "projected faces");
+  if (!m) return m.error();
+  const Model* ms[] = {&*m};
+  return evaluate_lifted(ms, Expr::of(0));
 }
 
 }  // namespace cellforge::boolean

@@ -8,9 +8,10 @@
 // exact Boolean:
 //   - every cell of both operands convex: the union of the hulls of every pair of cells;
 //   - B's cells convex, A's not: A + B_j = (A + b0) union the hulls of t + B_j over the
-//     triangles t of A's boundary faces, for any b0 in B_j (a point of A + B_j either
-//     has a + b0 in A, or the segment from a to the point minus b0 leaves A through
-//     its boundary); the operands are swapped when only A's cells are convex;
+//     pieces t of A's boundary (each face that is an exactly planar convex polygon
+//     whole, the others by triangles), for any b0 in B_j (a point x of A + B_j either
+//     has x - b0 in A, or the segment from x - b to x - b0 leaves A through its
+//     boundary); the operands are swapped when only A's cells are convex;
 //   - no operand with all cells convex: unsupported (kUnsupported, naming the operands
 //     and a non-convex cell of each), since a convex decomposition of a general
 //     non-convex polyhedron is not built here.
@@ -28,8 +29,12 @@ namespace cellforge::boolean {
 // naming it); one operand gives its union.
 Result<Model> minkowski(std::span<const Model* const> operands);
 
-// Whether cell c of m is convex: every vertex of c lies on or behind the plane of
-// every face bounding c (exact orient3d).
+// Whether cell c of m counts as convex: no face bounding it has holes, and for every
+// corner of every such face (three consecutive points, not collinear) every vertex of
+// c not on that face lies on or behind the corner's plane (exact orient3d). The
+// face's own vertices are left out so that a face that is planar only up to rounding
+// (the quads of a faceted sphere) does not make the cell non-convex; such a cell is
+// summed as the hull of its vertices, which differs from it by those roundings.
 bool is_convex_cell(const Model& m, VolumeId c);
 
 }  // namespace cellforge::boolean

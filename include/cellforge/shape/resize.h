@@ -1,8 +1,9 @@
 // OpenSCAD's resize(newsize, auto): per-axis scale factors from the bounding box, and
 // the scaling itself. As OpenSCAD does it (GeometryEvaluator, after RapCAD's resize):
 // axis i with newsize[i] != 0 scales by newsize[i] / size[i]; an axis with
-// newsize[i] == 0 keeps scale 1, unless autosize[i], when it takes the largest of the
-// three factors. The scaling is about the origin, not the box corner.
+// newsize[i] == 0 keeps scale 1, unless autosize[i], when it takes the factor of the
+// axis with the largest new size (the first on ties; 1 when no new size is given).
+// The scaling is about the origin, not the box corner.
 #pragma once
 
 #include <array>

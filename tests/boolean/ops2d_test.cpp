@@ -1,0 +1,351 @@
+// 2D operations (boolean/ops2d.h): Booleans of rectangles and faceted circles with
+// closed-form areas; seeded random cases checked by the area identities
+// area(A u B) + area(A n B) = area(A) + area(B) and area(A - B) = area(A) - area(A n B)
+// and, independently, by exact point membership (the result's winding number at
+// random points against the expression on the operands); offset, 2D Minkowski sums
+// and projections with closed-form areas.
+#include "cellforge/boolean/ops2d.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <random>
+
+#include "cellforge/geom/polygon.h"
+#include "cellforge/shape/primitives.h"
+#include "cellforge/shape/region.h"
+#include "cellforge/shape/transform.h"
+#include "support/checks.h"
+
+namespace cellforge::boolean {
+namespace {
+
+using shape::Region;
+using shape::Shape2D;
+
+constexpr double kPi = std::numbers::pi;
+
+double ngon_area(int n, double r) { return n / 2.0 * r * r * std::sin(2 * kPi / n); }
+
+Shape2D rect(double x0, double y0, double x1, double y1) {
+  return shape::shape_of(Region{{{{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}}}});
+}
+
+Shape2D circle(double r, int n, Vec2 c = {}) {
+  Region g = *shape::circle(r, {.fn = static_cast<double>(n)});
+  for (Vec2& p : g.loops[0]) p = {p.x + c.x, p.y + c.y};
+  return shape::shape_of(std::move(g));
+}
+
+Shape2D op(Op o, std::vector<Shape2D> shapes) {
+  auto r = apply_2d(o, shapes);
+  EXPECT_TRUE(r.ok()) << r.error().message;
+  return r.ok() ? *r : Shape2D{};
+}
+
+// Inside the shape (exactly): an odd number of its loops wind about p. The loops of
+// a valid result nest, so the sum of winding numbers is 0 or 1.
+int membership(const Shape2D& s, Vec2 p) {
+  int w = 0;
+  for (const Region& r : s.regions)
+    for (const auto& loop : r.loops) w += winding_number(loop, p);
+  return w;
+}
+
+// Every result region is a valid polygon with holes (polygon() accepts it) and its
+// loops run outer counterclockwise, holes clockwise.
+void expect_valid_regions(const Shape2D& s) {
+  for (const Region& r : s.regions) {
+    ASSERT_FALSE(r.loops.empty());
+    EXPECT_GT(area_sign(r.loops[0]), 0);
+    for (std::size_t i = 1; i < r.loops.size(); ++i) EXPECT_LT(area_sign(r.loops[i]), 0);
+    std::vector<std::vector<Vec2>> holes(r.loops.begin() + 1, r.loops.end());
+    auto checked = shape::polygon(r.loops[0], holes);
+    EXPECT_TRUE(checked.ok()) << checked.error().message;
+  }
+}
+
+TEST(Boolean2D, OverlappingRectangles) {
+  const Shape2D a = rect(0, 0, 4, 2), b = rect(2, 1, 6, 5);
+  EXPECT_DOUBLE_EQ(area(op(Op::kUnion, {a, b})), 8 + 16 - 2);
+  EXPECT_DOUBLE_EQ(area(op(Op::kIntersection, {a, b})), 2);
+  const Shape2D d = op(Op::kDifference, {a, b});
+  EXPECT_DOUBLE_EQ(area(d), 6);
+  ASSERT_EQ(d.regions.size(), 1u);
+  EXPECT_EQ(d.regions[0].loops[0].size(), 6u);  // an L: the collinear points are gone
+  expect_valid_regions(d);
+}
+
+TEST(Boolean2D, DifferenceMakesAHoleAndUnionOfDisjointKeepsTwoRegions) {
+  const Shape2D d = op(Op::kDifference, {rect(0, 0, 10, 10), rect(2, 3, 5, 7)});
+  ASSERT_EQ(d.regions.size(), 1u);
+  ASSERT_EQ(d.regions[0].loops.size(), 2u);
+  EXPECT_DOUBLE_EQ(area(d), 100 - 12);
+  expect_valid_regions(d);
+  // An island inside the hole is a region of its own.
+  const Shape2D island = op(Op::kUnion, {d, rect(3, 4, 4, 5)});
+  ASSERT_EQ(island.regions.size(), 2u);
+  EXPECT_DOUBLE_EQ(area(island), 89);
+  expect_valid_regions(island);
+  const Shape2D two = op(Op::kUnion, {rect(0, 0, 1, 1), rect(3, 0, 4, 1)});
+  EXPECT_EQ(two.regions.size(), 2u);
+  EXPECT_DOUBLE_EQ(area(two), 2);
+}
+
+TEST(Boolean2D, TouchingAtAPointStaysTwoSimpleRegions) {
+  const Shape2D s = op(Op::kUnion, {rect(0, 0, 1, 1), rect(1, 1, 2, 2)});
+  EXPECT_EQ(s.regions.size(), 2u);
+  EXPECT_DOUBLE_EQ(area(s), 2);
+  // A square minus a diamond touching its sides at their midpoints: four corners.
+  const Shape2D diamond = shape::shape_of(Region{{{{1, 0}, {2, 1}, {1, 2}, {0, 1}}}});
+  const Shape2D corners = op(Op::kDifference, {rect(0, 0, 2, 2), diamond});
+  EXPECT_DOUBLE_EQ(area(corners), 2);
+  if (corners.regions.size() == 4) {
+    for (const Region& r : corners.regions) EXPECT_DOUBLE_EQ(shape::area(r), 0.5);
+  } else {  // or the square with the diamond as a hole touching it
+    ASSERT_EQ(corners.regions.size(), 1u);
+    EXPECT_EQ(corners.regions[0].loops.size(), 2u);
+  }
+}
+
+TEST(Boolean2D, SquareAndCircleQuarterClosedForm) {
+  // A 24-gon at the origin has vertices on both axes, so the square [0, 3]^2 holds
+  // exactly a quarter of it.
+  const Shape2D c = circle(2, 24), s = rect(0, 0, 3, 3);
+  const double q = ngon_area(24, 2) / 4;
+  EXPECT_NEAR(area(op(Op::kIntersection, {c, s})), q, 1e-12);
+  EXPECT_NEAR(area(op(Op::kUnion, {c, s})), 9 + 3 * q, 1e-12);
+  EXPECT_NEAR(area(op(Op::kDifference, {s, c})), 9 - q, 1e-12);
+  const Shape2D ring = op(Op::kDifference, {circle(2, 24), circle(1, 24)});
+  ASSERT_EQ(ring.regions.size(), 1u);
+  EXPECT_EQ(ring.regions[0].loops.size(), 2u);
+  EXPECT_NEAR(area(ring), ngon_area(24, 2) - ngon_area(24, 1), 1e-12);
+}
+
+TEST(Boolean2D, NaryExpressionsAndEmptyOperands) {
+  const std::vector<Shape2D> ops = {rect(0, 0, 3, 3), rect(1, 1, 4, 4), rect(2, 2, 5, 5), {}};
+  EXPECT_DOUBLE_EQ(area(*apply_2d(Op::kUnion, ops)), 27 - 4 - 4 + 0);
+  EXPECT_DOUBLE_EQ(area(*apply_2d(Op::kIntersection, ops)), 0);
+  EXPECT_TRUE(apply_2d(Op::kIntersection, ops)->empty());
+  EXPECT_DOUBLE_EQ(area(*apply_2d(Op::kDifference, ops)), 9 - 4);
+  const Expr e = Expr::op(Op::kIntersection,
+                          {Expr::op(Op::kUnion, {Expr::of(0), Expr::of(2)}), Expr::of(1)});
+  EXPECT_DOUBLE_EQ(area(*evaluate_2d(ops, e)), 4 + 4 - 1);
+  EXPECT_FALSE(evaluate_2d(ops, Expr::of(7)).ok());
+  EXPECT_TRUE(apply_2d(Op::kUnion, std::vector<Shape2D>{})->empty());
+}
+
+TEST(Boolean2D, BadRegionIsAnError) {
+  const Shape2D bad = shape::shape_of(Region{{{{0, 0}, {1, 0}}}});
+  auto r = apply_2d(Op::kUnion, std::vector<Shape2D>{rect(0, 0, 1, 1), bad});
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.error().message.find("operand 1 region 0"), std::string::npos) << r.error().message;
+}
+
+// A random shape: one to three convex polygons (regular n-gons, rotated and scaled),
+// on a coarse grid when `grid` (many coincidences), else anywhere.
+Shape2D random_shape(std::mt19937& rng, bool grid) {
+  std::uniform_real_distribution<double> u(0, 1);
+  const int parts = 1 + static_cast<int>(rng() % 3);
+  std::vector<Shape2D> pieces;
+  for (int k = 0; k < parts; ++k) {
+    if (grid) {
+      const double x = std::floor(u(rng) * 6), y = std::floor(u(rng) * 6);
+      const double w = 1 + std::floor(u(rng) * 4), h = 1 + std::floor(u(rng) * 4);
+      pieces.push_back(rect(x, y, x + w, y + h));
+    } else {
+      const int n = 3 + static_cast<int>(rng() % 6);
+      const double r = 0.5 + 2 * u(rng), a = 360 * u(rng);
+      Region g = *shape::regular_polygon(n, r);
+      const Vec2 c{6 * u(rng), 6 * u(rng)};
+      for (Vec2& p : g.loops[0])
+        p = {c.x + p.x * shape::cos_degrees(a) - p.y * shape::sin_degrees(a),
+             c.y + p.x * shape::sin_degrees(a) + p.y * shape::cos_degrees(a)};
+      pieces.push_back(shape::shape_of(std::move(g)));
+    }
+  }
+  return op(Op::kUnion, pieces);
+}
+
+void check_identities(bool grid, unsigned first_seed, int cases) {
+  for (int i = 0; i < cases; ++i) {
+    const unsigned seed = first_seed + static_cast<unsigned>(i);
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    std::mt19937 rng(seed);
+    const Shape2D a = random_shape(rng, grid), b = random_shape(rng, grid);
+    const Shape2D u = op(Op::kUnion, {a, b}), n = op(Op::kIntersection, {a, b}),
+                  d = op(Op::kDifference, {a, b});
+    const double tol = 1e-9 * (area(a) + area(b));
+    EXPECT_NEAR(area(u) + area(n), area(a) + area(b), tol);
+    EXPECT_NEAR(area(d), area(a) - area(n), tol);
+    if (!grid) {  // random doubles: no touching, so every region is strictly simple
+      expect_valid_regions(u);
+      expect_valid_regions(n);
+      expect_valid_regions(d);
+    }
+    std::uniform_real_distribution<double> pu(-1, 10);
+    for (int k = 0; k < 40; ++k) {
+      const Vec2 p{pu(rng) + 1e-7 * k, pu(rng) + 3e-7 * k};  // off the grid lines
+      const bool in_a = membership(a, p) != 0, in_b = membership(b, p) != 0;
+      EXPECT_EQ(membership(u, p), in_a || in_b) << p.x << " " << p.y;
+      EXPECT_EQ(membership(n, p), in_a && in_b) << p.x << " " << p.y;
+      EXPECT_EQ(membership(d, p), in_a && !in_b) << p.x << " " << p.y;
+    }
+  }
+}
+
+TEST(Boolean2D, AreaIdentitiesAndMembershipOnRandomPolygons) { check_identities(false, 1, 150); }
+TEST(Boolean2D, AreaIdentitiesAndMembershipOnGridRectangles) { check_identities(true, 1001, 150); }
+
+// ---------------------------------------------------------------- offset
+
+TEST(Offset, RoundGrowsASquareByStripsAndAFacetedCircle) {
+  for (int n : {4, 8, 12, 36}) {
+    auto r = offset(rect(0, 0, 3, 3), {.amount = 0.5, .faceting = {.fn = static_cast<double>(n)}});
+    ASSERT_OK(r);
+    ASSERT_EQ(r->regions.size(), 1u);
+    EXPECT_NEAR(area(*r), 9 + 4 * 3 * 0.5 + ngon_area(n, 0.5), 1e-12) << n;
+    // Each corner: n / 4 steps, so n / 4 + 1 points.
+    EXPECT_EQ(r->regions[0].loops[0].size(), static_cast<std::size_t>(n + 4)) << n;
+  }
+}
+
+TEST(Offset, NegativeRoundShrinksOuterSharpAndGrowsHolesRound) {
+  const Shape2D framed = op(Op::kDifference, {rect(0, 0, 10, 10), rect(4, 4, 6, 6)});
+  auto r = offset(framed, {.amount = -1, .faceting = {.fn = 16}});
+  ASSERT_OK(r);
+  EXPECT_NEAR(area(*r), 64 - (4 + 4 * 2 * 1 + ngon_area(16, 1)), 1e-12);
+  auto gone = offset(rect(0, 0, 2, 2), {.amount = -1.5});
+  ASSERT_OK(gone);
+  EXPECT_TRUE(gone->empty());
+}
+
+TEST(Offset, LShapeRoundHasOneOverlapAtTheReflexCorner) {
+  const Shape2D l = op(Op::kUnion, {rect(0, 0, 4, 2), rect(0, 0, 2, 4)});
+  const double r = 0.5;
+  auto g = offset(l, {.amount = r, .faceting = {.fn = 20}});
+  ASSERT_OK(g);
+  // area + perimeter * r + five quarter 20-gons - the r x r square both strips cover
+  EXPECT_NEAR(area(*g), 12 + 16 * r + 5 * ngon_area(20, r) / 4 - r * r, 1e-12);
+}
+
+TEST(Offset, DeltaMiterAndChamfer) {
+  auto m = offset(rect(0, 0, 3, 3), {.amount = 1, .join = OffsetJoin::kMiter});
+  ASSERT_OK(m);
+  EXPECT_NEAR(area(*m), 25, 1e-12);
+  EXPECT_EQ(m->regions[0].loops[0].size(), 4u);
+  auto c = offset(rect(0, 0, 3, 3), {.amount = 1, .join = OffsetJoin::kChamfer});
+  ASSERT_OK(c);
+  const double leg = 1 - std::tan(kPi / 8);  // from a chamfer end to the miter corner
+  EXPECT_NEAR(area(*c), 25 - 4 * leg * leg / 2, 1e-12);
+  EXPECT_EQ(c->regions[0].loops[0].size(), 8u);
+  auto in = offset(rect(0, 0, 3, 3), {.amount = -1, .join = OffsetJoin::kMiter});
+  ASSERT_OK(in);
+  EXPECT_NEAR(area(*in), 1, 1e-12);
+}
+
+TEST(Offset, TwoSquaresGrowTogether) {
+  const std::vector<Shape2D> parts = {rect(0, 0, 1, 1), rect(1.5, 0, 2.5, 1)};
+  const Shape2D two = op(Op::kUnion, parts);
+  ASSERT_EQ(two.regions.size(), 2u);
+  auto g = offset(two, {.amount = 0.5, .join = OffsetJoin::kMiter});
+  ASSERT_OK(g);
+  EXPECT_EQ(g->regions.size(), 1u);
+  EXPECT_NEAR(area(*g), 3.5 * 2, 1e-12);
+  EXPECT_FALSE(offset(two, {.amount = NAN}).ok());
+}
+
+// ---------------------------------------------------------------- minkowski
+
+TEST(Minkowski2D, ConvexOperands) {
+  const std::vector<Shape2D> squares = {rect(0, 0, 2, 1), rect(0, 0, 1, 3)};
+  auto s = minkowski_2d(squares);
+  ASSERT_OK(s);
+  EXPECT_DOUBLE_EQ(area(*s), 3 * 4);
+  const std::vector<Shape2D> rounded = {rect(0, 0, 3, 2), circle(1, 16)};
+  auto r = minkowski_2d(rounded);
+  ASSERT_OK(r);
+  // A + B + the mixed term: widths of a 16-gon with vertices on the axes are 2 r.
+  EXPECT_NEAR(area(*r), 6 + ngon_area(16, 1) + 3 * 2 + 2 * 2, 1e-12);
+}
+
+TEST(Minkowski2D, NonConvexWithConvexAndBothNonConvex) {
+  const Shape2D l = op(Op::kUnion, {rect(0, 0, 2, 1), rect(0, 0, 1, 2)});
+  const double c = 0.5;
+  const std::vector<Shape2D> lc = {l, rect(0, 0, c, c)};
+  auto a = minkowski_2d(lc);
+  ASSERT_OK(a);
+  EXPECT_NEAR(area(*a), 2 * (2 + c) * (1 + c) - (1 + c) * (1 + c), 1e-12);
+  const std::vector<Shape2D> ll = {l, l};
+  auto b = minkowski_2d(ll);
+  ASSERT_OK(b);
+  EXPECT_NEAR(area(*b), 13, 1e-12);  // squares of side 2 at the six pairwise sums
+  expect_valid_regions(*b);
+  // A frame grows inward too: a 6 x 6 frame of width 1 plus a 1 x 1 square.
+  const Shape2D frame = op(Op::kDifference, {rect(0, 0, 6, 6), rect(1, 1, 5, 5)});
+  const std::vector<Shape2D> fs = {frame, rect(0, 0, 1, 1)};
+  auto f = minkowski_2d(fs);
+  ASSERT_OK(f);
+  EXPECT_NEAR(area(*f), 49 - 9, 1e-12);
+}
+
+// ---------------------------------------------------------------- projection
+
+TEST(Projection, CutAndShadowOfACube) {
+  Model m;
+  auto g = shape::make_cube(m, {.size = {2, 3, 4}, .center = true});
+  ASSERT_OK(g);
+  auto cut = projection(m, {.cut = true});
+  ASSERT_OK(cut);
+  EXPECT_DOUBLE_EQ(area(*cut), 6);
+  auto shadow = projection(m);
+  ASSERT_OK(shadow);
+  EXPECT_DOUBLE_EQ(area(*shadow), 6);
+  ASSERT_EQ(shadow->regions.size(), 1u);
+  EXPECT_EQ(shadow->regions[0].loops[0].size(), 4u);
+}
+
+TEST(Projection, CutOnTheBoundaryFollowsTheSolidAbove) {
+  Model above;
+  ASSERT_OK(shape::make_cube(above, {.size = {1, 1, 1}}));
+  EXPECT_DOUBLE_EQ(area(*projection(above, {.cut = true})), 1);
+  Model moved;  // a unit cube below z = 0: its top face lies on the plane
+  ASSERT_OK(shape::make_polyhedron(
+      moved, {.points = {{0, 0, -1}, {1, 0, -1}, {1, 1, -1}, {0, 1, -1}, {0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}},
+              .faces = {{0, 1, 2, 3}, {4, 7, 6, 5}, {0, 4, 5, 1}, {1, 5, 6, 2}, {2, 6, 7, 3}, {3, 7, 4, 0}}}));
+  auto none = projection(moved, {.cut = true});
+  ASSERT_OK(none);
+  EXPECT_TRUE(none->empty());
+}
+
+TEST(Projection, SphereCutAndShadowAreTheEquatorialPolygon) {
+  // fn = 16: 8 rings at polar angles 180 (i + 0.5) / 8; rings 3 and 4 (78.75 and
+  // 101.25 degrees) have one radius, so the band between them is vertical.
+  Model m;
+  ASSERT_OK(shape::make_sphere(m, {.r = 2, .faceting = {.fn = 16}}));
+  const double want = ngon_area(16, 2 * std::sin(78.75 * kPi / 180));
+  auto cut = projection(m, {.cut = true});
+  ASSERT_OK(cut);
+  EXPECT_NEAR(area(*cut), want, 1e-12);
+  auto shadow = projection(m);
+  ASSERT_OK(shadow);
+  EXPECT_NEAR(area(*shadow), want, 1e-12);
+}
+
+TEST(Projection, ShadowOfTwoCubesAtDifferentHeightsIsTheirUnion) {
+  Model two;
+  auto g1 = shape::make_cube(two, {.size = {2, 2, 1}});
+  ASSERT_OK(g1);
+  auto g2 = shape::make_cube(two, {.size = {2, 2, 1}});
+  ASSERT_OK(g2);
+  ASSERT_OK(shape::transformed(two, *g2, shape::Transform::translate({1, 1, 3})));
+  // `two` holds the cube at the origin, the copy that stayed, and the moved one.
+  auto s = projection(two);
+  ASSERT_OK(s);
+  EXPECT_DOUBLE_EQ(area(*s), 4 + 4 - 1);
+  EXPECT_TRUE(projection(Model{})->empty());
+}
+
+}  // namespace
+}  // namespace cellforge::boolean
