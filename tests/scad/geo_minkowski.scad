@@ -1,4 +1,3 @@
 // Box plus box: a 3-cube.
-// expect pending: the Minkowski sum (shape-ops)
 // expect volume: 27
 minkowski() { cube(2); cube(1); }

@@ -1,3 +1,2 @@
-// expect pending: projection (shape-ops)
 // expect volume: 4
 linear_extrude(1) projection() cube(2);
