@@ -2,12 +2,13 @@
 // (or the JSON form of a CSG tree, docs/csg.md) and builds it exactly (csg/); echo
 // lines go to standard output, warnings and errors to standard error. Exit codes: 0
 // success, 1 a model or input error, 2 a usage error.
+#include <unistd.h>
+
 #include <chrono>
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
 #include <sstream>
-#include <unistd.h>
 
 #include "cellforge/csg/evaluator.h"
 #include "cellforge/csg/tree.h"
@@ -111,12 +112,15 @@ std::string num(double x) { return shape::format_number(x); }
 std::string vec(Vec3 v) { return "[" + num(v.x) + ", " + num(v.y) + ", " + num(v.z) + "]"; }
 
 bool ends_with(const std::string& s, const std::string& suffix) {
-  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+  return s.size() >= suffix.size() &&
+         s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
 int run(const std::vector<std::string>& argv) {
   using Clock = std::chrono::steady_clock;
-  auto since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
+  auto since = [](Clock::time_point t) {
+    return std::chrono::duration<double>(Clock::now() - t).count();
+  };
   BuildArgs a;
   if (std::string err = parse_args(argv, a); !err.empty()) {
     std::cerr << "cellforge build: " << err << "\n" << kUsage << '\n';
@@ -183,7 +187,8 @@ int run(const std::vector<std::string>& argv) {
   const double build_seconds = since(t1);
   const Model& m = built->model;
   const auto violations = validate(m);
-  const shape::MassProperties mp = m.num_faces() ? shape::mass_properties(m) : shape::MassProperties{};
+  const shape::MassProperties mp =
+      m.num_faces() ? shape::mass_properties(m) : shape::MassProperties{};
   const auto t2 = Clock::now();
   io::WriteOptions w;
   w.stl_binary = !a.ascii;
@@ -215,18 +220,20 @@ int run(const std::vector<std::string>& argv) {
               << ", \"dimension\": " << built->dimension
               << ", \"valid\": " << (violations.empty() ? "true" : "false")
               << ", \"volume\": " << num(mp.volume) << ", \"area\": " << num(mp.area)
-              << ", \"centroid\": " << vec(mp.centroid) << ", \"bbox\": [" << vec(mp.bbox_min) << ", "
-              << vec(mp.bbox_max) << "], \"echoes\": " << echoes << ", \"warnings\": " << warnings
-              << ", \"leaves\": " << st.leaves << ", \"booleans\": " << st.booleans
+              << ", \"centroid\": " << vec(mp.centroid) << ", \"bbox\": [" << vec(mp.bbox_min)
+              << ", " << vec(mp.bbox_max) << "], \"echoes\": " << echoes
+              << ", \"warnings\": " << warnings << ", \"leaves\": " << st.leaves
+              << ", \"booleans\": " << st.booleans
               << ", \"boolean_operands\": " << st.boolean_operands
               << ", \"cache_hits\": " << st.cache_hits << ", \"cache_misses\": " << st.cache_misses
-              << ", \"seconds\": {\"evaluate\": " << num(eval_seconds) << ", \"build\": "
-              << num(build_seconds) << ", \"leaves\": " << num(st.leaf_seconds)
-              << ", \"boolean\": " << num(st.boolean_seconds) << ", \"write\": " << num(write_seconds)
-              << "}}\n";
+              << ", \"seconds\": {\"evaluate\": " << num(eval_seconds)
+              << ", \"build\": " << num(build_seconds) << ", \"leaves\": " << num(st.leaf_seconds)
+              << ", \"boolean\": " << num(st.boolean_seconds)
+              << ", \"write\": " << num(write_seconds) << "}}\n";
   } else if (isatty(STDERR_FILENO)) {
-    std::cerr << a.input << ": " << m.num_faces() << " faces, " << m.num_volumes() << " volumes, volume "
-              << num(mp.volume) << (violations.empty() ? ", valid" : ", INVALID") << ", "
+    std::cerr << a.input << ": " << m.num_faces() << " faces, " << m.num_volumes()
+              << " volumes, volume " << num(mp.volume)
+              << (violations.empty() ? ", valid" : ", INVALID") << ", "
               << num(eval_seconds + build_seconds) << " s\n";
   }
   if (!violations.empty()) {

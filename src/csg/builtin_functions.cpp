@@ -197,8 +197,10 @@ bool Interp::call_builtin_function(const std::string& name, const Args& args, So
   }
   if (name == "len") {
     const Value& v = arg(0);
-    if (args.size() == 1 && v.is_vector()) return num_result(static_cast<double>(v.as_vector().size()));
-    if (args.size() == 1 && v.is_string()) return num_result(static_cast<double>(utf8_length(v.as_string())));
+    if (args.size() == 1 && v.is_vector())
+      return num_result(static_cast<double>(v.as_vector().size()));
+    if (args.size() == 1 && v.is_string())
+      return num_result(static_cast<double>(utf8_length(v.as_string())));
     return bad();
   }
   if (name == "concat") {
@@ -218,7 +220,8 @@ bool Interp::call_builtin_function(const std::string& name, const Args& args, So
     std::string s;
     for (const Arg& a : args) {
       s += a.value.to_text();
-      if (s.size() > options_.max_list_size) fail(pos, "str() makes a string longer than the limit");
+      if (s.size() > options_.max_list_size)
+        fail(pos, "str() makes a string longer than the limit");
     }
     out = Value::string(std::move(s));
     return true;
@@ -228,7 +231,8 @@ bool Interp::call_builtin_function(const std::string& name, const Args& args, So
     std::function<bool(const Value&)> add = [&](const Value& v) {
       if (v.is_number()) {
         const double d = v.as_number();
-        if (d >= 1 && d <= 0x10FFFF && d == std::floor(d)) append_utf8(s, static_cast<std::uint32_t>(d));
+        if (d >= 1 && d <= 0x10FFFF && d == std::floor(d))
+          append_utf8(s, static_cast<std::uint32_t>(d));
         return true;
       }
       if (v.is_vector() || v.is_range()) {
@@ -260,8 +264,8 @@ bool Interp::call_builtin_function(const std::string& name, const Args& args, So
     bool first = true;
     for (const Value& entry : arg(1).as_vector()) {
       double p, v;
-      if (!entry.is_vector() || entry.as_vector().size() < 2 || !to_number(entry.as_vector()[0], p) ||
-          !to_number(entry.as_vector()[1], v)) {
+      if (!entry.is_vector() || entry.as_vector().size() < 2 ||
+          !to_number(entry.as_vector()[0], p) || !to_number(entry.as_vector()[1], v)) {
         continue;
       }
       if (first) {
@@ -341,7 +345,8 @@ bool Interp::call_builtin_function(const std::string& name, const Args& args, So
   }
   if (name == "rands") {
     double lo, hi, count, seed = 0;
-    if (args.size() < 3 || !to_number(arg(0), lo) || !to_number(arg(1), hi) || !to_number(arg(2), count))
+    if (args.size() < 3 || !to_number(arg(0), lo) || !to_number(arg(1), hi) ||
+        !to_number(arg(2), count))
       return bad();
     if (args.size() > 3) {
       if (!to_number(arg(3), seed)) return bad();
@@ -388,7 +393,8 @@ bool Interp::call_builtin_function(const std::string& name, const Args& args, So
     out = Value::string(module_stack_[module_stack_.size() - 1 - static_cast<std::size_t>(n)]);
     return true;
   }
-  if (name == "dxf_dim" || name == "dxf_cross") fail(pos, name + "() is not supported yet (it reads DXF files)");
+  if (name == "dxf_dim" || name == "dxf_cross")
+    fail(pos, name + "() is not supported yet (it reads DXF files)");
   (void)env;
   return false;
 }

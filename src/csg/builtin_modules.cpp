@@ -57,32 +57,36 @@ struct Named {
 
 // The SVG color names OpenSCAD's color() knows (the common part of the list).
 constexpr Named kColors[] = {
-    {"black", 0x000000}, {"white", 0xFFFFFF}, {"red", 0xFF0000}, {"green", 0x008000},
-    {"lime", 0x00FF00}, {"blue", 0x0000FF}, {"yellow", 0xFFFF00}, {"cyan", 0x00FFFF},
-    {"aqua", 0x00FFFF}, {"magenta", 0xFF00FF}, {"fuchsia", 0xFF00FF}, {"gray", 0x808080},
-    {"grey", 0x808080}, {"silver", 0xC0C0C0}, {"maroon", 0x800000}, {"olive", 0x808000},
-    {"navy", 0x000080}, {"purple", 0x800080}, {"teal", 0x008080}, {"orange", 0xFFA500},
-    {"pink", 0xFFC0CB}, {"brown", 0xA52A2A}, {"gold", 0xFFD700}, {"lightgray", 0xD3D3D3},
-    {"lightgrey", 0xD3D3D3}, {"darkgray", 0xA9A9A9}, {"darkgrey", 0xA9A9A9},
-    {"lightblue", 0xADD8E6}, {"darkblue", 0x00008B}, {"lightgreen", 0x90EE90},
-    {"darkgreen", 0x006400}, {"darkred", 0x8B0000}, {"steelblue", 0x4682B4},
-    {"skyblue", 0x87CEEB}, {"tan", 0xD2B48C}, {"beige", 0xF5F5DC}, {"ivory", 0xFFFFF0},
-    {"khaki", 0xF0E68C}, {"violet", 0xEE82EE}, {"indigo", 0x4B0082}, {"coral", 0xFF7F50},
-    {"salmon", 0xFA8072}, {"tomato", 0xFF6347}, {"crimson", 0xDC143C}, {"chocolate", 0xD2691E},
-    {"sienna", 0xA0522D}, {"peru", 0xCD853F}, {"wheat", 0xF5DEB3}, {"turquoise", 0x40E0D0},
-    {"slategray", 0x708090}, {"slategrey", 0x708090}, {"dimgray", 0x696969},
-    {"dimgrey", 0x696969}, {"orchid", 0xDA70D6}, {"plum", 0xDDA0DD}, {"lavender", 0xE6E6FA},
-    {"firebrick", 0xB22222}, {"forestgreen", 0x228B22}, {"seagreen", 0x2E8B57},
-    {"royalblue", 0x4169E1}, {"midnightblue", 0x191970}, {"darkorange", 0xFF8C00},
-    {"goldenrod", 0xDAA520}, {"whitesmoke", 0xF5F5F5}, {"gainsboro", 0xDCDCDC},
-    {"linen", 0xFAF0E6}, {"snow", 0xFFFAFA}, {"honeydew", 0xF0FFF0}, {"mintcream", 0xF5FFFA},
-    {"azure", 0xF0FFFF}, {"aliceblue", 0xF0F8FF}, {"ghostwhite", 0xF8F8FF},
-    {"seashell", 0xFFF5EE}, {"oldlace", 0xFDF5E6}, {"cornsilk", 0xFFF8DC},
-    {"chartreuse", 0x7FFF00}, {"lawngreen", 0x7CFC00}, {"springgreen", 0x00FF7F},
-    {"dodgerblue", 0x1E90FF}, {"deepskyblue", 0x00BFFF}, {"cadetblue", 0x5F9EA0},
-    {"hotpink", 0xFF69B4}, {"deeppink", 0xFF1493}, {"mediumpurple", 0x9370DB},
-    {"darkviolet", 0x9400D3}, {"olivedrab", 0x6B8E23}, {"yellowgreen", 0x9ACD32},
-    {"burlywood", 0xDEB887}, {"sandybrown", 0xF4A460}, {"rosybrown", 0xBC8F8F},
+    {"black", 0x000000},        {"white", 0xFFFFFF},       {"red", 0xFF0000},
+    {"green", 0x008000},        {"lime", 0x00FF00},        {"blue", 0x0000FF},
+    {"yellow", 0xFFFF00},       {"cyan", 0x00FFFF},        {"aqua", 0x00FFFF},
+    {"magenta", 0xFF00FF},      {"fuchsia", 0xFF00FF},     {"gray", 0x808080},
+    {"grey", 0x808080},         {"silver", 0xC0C0C0},      {"maroon", 0x800000},
+    {"olive", 0x808000},        {"navy", 0x000080},        {"purple", 0x800080},
+    {"teal", 0x008080},         {"orange", 0xFFA500},      {"pink", 0xFFC0CB},
+    {"brown", 0xA52A2A},        {"gold", 0xFFD700},        {"lightgray", 0xD3D3D3},
+    {"lightgrey", 0xD3D3D3},    {"darkgray", 0xA9A9A9},    {"darkgrey", 0xA9A9A9},
+    {"lightblue", 0xADD8E6},    {"darkblue", 0x00008B},    {"lightgreen", 0x90EE90},
+    {"darkgreen", 0x006400},    {"darkred", 0x8B0000},     {"steelblue", 0x4682B4},
+    {"skyblue", 0x87CEEB},      {"tan", 0xD2B48C},         {"beige", 0xF5F5DC},
+    {"ivory", 0xFFFFF0},        {"khaki", 0xF0E68C},       {"violet", 0xEE82EE},
+    {"indigo", 0x4B0082},       {"coral", 0xFF7F50},       {"salmon", 0xFA8072},
+    {"tomato", 0xFF6347},       {"crimson", 0xDC143C},     {"chocolate", 0xD2691E},
+    {"sienna", 0xA0522D},       {"peru", 0xCD853F},        {"wheat", 0xF5DEB3},
+    {"turquoise", 0x40E0D0},    {"slategray", 0x708090},   {"slategrey", 0x708090},
+    {"dimgray", 0x696969},      {"dimgrey", 0x696969},     {"orchid", 0xDA70D6},
+    {"plum", 0xDDA0DD},         {"lavender", 0xE6E6FA},    {"firebrick", 0xB22222},
+    {"forestgreen", 0x228B22},  {"seagreen", 0x2E8B57},    {"royalblue", 0x4169E1},
+    {"midnightblue", 0x191970}, {"darkorange", 0xFF8C00},  {"goldenrod", 0xDAA520},
+    {"whitesmoke", 0xF5F5F5},   {"gainsboro", 0xDCDCDC},   {"linen", 0xFAF0E6},
+    {"snow", 0xFFFAFA},         {"honeydew", 0xF0FFF0},    {"mintcream", 0xF5FFFA},
+    {"azure", 0xF0FFFF},        {"aliceblue", 0xF0F8FF},   {"ghostwhite", 0xF8F8FF},
+    {"seashell", 0xFFF5EE},     {"oldlace", 0xFDF5E6},     {"cornsilk", 0xFFF8DC},
+    {"chartreuse", 0x7FFF00},   {"lawngreen", 0x7CFC00},   {"springgreen", 0x00FF7F},
+    {"dodgerblue", 0x1E90FF},   {"deepskyblue", 0x00BFFF}, {"cadetblue", 0x5F9EA0},
+    {"hotpink", 0xFF69B4},      {"deeppink", 0xFF1493},    {"mediumpurple", 0x9370DB},
+    {"darkviolet", 0x9400D3},   {"olivedrab", 0x6B8E23},   {"yellowgreen", 0x9ACD32},
+    {"burlywood", 0xDEB887},    {"sandybrown", 0xF4A460},  {"rosybrown", 0xBC8F8F},
 };
 
 int hex_digit(char c) {
@@ -106,7 +110,8 @@ bool parse_color(const std::string& s, std::array<double, 4>& rgba) {
       return true;
     }
     if (d.size() == 6 || d.size() == 8) {
-      for (std::size_t i = 0; i < d.size() / 2; ++i) rgba[i] = (d[2 * i] * 16 + d[2 * i + 1]) / 255.0;
+      for (std::size_t i = 0; i < d.size() / 2; ++i)
+        rgba[i] = (d[2 * i] * 16 + d[2 * i + 1]) / 255.0;
       if (d.size() == 6) rgba[3] = 1;
       return true;
     }
@@ -116,7 +121,8 @@ bool parse_color(const std::string& s, std::array<double, 4>& rgba) {
   for (char c : s) lower += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   for (const Named& n : kColors) {
     if (lower == n.name) {
-      rgba = {((n.rgb >> 16) & 0xFF) / 255.0, ((n.rgb >> 8) & 0xFF) / 255.0, (n.rgb & 0xFF) / 255.0, 1};
+      rgba = {((n.rgb >> 16) & 0xFF) / 255.0, ((n.rgb >> 8) & 0xFF) / 255.0, (n.rgb & 0xFF) / 255.0,
+              1};
       return true;
     }
   }
@@ -165,7 +171,8 @@ bool Interp::call_builtin_module(const Stmt& s, const Args& args, const EnvPtr& 
   };
   // A vector of 2 or 3 finite numbers. A transform given anything else is left out
   // with a warning, as OpenSCAD does; a size (strict) is an error.
-  auto vec = [&](const Params& p, const char* key, Vec3 fallback, double z_default, bool strict = false) {
+  auto vec = [&](const Params& p, const char* key, Vec3 fallback, double z_default,
+                 bool strict = false) {
     const Value& v = p.get(key);
     if (v.is_undef()) return fallback;
     bool ok = v.is_vector() && !v.as_vector().empty() && v.as_vector().size() <= 3;
@@ -174,7 +181,8 @@ bool Interp::call_builtin_module(const Stmt& s, const Args& args, const EnvPtr& 
       ok = to_number(v.as_vector()[i], c[i]) && std::isfinite(c[i]);
     }
     if (!ok) {
-      const std::string what = name + "(): " + key + " must be a vector of 2 or 3 finite numbers, not " + v.to_echo();
+      const std::string what =
+          name + "(): " + key + " must be a vector of 2 or 3 finite numbers, not " + v.to_echo();
       if (strict) fail(p.pos(key), what);
       warn(p.pos(key), what + " (ignored, as OpenSCAD does)");
       return fallback;
@@ -227,14 +235,16 @@ bool Interp::call_builtin_module(const Stmt& s, const Args& args, const EnvPtr& 
   }
   if (name == "polyhedron" || name == "polygon") {
     const bool poly3 = name == "polyhedron";
-    const Params p(args, poly3 ? std::vector<std::string>{"points", "faces", "convexity"}
-                               : std::vector<std::string>{"points", "paths", "convexity"},
+    const Params p(args,
+                   poly3 ? std::vector<std::string>{"points", "faces", "convexity"}
+                         : std::vector<std::string>{"points", "paths", "convexity"},
                    s.pos);
     const Value& pts = p.get("points");
     if (!pts.is_vector()) fail(p.pos("points"), name + "(): points must be a list of points");
     for (const Value& v : pts.as_vector()) {
       Vec3 q;
-      if (!to_vec3(v, q, !poly3) || !std::isfinite(q.x) || !std::isfinite(q.y) || !std::isfinite(q.z)) {
+      if (!to_vec3(v, q, !poly3) || !std::isfinite(q.x) || !std::isfinite(q.y) ||
+          !std::isfinite(q.z)) {
         fail(p.pos("points"), name + "(): a point must be [x, y" + (poly3 ? ", z" : "") +
                                   "] of finite numbers, not " + v.to_echo());
       }
@@ -248,14 +258,19 @@ bool Interp::call_builtin_module(const Stmt& s, const Args& args, const EnvPtr& 
       }
     }
     if (!faces.is_undef()) {
-      if (!faces.is_vector()) fail(p.pos(key), name + "(): " + key + " must be a list of index lists");
+      if (!faces.is_vector())
+        fail(p.pos(key), name + "(): " + key + " must be a list of index lists");
       for (const Value& f : faces.as_vector()) {
-        if (!f.is_vector()) fail(p.pos(key), name + "(): " + key + " must be a list of index lists, not " + f.to_echo());
+        if (!f.is_vector())
+          fail(p.pos(key),
+               name + "(): " + key + " must be a list of index lists, not " + f.to_echo());
         std::vector<std::uint32_t> idx;
         for (const Value& i : f.as_vector()) {
-          if (!i.is_number() || !(i.as_number() >= 0) || i.as_number() >= static_cast<double>(node->points.size())) {
+          if (!i.is_number() || !(i.as_number() >= 0) ||
+              i.as_number() >= static_cast<double>(node->points.size())) {
             fail(p.pos(key), name + "(): index " + i.to_echo() + " in " + f.to_echo() +
-                                 " names no point (there are " + std::to_string(node->points.size()) + ")");
+                                 " names no point (there are " +
+                                 std::to_string(node->points.size()) + ")");
           }
           idx.push_back(static_cast<std::uint32_t>(i.as_number()));
         }
@@ -313,8 +328,9 @@ bool Interp::call_builtin_module(const Stmt& s, const Args& args, const EnvPtr& 
     } else if (a.is_number()) {
       const Vec3 axis = p.has("v") ? vec(p, "v", {0, 0, 1}, 0) : Vec3{0, 0, 1};
       const double deg = number(p, "a", 0);
-      node->matrix = (axis.x == 0 && axis.y == 0 && axis.z == 0) ? shape::Transform::identity()
-                                                                 : shape::Transform::rotate(deg, axis);
+      node->matrix = (axis.x == 0 && axis.y == 0 && axis.z == 0)
+                         ? shape::Transform::identity()
+                         : shape::Transform::rotate(deg, axis);
     } else if (!a.is_undef()) {
       fail(p.pos("a"), "rotate(): a must be a number or a vector, not " + a.to_echo());
     }
@@ -323,12 +339,15 @@ bool Interp::call_builtin_module(const Stmt& s, const Args& args, const EnvPtr& 
   if (name == "multmatrix") {
     const Params p(args, {"m"}, s.pos);
     const Value& m = p.get("m");
-    std::array<std::array<double, 4>, 4> rows{{{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}, {0, 0, 0, 1}}};
+    std::array<std::array<double, 4>, 4> rows{
+        {{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}, {0, 0, 0, 1}}};
     if (!m.is_undef()) {
-      if (!m.is_vector() || m.as_vector().size() > 4) fail(p.pos("m"), "multmatrix(): m must be a 4x4 matrix");
+      if (!m.is_vector() || m.as_vector().size() > 4)
+        fail(p.pos("m"), "multmatrix(): m must be a 4x4 matrix");
       for (std::size_t i = 0; i < m.as_vector().size(); ++i) {
         const Value& row = m.as_vector()[i];
-        if (!row.is_vector() || row.as_vector().size() > 4) fail(p.pos("m"), "multmatrix(): m must be a 4x4 matrix");
+        if (!row.is_vector() || row.as_vector().size() > 4)
+          fail(p.pos("m"), "multmatrix(): m must be a 4x4 matrix");
         for (std::size_t j = 0; j < row.as_vector().size(); ++j) {
           if (!to_number(row.as_vector()[j], rows[i][j]) || !std::isfinite(rows[i][j])) {
             fail(p.pos("m"), "multmatrix(): the matrix must hold finite numbers");
@@ -346,7 +365,8 @@ bool Interp::call_builtin_module(const Stmt& s, const Args& args, const EnvPtr& 
     node->size = vec(p, "newsize", {0, 0, 0}, 0);
     const Value& a = p.get("auto");
     if (a.is_vector()) {
-      for (std::size_t i = 0; i < 3 && i < a.as_vector().size(); ++i) node->auto_size[i] = a.as_vector()[i].truthy();
+      for (std::size_t i = 0; i < 3 && i < a.as_vector().size(); ++i)
+        node->auto_size[i] = a.as_vector()[i].truthy();
     } else if (a.truthy()) {
       node->auto_size = {true, true, true};
     }
@@ -362,7 +382,8 @@ bool Interp::call_builtin_module(const Stmt& s, const Args& args, const EnvPtr& 
       }
       if (v.size() < 4) node->color[3] = 1;
     } else if (c.is_string()) {
-      if (!parse_color(c.as_string(), node->color)) warn(p.pos("c"), "color(): unknown color " + c.to_echo());
+      if (!parse_color(c.as_string(), node->color))
+        warn(p.pos("c"), "color(): unknown color " + c.to_echo());
     }
     if (p.get("alpha").is_number()) node->color[3] = p.get("alpha").as_number();
     return with_children(NodeKind::kColor);
@@ -424,7 +445,8 @@ bool Interp::call_builtin_module(const Stmt& s, const Args& args, const EnvPtr& 
     std::string base = it != source_paths_.end() ? it->second : std::string();
     const std::size_t slash = base.find_last_of('/');
     base = slash == std::string::npos ? std::string() : base.substr(0, slash + 1);
-    node->path = (!f.as_string().empty() && f.as_string()[0] == '/') ? f.as_string() : base + f.as_string();
+    node->path =
+        (!f.as_string().empty() && f.as_string()[0] == '/') ? f.as_string() : base + f.as_string();
     return leaf(NodeKind::kImport);
   }
   if (name == "text" || name == "surface" || name == "roof") {

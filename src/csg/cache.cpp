@@ -1,10 +1,11 @@
 #include "cache.h"
 
+#include <unistd.h>
+
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
-#include <unistd.h>
 
 #include "cellforge/io/mesh_io.h"
 
@@ -31,7 +32,8 @@ bool DiskCache::load(const std::string& key, Model& m, std::vector<FaceColor>& c
   return true;
 }
 
-void DiskCache::store(const std::string& key, const Model& m, const std::vector<FaceColor>& colors) const {
+void DiskCache::store(const std::string& key, const Model& m,
+                      const std::vector<FaceColor>& colors) const {
   if (dir_.empty()) return;
   std::error_code ec;
   std::filesystem::create_directories(dir_, ec);
@@ -50,7 +52,8 @@ void DiskCache::store(const std::string& key, const Model& m, const std::vector<
     for (FaceId f : m.faces()) {
       const FaceColor& col = f.value < colors.size() ? colors[f.value] : FaceColor{};
       if (col) {
-        std::snprintf(buf, sizeof buf, "%.17g %.17g %.17g %.17g", (*col)[0], (*col)[1], (*col)[2], (*col)[3]);
+        std::snprintf(buf, sizeof buf, "%.17g %.17g %.17g %.17g", (*col)[0], (*col)[1], (*col)[2],
+                      (*col)[3]);
         out << buf << '\n';
       } else {
         out << "-\n";

@@ -89,8 +89,10 @@ Value scale_value(Interp& in, const Value& v, double s, bool divide, bool scalar
 
 Value multiply(Interp& in, const Value& a, const Value& b, SourcePos pos, bool& ok) {
   if (a.is_number() && b.is_number()) return Value::number(a.as_number() * b.as_number());
-  if (a.is_number() && b.is_vector()) return scale_value(in, b, a.as_number(), false, true, pos, ok);
-  if (a.is_vector() && b.is_number()) return scale_value(in, a, b.as_number(), false, false, pos, ok);
+  if (a.is_number() && b.is_vector())
+    return scale_value(in, b, a.as_number(), false, true, pos, ok);
+  if (a.is_vector() && b.is_number())
+    return scale_value(in, a, b.as_number(), false, false, pos, ok);
   if (a.is_vector() && b.is_vector()) {
     const Vector& x = a.as_vector();
     const Vector& y = b.as_vector();
@@ -151,7 +153,8 @@ int compare_values(const Value& a, const Value& b, bool& ok) {
     const int c = a.as_string().compare(b.as_string());
     return c < 0 ? -1 : c > 0 ? 1 : 0;
   }
-  if (a.is_bool() && b.is_bool()) return static_cast<int>(a.as_bool()) - static_cast<int>(b.as_bool());
+  if (a.is_bool() && b.is_bool())
+    return static_cast<int>(a.as_bool()) - static_cast<int>(b.as_bool());
   ok = false;
   return 0;
 }
@@ -179,7 +182,8 @@ Value Interp::lookup(const std::string& name, const EnvPtr& env, SourcePos pos) 
     if (name == "$parent_modules") {
       return Value::number(static_cast<double>(module_stack_.size()));
     }
-    for (const Env* s = env.get(); s != nullptr; s = s->caller ? s->caller.get() : s->parent.get()) {
+    for (const Env* s = env.get(); s != nullptr;
+         s = s->caller ? s->caller.get() : s->parent.get()) {
       if (const Value* v = s->find_local(name)) return *v;
     }
     if (name == "$fn") return Value::number(0);
@@ -279,7 +283,8 @@ struct Comprehension {
     in.step(e.pos);
     switch (e.kind) {
       case ExprKind::kLcFor:
-        in.for_each_binding(e.args, 0, env, [&](const EnvPtr& inner) { element(*e.items[0], inner); });
+        in.for_each_binding(e.args, 0, env,
+                            [&](const EnvPtr& inner) { element(*e.items[0], inner); });
         return;
       case ExprKind::kLcForC: {
         auto loop = std::make_shared<Env>();
@@ -329,7 +334,10 @@ struct Comprehension {
   // `each` of a comprehension element collects that element's values first.
   Value value_of(const Expr& e, const EnvPtr& env) {
     switch (e.kind) {
-      case ExprKind::kLcFor: case ExprKind::kLcForC: case ExprKind::kLcIf: case ExprKind::kLcLet:
+      case ExprKind::kLcFor:
+      case ExprKind::kLcForC:
+      case ExprKind::kLcIf:
+      case ExprKind::kLcLet:
       case ExprKind::kLcEach: {
         Vector inner;
         Comprehension c{in, inner};
@@ -359,11 +367,16 @@ Value Interp::eval(const Expr& e0, const EnvPtr& env0) {
   for (;;) {
     step(e->pos);
     switch (e->kind) {
-      case ExprKind::kNumber: return Value::number(e->number);
-      case ExprKind::kString: return Value::string(e->text);
-      case ExprKind::kBool: return Value::boolean(e->number != 0);
-      case ExprKind::kUndef: return Value();
-      case ExprKind::kIdent: return lookup(e->text, env, e->pos);
+      case ExprKind::kNumber:
+        return Value::number(e->number);
+      case ExprKind::kString:
+        return Value::string(e->text);
+      case ExprKind::kBool:
+        return Value::boolean(e->number != 0);
+      case ExprKind::kUndef:
+        return Value();
+      case ExprKind::kIdent:
+        return lookup(e->text, env, e->pos);
       case ExprKind::kVector: {
         Vector out;
         Comprehension c{*this, out};
@@ -375,7 +388,8 @@ Value Interp::eval(const Expr& e0, const EnvPtr& env0) {
         for (std::size_t i = 0; i < e->items.size(); ++i) {
           const Value x = eval(*e->items[i], env);
           if (!x.is_number()) {
-            warn(e->items[i]->pos, std::string("a range takes numbers, not a ") + type_name(x.type()));
+            warn(e->items[i]->pos,
+                 std::string("a range takes numbers, not a ") + type_name(x.type()));
             return Value();
           }
           v[i] = x.as_number();
@@ -384,8 +398,9 @@ Value Interp::eval(const Expr& e0, const EnvPtr& env0) {
         if (e->items.size() == 2) {
           r = {v[0], 1, v[1]};
           if (r.begin > r.end) {
-            warn(e->pos, "a range [begin:end] with begin greater than end runs from end to begin "
-                         "(deprecated in OpenSCAD)");
+            warn(e->pos,
+                 "a range [begin:end] with begin greater than end runs from end to begin "
+                 "(deprecated in OpenSCAD)");
             std::swap(r.begin, r.end);
           }
         } else {
@@ -474,20 +489,23 @@ Value Interp::eval(const Expr& e0, const EnvPtr& env0) {
         const Value obj = eval(*e->items[0], env);
         const Value idx = eval(*e->items[1], env);
         if (!idx.is_number()) {
-          if (!obj.is_undef()) warn(e->pos, std::string("an index must be a number, not a ") + type_name(idx.type()));
+          if (!obj.is_undef())
+            warn(e->pos, std::string("an index must be a number, not a ") + type_name(idx.type()));
           return Value();
         }
         const double d = idx.as_number();
         if (!(d >= 0)) return Value();
         const double i = std::floor(d);
         if (obj.is_vector()) {
-          return i < static_cast<double>(obj.as_vector().size()) ? obj.as_vector()[static_cast<std::size_t>(i)]
-                                                                 : Value();
+          return i < static_cast<double>(obj.as_vector().size())
+                     ? obj.as_vector()[static_cast<std::size_t>(i)]
+                     : Value();
         }
         if (obj.is_string()) {
           const auto chars = utf8_chars(obj.as_string());
-          return i < static_cast<double>(chars.size()) ? Value::string(chars[static_cast<std::size_t>(i)])
-                                                       : Value();
+          return i < static_cast<double>(chars.size())
+                     ? Value::string(chars[static_cast<std::size_t>(i)])
+                     : Value();
         }
         if (obj.is_range()) {
           const Range& r = obj.as_range();
@@ -519,11 +537,15 @@ Value Interp::eval(const Expr& e0, const EnvPtr& env0) {
         env = bind_let(e->args, env);
         e = e->items[0].get();
         continue;
-      case ExprKind::kAssert: case ExprKind::kEcho: {
+      case ExprKind::kAssert:
+      case ExprKind::kEcho: {
         const Args args = eval_args(e->args, env);
         if (e->kind == ExprKind::kAssert) {
           if (args.empty() || !args[0].value.truthy()) {
-            std::string msg = "assertion '" + (e->args.empty() ? std::string("undef") : expr_text(*e->args[0].value)) + "' failed";
+            std::string msg =
+                "assertion '" +
+                (e->args.empty() ? std::string("undef") : expr_text(*e->args[0].value)) +
+                "' failed";
             if (args.size() > 1) msg += ": " + args[1].value.to_echo();
             fail(e->pos, msg);
           }
@@ -628,7 +650,8 @@ Value Interp::eval(const Expr& e0, const EnvPtr& env0) {
           }
         }
         for (const Binding& p : params) {
-          if (!frame->find_local(p.name)) frame->set(p.name, p.value ? eval(*p.value, frame) : Value());
+          if (!frame->find_local(p.name))
+            frame->set(p.name, p.value ? eval(*p.value, frame) : Value());
         }
         env = std::move(frame);
         in_call = true;
@@ -660,11 +683,16 @@ std::string bindings_text(const std::vector<Binding>& bs) {
 std::string expr_text(const Expr& e) {
   auto item = [&](std::size_t i) { return expr_text(*e.items[i]); };
   switch (e.kind) {
-    case ExprKind::kNumber: return format_number(e.number);
-    case ExprKind::kString: return "\"" + e.text + "\"";
-    case ExprKind::kBool: return e.number != 0 ? "true" : "false";
-    case ExprKind::kUndef: return "undef";
-    case ExprKind::kIdent: return e.text;
+    case ExprKind::kNumber:
+      return format_number(e.number);
+    case ExprKind::kString:
+      return "\"" + e.text + "\"";
+    case ExprKind::kBool:
+      return e.number != 0 ? "true" : "false";
+    case ExprKind::kUndef:
+      return "undef";
+    case ExprKind::kIdent:
+      return e.text;
     case ExprKind::kVector: {
       std::string out = "[";
       for (std::size_t i = 0; i < e.items.size(); ++i) out += (i ? ", " : "") + item(i);
@@ -673,25 +701,37 @@ std::string expr_text(const Expr& e) {
     case ExprKind::kRange:
       return e.items.size() == 2 ? "[" + item(0) + " : " + item(1) + "]"
                                  : "[" + item(0) + " : " + item(1) + " : " + item(2) + "]";
-    case ExprKind::kUnary: return e.text + item(0);
-    case ExprKind::kBinary: return "(" + item(0) + " " + e.text + " " + item(1) + ")";
-    case ExprKind::kTernary: return "(" + item(0) + " ? " + item(1) + " : " + item(2) + ")";
-    case ExprKind::kIndex: return item(0) + "[" + item(1) + "]";
-    case ExprKind::kMember: return item(0) + "." + e.text;
-    case ExprKind::kCall: return item(0) + "(" + bindings_text(e.args) + ")";
-    case ExprKind::kFunction: return "function(" + bindings_text(e.params) + ") " + item(0);
-    case ExprKind::kLet: return "let(" + bindings_text(e.args) + ") " + item(0);
+    case ExprKind::kUnary:
+      return e.text + item(0);
+    case ExprKind::kBinary:
+      return "(" + item(0) + " " + e.text + " " + item(1) + ")";
+    case ExprKind::kTernary:
+      return "(" + item(0) + " ? " + item(1) + " : " + item(2) + ")";
+    case ExprKind::kIndex:
+      return item(0) + "[" + item(1) + "]";
+    case ExprKind::kMember:
+      return item(0) + "." + e.text;
+    case ExprKind::kCall:
+      return item(0) + "(" + bindings_text(e.args) + ")";
+    case ExprKind::kFunction:
+      return "function(" + bindings_text(e.params) + ") " + item(0);
+    case ExprKind::kLet:
+      return "let(" + bindings_text(e.args) + ") " + item(0);
     case ExprKind::kAssert:
     case ExprKind::kEcho:
-      return std::string(e.kind == ExprKind::kAssert ? "assert(" : "echo(") + bindings_text(e.args) +
-             ")" + (e.items.empty() ? "" : " " + item(0));
-    case ExprKind::kLcFor: return "for(" + bindings_text(e.args) + ") " + item(0);
+      return std::string(e.kind == ExprKind::kAssert ? "assert(" : "echo(") +
+             bindings_text(e.args) + ")" + (e.items.empty() ? "" : " " + item(0));
+    case ExprKind::kLcFor:
+      return "for(" + bindings_text(e.args) + ") " + item(0);
     case ExprKind::kLcForC:
-      return "for(" + bindings_text(e.args) + "; " + item(0) + "; " + bindings_text(e.params) + ") " + item(1);
+      return "for(" + bindings_text(e.args) + "; " + item(0) + "; " + bindings_text(e.params) +
+             ") " + item(1);
     case ExprKind::kLcIf:
       return "if(" + item(0) + ") " + item(1) + (e.items.size() > 2 ? " else " + item(2) : "");
-    case ExprKind::kLcLet: return "let(" + bindings_text(e.args) + ") " + item(0);
-    case ExprKind::kLcEach: return "each " + item(0);
+    case ExprKind::kLcLet:
+      return "let(" + bindings_text(e.args) + ") " + item(0);
+    case ExprKind::kLcEach:
+      return "each " + item(0);
   }
   return "?";
 }

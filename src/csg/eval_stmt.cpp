@@ -60,7 +60,8 @@ std::vector<NodePtr> Interp::run_scope(const std::vector<const Stmt*>& stmts, co
   }
   std::vector<NodePtr> nodes;
   for (const Stmt* s : stmts) {
-    if (s->kind == StmtKind::kAssign || s->kind == StmtKind::kModule || s->kind == StmtKind::kFunction)
+    if (s->kind == StmtKind::kAssign || s->kind == StmtKind::kModule ||
+        s->kind == StmtKind::kFunction)
       continue;
     std::vector<NodePtr> made = instantiate(*s, env);
     for (NodePtr& n : made) nodes.push_back(std::move(n));
@@ -172,7 +173,9 @@ std::vector<NodePtr> Interp::instantiate(const Stmt& s, const EnvPtr& env) {
             }
             echo(line);
           } else if (args.empty() || !args[0].value.truthy()) {
-            std::string msg = "assertion '" + (s.args.empty() ? std::string("undef") : expr_text(*s.args[0].value)) + "' failed";
+            std::string msg =
+                "assertion '" +
+                (s.args.empty() ? std::string("undef") : expr_text(*s.args[0].value)) + "' failed";
             if (args.size() > 1) msg += ": " + args[1].value.to_echo();
             fail(s.pos, msg);
           }
@@ -258,7 +261,8 @@ std::vector<NodePtr> Interp::instantiate(const Stmt& s, const EnvPtr& env) {
         }
       }
       for (const Binding& p : def->params) {
-        if (!frame->find_local(p.name)) frame->set(p.name, p.value ? eval(*p.value, frame) : Value());
+        if (!frame->find_local(p.name))
+          frame->set(p.name, p.value ? eval(*p.value, frame) : Value());
       }
       frame->set("$children", Value::number(static_cast<double>(kids->instances.size())));
       if (module_stack_.size() >= 100000) fail(s.pos, "modules nested deeper than 100000 calls");

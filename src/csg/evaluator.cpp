@@ -71,13 +71,16 @@ void Interp::step(SourcePos pos) {
 
 void Interp::check_stack(SourcePos pos) {
   const char* here = static_cast<const char*>(__builtin_frame_address(0));
-  if (stack_base_ != nullptr && static_cast<std::size_t>(stack_base_ - here) > options_.max_stack_bytes) {
+  if (stack_base_ != nullptr &&
+      static_cast<std::size_t>(stack_base_ - here) > options_.max_stack_bytes) {
     fail(pos, "recursion too deep (more than " + std::to_string(options_.max_stack_bytes >> 20) +
                   " MiB of stack)");
   }
 }
 
-void Interp::fail(SourcePos pos, const std::string& message) const { throw EvalError{pos, message}; }
+void Interp::fail(SourcePos pos, const std::string& message) const {
+  throw EvalError{pos, message};
+}
 
 void Interp::warn(SourcePos pos, const std::string& message) {
   std::string text = sources_->format(pos, "warning: " + message);
@@ -115,7 +118,8 @@ std::uint32_t Interp::resolve(const std::string& path, SourcePos from) {
         std::size_t start = 0;
         while (start <= s.size()) {
           const std::size_t colon = s.find(':', start);
-          const std::string d = s.substr(start, colon == std::string::npos ? std::string::npos : colon - start);
+          const std::string d =
+              s.substr(start, colon == std::string::npos ? std::string::npos : colon - start);
           if (!d.empty()) dirs.push_back(d);
           if (colon == std::string::npos) break;
           start = colon + 1;
@@ -137,12 +141,15 @@ std::uint32_t Interp::resolve(const std::string& path, SourcePos from) {
     by_path_[key] = index;
     return index;
   }
-  fail(from, "cannot find '" + path + "' (looked in the script's folder, OPENSCADPATH and "
-             "/usr/share/openscad/libraries)");
+  fail(from, "cannot find '" + path +
+                 "' (looked in the script's folder, OPENSCADPATH and "
+                 "/usr/share/openscad/libraries)");
 }
 
 std::vector<const Stmt*> Interp::file_statements(const File& f, const EnvPtr& env, int depth) {
-  if (depth > 64) fail(f.includes.empty() ? SourcePos{} : f.includes[0].pos, "include<> nested more than 64 deep (a cycle?)");
+  if (depth > 64)
+    fail(f.includes.empty() ? SourcePos{} : f.includes[0].pos,
+         "include<> nested more than 64 deep (a cycle?)");
   std::vector<const Stmt*> out;
   std::size_t inc = 0;
   for (std::size_t i = 0; i <= f.statements.size(); ++i) {
@@ -158,7 +165,8 @@ std::vector<const Stmt*> Interp::file_statements(const File& f, const EnvPtr& en
           std::vector<const Stmt*> stmts = file_statements(g, scope, depth + 1);
           std::vector<const Stmt*> defs;
           for (const Stmt* s : stmts) {
-            if (s->kind == StmtKind::kAssign || s->kind == StmtKind::kModule || s->kind == StmtKind::kFunction)
+            if (s->kind == StmtKind::kAssign || s->kind == StmtKind::kModule ||
+                s->kind == StmtKind::kFunction)
               defs.push_back(s);
           }
           run_scope(defs, scope);

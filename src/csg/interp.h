@@ -65,7 +65,7 @@ class Interp {
 
   // evaluator.cpp
   EvalOutput run(std::uint32_t main_source);
-  const File& load(std::uint32_t source);                 // parse (once)
+  const File& load(std::uint32_t source);                          // parse (once)
   std::uint32_t resolve(const std::string& path, SourcePos from);  // find and read a file
 
   // eval_expr.cpp

@@ -12,10 +12,31 @@ namespace cellforge::csg {
 namespace {
 
 enum class Tok {
-  kEnd, kIdent, kNumber, kString, kPath,  // kPath: <...> after include/use
-  kModule, kFunction, kIf, kElse, kFor, kLet, kAssert, kEcho, kEach, kTrue, kFalse, kUndef,
-  kInclude, kUse,
-  kLe, kGe, kEq, kNe, kAnd, kOr,
+  kEnd,
+  kIdent,
+  kNumber,
+  kString,
+  kPath,  // kPath: <...> after include/use
+  kModule,
+  kFunction,
+  kIf,
+  kElse,
+  kFor,
+  kLet,
+  kAssert,
+  kEcho,
+  kEach,
+  kTrue,
+  kFalse,
+  kUndef,
+  kInclude,
+  kUse,
+  kLe,
+  kGe,
+  kEq,
+  kNe,
+  kAnd,
+  kOr,
   kChar,  // a single punctuation character in `text`
 };
 
@@ -177,10 +198,12 @@ class Lexer {
 
   static Tok keyword(const std::string& s) {
     static const std::pair<std::string_view, Tok> kWords[] = {
-        {"module", Tok::kModule}, {"function", Tok::kFunction}, {"if", Tok::kIf},
-        {"else", Tok::kElse},     {"for", Tok::kFor},           {"let", Tok::kLet},
-        {"assert", Tok::kAssert}, {"echo", Tok::kEcho},         {"each", Tok::kEach},
-        {"true", Tok::kTrue},     {"false", Tok::kFalse},       {"undef", Tok::kUndef},
+        {"module", Tok::kModule},   {"function", Tok::kFunction},
+        {"if", Tok::kIf},           {"else", Tok::kElse},
+        {"for", Tok::kFor},         {"let", Tok::kLet},
+        {"assert", Tok::kAssert},   {"echo", Tok::kEcho},
+        {"each", Tok::kEach},       {"true", Tok::kTrue},
+        {"false", Tok::kFalse},     {"undef", Tok::kUndef},
         {"include", Tok::kInclude}, {"use", Tok::kUse}};
     for (const auto& [w, k] : kWords) {
       if (s == w) return k;
@@ -247,13 +270,27 @@ class Lexer {
       const char e = t_[i_ + 1];
       advance(2);
       switch (e) {
-        case 'n': tok.text += '\n'; break;
-        case 't': tok.text += '\t'; break;
-        case 'r': tok.text += '\r'; break;
-        case '\\': tok.text += '\\'; break;
-        case '"': tok.text += '"'; break;
-        case '\'': tok.text += '\''; break;
-        case 'x': case 'u': case 'U': {
+        case 'n':
+          tok.text += '\n';
+          break;
+        case 't':
+          tok.text += '\t';
+          break;
+        case 'r':
+          tok.text += '\r';
+          break;
+        case '\\':
+          tok.text += '\\';
+          break;
+        case '"':
+          tok.text += '"';
+          break;
+        case '\'':
+          tok.text += '\'';
+          break;
+        case 'x':
+        case 'u':
+        case 'U': {
           const std::size_t want = e == 'x' ? 2 : e == 'u' ? 4 : 6;
           std::uint32_t cp = 0;
           std::size_t k = 0;
@@ -335,24 +372,33 @@ class Parser {
     if (pos_ + 1 < toks_.size()) ++pos_;
     return t;
   }
-  [[noreturn]] void fail(SourcePos p, std::string message) { throw ParseError{p, std::move(message)}; }
+  [[noreturn]] void fail(SourcePos p, std::string message) {
+    throw ParseError{p, std::move(message)};
+  }
   std::string describe(const Token& t) const {
     switch (t.kind) {
-      case Tok::kEnd: return "the end of the file";
-      case Tok::kNumber: return "number " + t.text;
-      case Tok::kString: return "a string";
-      case Tok::kIdent: return "'" + t.text + "'";
-      default: return "'" + t.text + "'";
+      case Tok::kEnd:
+        return "the end of the file";
+      case Tok::kNumber:
+        return "number " + t.text;
+      case Tok::kString:
+        return "a string";
+      case Tok::kIdent:
+        return "'" + t.text + "'";
+      default:
+        return "'" + t.text + "'";
     }
   }
   void expect_char(char c, const char* context) {
     if (!at_char(c)) {
-      fail(peek().pos, std::string("expected '") + c + "' " + context + ", found " + describe(peek()));
+      fail(peek().pos,
+           std::string("expected '") + c + "' " + context + ", found " + describe(peek()));
     }
     next();
   }
   std::string expect_ident(const char* what) {
-    if (!at(Tok::kIdent)) fail(peek().pos, std::string("expected ") + what + ", found " + describe(peek()));
+    if (!at(Tok::kIdent))
+      fail(peek().pos, std::string("expected ") + what + ", found " + describe(peek()));
     return next().text;
   }
 
@@ -541,8 +587,9 @@ class Parser {
     }
     if (at(Tok::kLet) || at(Tok::kAssert) || at(Tok::kEcho)) {
       const Tok k = next().kind;
-      auto e = make(k == Tok::kLet ? ExprKind::kLet : k == Tok::kAssert ? ExprKind::kAssert
-                                                                       : ExprKind::kEcho,
+      auto e = make(k == Tok::kLet      ? ExprKind::kLet
+                    : k == Tok::kAssert ? ExprKind::kAssert
+                                        : ExprKind::kEcho,
                     t.pos);
       expect_char('(', "after let, assert or echo");
       e->args = bindings(')', "arguments");
@@ -565,8 +612,16 @@ class Parser {
   bool starts_expr() const {
     const Token& t = peek();
     switch (t.kind) {
-      case Tok::kIdent: case Tok::kNumber: case Tok::kString: case Tok::kTrue: case Tok::kFalse:
-      case Tok::kUndef: case Tok::kFunction: case Tok::kLet: case Tok::kAssert: case Tok::kEcho:
+      case Tok::kIdent:
+      case Tok::kNumber:
+      case Tok::kString:
+      case Tok::kTrue:
+      case Tok::kFalse:
+      case Tok::kUndef:
+      case Tok::kFunction:
+      case Tok::kLet:
+      case Tok::kAssert:
+      case Tok::kEcho:
         return true;
       case Tok::kChar:
         return t.text[0] == '(' || t.text[0] == '[' || t.text[0] == '-' || t.text[0] == '+' ||
@@ -579,18 +634,33 @@ class Parser {
   // Binary operators by level: 0 ||, 1 &&, 2 == !=, 3 < <= > >=, 4 + -, 5 * / %.
   int level_of(const Token& t) const {
     switch (t.kind) {
-      case Tok::kOr: return 0;
-      case Tok::kAnd: return 1;
-      case Tok::kEq: case Tok::kNe: return 2;
-      case Tok::kLe: case Tok::kGe: return 3;
+      case Tok::kOr:
+        return 0;
+      case Tok::kAnd:
+        return 1;
+      case Tok::kEq:
+      case Tok::kNe:
+        return 2;
+      case Tok::kLe:
+      case Tok::kGe:
+        return 3;
       case Tok::kChar:
         switch (t.text[0]) {
-          case '<': case '>': return 3;
-          case '+': case '-': return 4;
-          case '*': case '/': case '%': return 5;
-          default: return -1;
+          case '<':
+          case '>':
+            return 3;
+          case '+':
+          case '-':
+            return 4;
+          case '*':
+          case '/':
+          case '%':
+            return 5;
+          default:
+            return -1;
         }
-      default: return -1;
+      default:
+        return -1;
     }
   }
 
@@ -667,7 +737,8 @@ class Parser {
         e->text = next().text;
         return e;
       }
-      case Tok::kTrue: case Tok::kFalse: {
+      case Tok::kTrue:
+      case Tok::kFalse: {
         auto e = make(ExprKind::kBool, t.pos);
         e->number = next().kind == Tok::kTrue ? 1 : 0;
         return e;
@@ -731,7 +802,8 @@ class Parser {
         next();
         return v;
       }
-      if (!at_char(',')) fail(peek().pos, "expected ',' or ']' in the vector, found " + describe(peek()));
+      if (!at_char(','))
+        fail(peek().pos, "expected ',' or ']' in the vector, found " + describe(peek()));
       while (at_char(',')) next();
       if (at_char(']')) {
         next();

@@ -12,9 +12,11 @@
 #include <cmath>
 #include <functional>
 
+#include "cache.h"
 #include "cellforge/boolean/boolean.h"
 #include "cellforge/boolean/minkowski.h"
 #include "cellforge/boolean/ops2d.h"
+#include "cellforge/csg/tree_json.h"
 #include "cellforge/io/mesh_io.h"
 #include "cellforge/shape/hull.h"
 #include "cellforge/shape/mass.h"
@@ -23,8 +25,6 @@
 #include "cellforge/shape/resize.h"
 #include "cellforge/shape/shape2d.h"
 #include "cellforge/topo/builder.h"
-#include "cache.h"
-#include "cellforge/csg/tree_json.h"
 #include "tree_private.h"
 
 namespace cellforge::csg {
@@ -32,9 +32,10 @@ namespace cellforge::csg {
 namespace {
 
 constexpr const char* kNames[] = {
-    "group", "union", "difference", "intersection", "cube", "sphere", "cylinder", "polyhedron",
-    "import", "square", "circle", "polygon", "multmatrix", "resize", "color", "linear_extrude",
-    "rotate_extrude", "hull", "minkowski", "offset", "projection"};
+    "group",      "union",      "difference", "intersection",   "cube",           "sphere",
+    "cylinder",   "polyhedron", "import",     "square",         "circle",         "polygon",
+    "multmatrix", "resize",     "color",      "linear_extrude", "rotate_extrude", "hull",
+    "minkowski",  "offset",     "projection"};
 
 }  // namespace
 
@@ -78,8 +79,10 @@ std::vector<FaceId> copy_into(Model& out, const Model& src, const shape::Transfo
         for (VertexId v : src.loop_vertices(l)) face.loops.back().push_back(vertex.at(v.value));
         if (flip) std::reverse(face.loops.back().begin(), face.loops.back().end());
       }
-      if (src.front_volume(f).is_valid()) face.front = static_cast<int>(volume.at(src.front_volume(f).value));
-      if (src.back_volume(f).is_valid()) face.back = static_cast<int>(volume.at(src.back_volume(f).value));
+      if (src.front_volume(f).is_valid())
+        face.front = static_cast<int>(volume.at(src.front_volume(f).value));
+      if (src.back_volume(f).is_valid())
+        face.back = static_cast<int>(volume.at(src.back_volume(f).value));
       mesh.faces.push_back(std::move(face));
       face_ids.push_back(f);
     }
@@ -104,7 +107,8 @@ bool is_identity(const shape::Transform& t) {
 namespace {
 
 bool is_2d_file(const std::string& path) {
-  std::string ext = path.substr(path.find_last_of('.') == std::string::npos ? path.size() : path.find_last_of('.'));
+  std::string ext = path.substr(
+      path.find_last_of('.') == std::string::npos ? path.size() : path.find_last_of('.'));
   for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   return ext == ".dxf" || ext == ".svg";
 }
@@ -145,7 +149,8 @@ class Builder {
       if (s) {
         // Messages about the whole result name its first object.
         const auto first = active_children(root);
-        const shape::Shape2D flat = to_shape(*s, root.pos.line == 0 && !first.empty() ? *first[0] : root);
+        const shape::Shape2D flat =
+            to_shape(*s, root.pos.line == 0 && !first.empty() ? *first[0] : root);
         for (const shape::Region& r : flat.regions) {
           auto g = shape::make_region_face(out.model, r);
           if (!g) fail(root.pos, g.error().message);
@@ -238,7 +243,8 @@ class Builder {
         const std::vector<FaceId> ids = copy_into(out.model, p.model, shape::Transform::identity());
         out.face_colors.resize(out.model.face_slots());
         for (FaceId f : p.model.faces()) {
-          if (ids[f.value].is_valid() && f.value < p.colors.size()) out.face_colors[ids[f.value].value] = p.colors[f.value];
+          if (ids[f.value].is_valid() && f.value < p.colors.size())
+            out.face_colors[ids[f.value].value] = p.colors[f.value];
         }
       }
       return;
@@ -268,12 +274,18 @@ class Builder {
   // 3: solids, 2: planar shapes, 0: nothing (or only background).
   int dimension(const Node& n) const {
     switch (n.kind) {
-      case NodeKind::kCube: case NodeKind::kSphere: case NodeKind::kCylinder:
-      case NodeKind::kPolyhedron: case NodeKind::kLinearExtrude:
+      case NodeKind::kCube:
+      case NodeKind::kSphere:
+      case NodeKind::kCylinder:
+      case NodeKind::kPolyhedron:
+      case NodeKind::kLinearExtrude:
       case NodeKind::kRotateExtrude:
         return 3;
-      case NodeKind::kSquare: case NodeKind::kCircle: case NodeKind::kPolygon:
-      case NodeKind::kProjection: case NodeKind::kOffset:
+      case NodeKind::kSquare:
+      case NodeKind::kCircle:
+      case NodeKind::kPolygon:
+      case NodeKind::kProjection:
+      case NodeKind::kOffset:
         return 2;
       case NodeKind::kImport:
         return is_2d_file(n.path) ? 2 : 3;
@@ -304,10 +316,12 @@ class Builder {
   }
 
   // ---- 3D: the set-operation expression over leaves
-  std::optional<boolean::Expr> collect3(const Node& n, const shape::Transform& t, const Color& color,
-                                        std::vector<Leaf>& leaves) {
+  std::optional<boolean::Expr> collect3(const Node& n, const shape::Transform& t,
+                                        const Color& color, std::vector<Leaf>& leaves) {
     switch (n.kind) {
-      case NodeKind::kGroup: case NodeKind::kUnion: case NodeKind::kDifference:
+      case NodeKind::kGroup:
+      case NodeKind::kUnion:
+      case NodeKind::kDifference:
       case NodeKind::kIntersection: {
         std::vector<std::optional<boolean::Expr>> parts;
         for (const Node* c : active_children(n)) parts.push_back(collect3(*c, t, color, leaves));
@@ -316,7 +330,8 @@ class Builder {
       case NodeKind::kMultmatrix: {
         const shape::Transform inner = t * n.matrix;
         std::vector<std::optional<boolean::Expr>> parts;
-        for (const Node* c : active_children(n)) parts.push_back(collect3(*c, inner, color, leaves));
+        for (const Node* c : active_children(n))
+          parts.push_back(collect3(*c, inner, color, leaves));
         return set_op(NodeKind::kGroup, std::move(parts));
       }
       case NodeKind::kColor: {
@@ -343,7 +358,8 @@ class Builder {
 
   // Empty parts dropped: a union of nothing is nothing, an intersection with nothing is
   // nothing, a difference from nothing is nothing.
-  static std::optional<boolean::Expr> set_op(NodeKind k, std::vector<std::optional<boolean::Expr>> parts) {
+  static std::optional<boolean::Expr> set_op(NodeKind k,
+                                             std::vector<std::optional<boolean::Expr>> parts) {
     std::vector<boolean::Expr> kept;
     if (k == NodeKind::kIntersection) {
       for (auto& p : parts) {
@@ -398,7 +414,8 @@ class Builder {
       face_colors->assign(r->model.face_slots(), std::nullopt);
       for (std::size_t f = 0; f < r->sources.size() && f < face_colors->size(); ++f) {
         const int op = r->sources[f].operand;
-        if (op >= 0 && static_cast<std::size_t>(op) < leaves.size()) (*face_colors)[f] = leaves[static_cast<std::size_t>(op)].color;
+        if (op >= 0 && static_cast<std::size_t>(op) < leaves.size())
+          (*face_colors)[f] = leaves[static_cast<std::size_t>(op)].color;
       }
     }
     return std::move(r->model);
@@ -422,19 +439,22 @@ class Builder {
         return m;
       case NodeKind::kCylinder:
         if (n.h == 0 || (n.r1 == 0 && n.r2 == 0)) return m;
-        check(shape::make_cylinder(m, {.h = n.h, .r1 = n.r1, .r2 = n.r2, .center = n.center,
-                                       .faceting = n.faceting}),
-              n);
+        check(
+            shape::make_cylinder(
+                m, {.h = n.h, .r1 = n.r1, .r2 = n.r2, .center = n.center, .faceting = n.faceting}),
+            n);
         return m;
       case NodeKind::kPolyhedron:
-        check(shape::make_polyhedron(m, {.points = n.points, .faces = n.faces, .clockwise = true}), n);
+        check(shape::make_polyhedron(m, {.points = n.points, .faces = n.faces, .clockwise = true}),
+              n);
         return m;
       case NodeKind::kImport: {
         auto r = io::read_file(m, n.path);
         check(r, n);
         return m;
       }
-      case NodeKind::kLinearExtrude: case NodeKind::kRotateExtrude:
+      case NodeKind::kLinearExtrude:
+      case NodeKind::kRotateExtrude:
         return extrude(n);
       case NodeKind::kResize:
         return resize(n);
@@ -462,7 +482,8 @@ class Builder {
     Model sub = build_children(n);
     if (sub.num_faces() == 0) return sub;
     const shape::MassProperties mp = shape::mass_properties(sub);
-    auto f = shape::resize_factors(mp.bbox_max - mp.bbox_min, {.size = n.size, .autosize = n.auto_size});
+    auto f =
+        shape::resize_factors(mp.bbox_max - mp.bbox_min, {.size = n.size, .autosize = n.auto_size});
     check(f, n);
     return copy_transformed(sub, shape::Transform::scale(*f));
   }
@@ -504,7 +525,8 @@ class Builder {
 
   // A 2D subtree as one shape: its set operations evaluated (2D Booleans).
   shape::Shape2D to_shape(const Shape2& s, const Node& at) {
-    if (s.expr.kind == boolean::Expr::Kind::kOperand) return shape::shape_of(s.regions[static_cast<std::size_t>(s.expr.operand)]);
+    if (s.expr.kind == boolean::Expr::Kind::kOperand)
+      return shape::shape_of(s.regions[static_cast<std::size_t>(s.expr.operand)]);
     std::vector<shape::Shape2D> operands;
     for (const shape::Region& r : s.regions) operands.push_back(shape::shape_of(r));
     const auto start = Clock::now();
@@ -524,7 +546,8 @@ class Builder {
       parts.push_back(boolean::Expr::of(static_cast<int>(s.regions.size())));
       s.regions.push_back(std::move(r));
     }
-    s.expr = parts.size() == 1 ? std::move(parts[0]) : boolean::Expr::op(boolean::Op::kUnion, std::move(parts));
+    s.expr = parts.size() == 1 ? std::move(parts[0])
+                               : boolean::Expr::op(boolean::Op::kUnion, std::move(parts));
     return s;
   }
 
@@ -538,8 +561,12 @@ class Builder {
   // ---- 2D
   std::optional<Shape2> collect2(const Node& n, const shape::Transform& t) {
     switch (n.kind) {
-      case NodeKind::kGroup: case NodeKind::kUnion: case NodeKind::kDifference:
-      case NodeKind::kIntersection: case NodeKind::kMultmatrix: case NodeKind::kColor: {
+      case NodeKind::kGroup:
+      case NodeKind::kUnion:
+      case NodeKind::kDifference:
+      case NodeKind::kIntersection:
+      case NodeKind::kMultmatrix:
+      case NodeKind::kColor: {
         const shape::Transform inner = n.kind == NodeKind::kMultmatrix ? t * n.matrix : t;
         Shape2 all;
         std::vector<std::optional<boolean::Expr>> parts;
@@ -554,7 +581,9 @@ class Builder {
           shift(s->expr, offset);
           parts.push_back(std::move(s->expr));
         }
-        const NodeKind k = n.kind == NodeKind::kMultmatrix || n.kind == NodeKind::kColor ? NodeKind::kGroup : n.kind;
+        const NodeKind k = n.kind == NodeKind::kMultmatrix || n.kind == NodeKind::kColor
+                               ? NodeKind::kGroup
+                               : n.kind;
         auto e = set_op(k, std::move(parts));
         if (!e) return std::nullopt;
         all.expr = std::move(*e);
@@ -563,8 +592,9 @@ class Builder {
       default:
         break;
     }
-    if (n.kind == NodeKind::kHull || n.kind == NodeKind::kMinkowski || n.kind == NodeKind::kOffset ||
-        n.kind == NodeKind::kProjection || n.kind == NodeKind::kResize) {
+    if (n.kind == NodeKind::kHull || n.kind == NodeKind::kMinkowski ||
+        n.kind == NodeKind::kOffset || n.kind == NodeKind::kProjection ||
+        n.kind == NodeKind::kResize) {
       return operation2(n, t);
     }
     if (n.kind == NodeKind::kImport) {
@@ -605,13 +635,16 @@ class Builder {
     if (!is_identity(t)) {
       const auto& m = t.m;
       if (m[2][0] != 0 || m[2][1] != 0) {
-        fail(n.pos, "a 2D object moved out of the xy plane (only transforms within it are "
-                    "supported for 2D)");
+        fail(n.pos,
+             "a 2D object moved out of the xy plane (only transforms within it are "
+             "supported for 2D)");
       }
       const double det = m[0][0] * m[1][1] - m[0][1] * m[1][0];
       if (det == 0) return std::nullopt;
       for (auto& l : r.loops) {
-        for (Vec2& p : l) p = Vec2{m[0][0] * p.x + m[0][1] * p.y + m[0][3], m[1][0] * p.x + m[1][1] * p.y + m[1][3]};
+        for (Vec2& p : l)
+          p = Vec2{m[0][0] * p.x + m[0][1] * p.y + m[0][3],
+                   m[1][0] * p.x + m[1][1] * p.y + m[1][3]};
       }
       if (det < 0) {
         std::vector<std::vector<Vec2>> holes(r.loops.begin() + 1, r.loops.end());
@@ -663,10 +696,11 @@ class Builder {
         check(r, n);
         result = shape::shape_of(std::move(*r));
       } else if (n.kind == NodeKind::kOffset) {
-        const boolean::OffsetJoin join = n.round ? boolean::OffsetJoin::kRound
+        const boolean::OffsetJoin join = n.round     ? boolean::OffsetJoin::kRound
                                          : n.chamfer ? boolean::OffsetJoin::kChamfer
                                                      : boolean::OffsetJoin::kMiter;
-        auto r = boolean::offset(to_shape(*s, n), {.amount = n.delta, .join = join, .faceting = n.faceting});
+        auto r = boolean::offset(to_shape(*s, n),
+                                 {.amount = n.delta, .join = join, .faceting = n.faceting});
         check(r, n);
         result = std::move(*r);
       } else {
@@ -723,11 +757,13 @@ class Builder {
     if (n.kind == NodeKind::kLinearExtrude) {
       if (n.linear.height <= 0) return Model();
       shape::LinearExtrudeOptions o = n.linear;
-      if (o.scale_x < 0 || o.scale_y < 0) fail(n.pos, "linear_extrude(): scale must not be negative");
+      if (o.scale_x < 0 || o.scale_y < 0)
+        fail(n.pos, "linear_extrude(): scale must not be negative");
       if (several && o.slices == 0) {
         // OpenSCAD's slice count is the whole profile's.
         shape::Region all;
-        for (const auto& reg : s->regions) all.loops.insert(all.loops.end(), reg.loops.begin(), reg.loops.end());
+        for (const auto& reg : s->regions)
+          all.loops.insert(all.loops.end(), reg.loops.begin(), reg.loops.end());
         o.slices = shape::extrude_slices(all, o);
       }
       for (std::size_t i = 0; i < s->regions.size(); ++i) {
@@ -745,7 +781,8 @@ class Builder {
             for (Vec2 p : l) r = std::max(r, std::fabs(p.x));
           }
         }
-        o.faceting = shape::Faceting{.fn = static_cast<double>(shape::fragments(r, n.rotate.faceting))};
+        o.faceting =
+            shape::Faceting{.fn = static_cast<double>(shape::fragments(r, n.rotate.faceting))};
       }
       for (std::size_t i = 0; i < s->regions.size(); ++i) {
         check(shape::rotate_extrude(leaves[i].model, s->regions[i], o), n);

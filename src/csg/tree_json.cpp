@@ -15,11 +15,21 @@ std::string quote(const std::string& s) {
   std::string out = "\"";
   for (char c : s) {
     switch (c) {
-      case '"': out += "\\\""; break;
-      case '\\': out += "\\\\"; break;
-      case '\n': out += "\\n"; break;
-      case '\t': out += "\\t"; break;
-      case '\r': out += "\\r"; break;
+      case '"':
+        out += "\\\"";
+        break;
+      case '\\':
+        out += "\\\\";
+        break;
+      case '\n':
+        out += "\\n";
+        break;
+      case '\t':
+        out += "\\t";
+        break;
+      case '\r':
+        out += "\\r";
+        break;
       default:
         if (static_cast<unsigned char>(c) < 0x20) {
           char buf[8];
@@ -37,7 +47,9 @@ std::string vec3(Vec3 v) { return "[" + num(v.x) + ", " + num(v.y) + ", " + num(
 
 void write(const Node& n, std::string& out, bool positions) {
   out += "{\"type\": \"" + std::string(node_name(n.kind)) + "\"";
-  auto field = [&](const char* k, const std::string& v) { out += std::string(", \"") + k + "\": " + v; };
+  auto field = [&](const char* k, const std::string& v) {
+    out += std::string(", \"") + k + "\": " + v;
+  };
   auto flag = [&](const char* k, bool b) { field(k, b ? "true" : "false"); };
   auto facets = [&](const shape::Faceting& f) {
     field("fn", num(f.fn));
@@ -49,7 +61,8 @@ void write(const Node& n, std::string& out, bool positions) {
       field("size", vec3(n.size));
       flag("center", n.center);
       break;
-    case NodeKind::kSphere: case NodeKind::kCircle:
+    case NodeKind::kSphere:
+    case NodeKind::kCircle:
       field("r", num(n.r));
       facets(n.faceting);
       break;
@@ -64,18 +77,21 @@ void write(const Node& n, std::string& out, bool positions) {
       field("size", "[" + num(n.size.x) + ", " + num(n.size.y) + "]");
       flag("center", n.center);
       break;
-    case NodeKind::kPolyhedron: case NodeKind::kPolygon: {
+    case NodeKind::kPolyhedron:
+    case NodeKind::kPolygon: {
       std::string pts = "[";
       for (std::size_t i = 0; i < n.points.size(); ++i) {
         if (i) pts += ", ";
-        pts += n.kind == NodeKind::kPolygon ? "[" + num(n.points[i].x) + ", " + num(n.points[i].y) + "]"
-                                            : vec3(n.points[i]);
+        pts += n.kind == NodeKind::kPolygon
+                   ? "[" + num(n.points[i].x) + ", " + num(n.points[i].y) + "]"
+                   : vec3(n.points[i]);
       }
       field("points", pts + "]");
       std::string fs = "[";
       for (std::size_t i = 0; i < n.faces.size(); ++i) {
         fs += i ? ", [" : "[";
-        for (std::size_t j = 0; j < n.faces[i].size(); ++j) fs += (j ? ", " : "") + std::to_string(n.faces[i][j]);
+        for (std::size_t j = 0; j < n.faces[i].size(); ++j)
+          fs += (j ? ", " : "") + std::to_string(n.faces[i][j]);
         fs += "]";
       }
       field(n.kind == NodeKind::kPolygon ? "paths" : "faces", fs + "]");
@@ -88,7 +104,9 @@ void write(const Node& n, std::string& out, bool positions) {
       std::string m = "[";
       for (int i = 0; i < 3; ++i) {
         m += "[";
-        for (int j = 0; j < 4; ++j) m += (j ? ", " : "") + num(n.matrix.m[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)]);
+        for (int j = 0; j < 4; ++j)
+          m += (j ? ", " : "") +
+               num(n.matrix.m[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)]);
         m += "], ";
       }
       field("matrix", m + "[0, 0, 0, 1]]");
@@ -97,11 +115,12 @@ void write(const Node& n, std::string& out, bool positions) {
     case NodeKind::kResize:
       field("size", vec3(n.size));
       field("auto", std::string("[") + (n.auto_size[0] ? "true" : "false") + ", " +
-                        (n.auto_size[1] ? "true" : "false") + ", " + (n.auto_size[2] ? "true" : "false") + "]");
+                        (n.auto_size[1] ? "true" : "false") + ", " +
+                        (n.auto_size[2] ? "true" : "false") + "]");
       break;
     case NodeKind::kColor:
-      field("color", "[" + num(n.color[0]) + ", " + num(n.color[1]) + ", " + num(n.color[2]) + ", " +
-                         num(n.color[3]) + "]");
+      field("color", "[" + num(n.color[0]) + ", " + num(n.color[1]) + ", " + num(n.color[2]) +
+                         ", " + num(n.color[3]) + "]");
       break;
     case NodeKind::kLinearExtrude:
       field("height", num(n.linear.height));
@@ -179,7 +198,8 @@ class Reader {
  private:
   [[noreturn]] void fail(const std::string& m) const { throw JsonError{i_, m}; }
   void space() {
-    while (i_ < t_.size() && (t_[i_] == ' ' || t_[i_] == '\n' || t_[i_] == '\r' || t_[i_] == '\t')) ++i_;
+    while (i_ < t_.size() && (t_[i_] == ' ' || t_[i_] == '\n' || t_[i_] == '\r' || t_[i_] == '\t'))
+      ++i_;
   }
   bool literal(std::string_view w) {
     if (t_.substr(i_, w.size()) != w) return false;
@@ -261,7 +281,9 @@ class Reader {
     if (literal("null")) return v;
     if (c == '-' || (c >= '0' && c <= '9')) {
       std::size_t j = i_;
-      while (j < t_.size() && (std::string_view("+-.eE0123456789").find(t_[j]) != std::string_view::npos)) ++j;
+      while (j < t_.size() &&
+             (std::string_view("+-.eE0123456789").find(t_[j]) != std::string_view::npos))
+        ++j;
       const std::string s(t_.substr(i_, j - i_));
       char* end = nullptr;
       v.type = Json::Type::kNumber;
@@ -286,17 +308,34 @@ class Reader {
       if (i_ >= t_.size()) fail("the string ends in a backslash");
       const char e = t_[i_++];
       switch (e) {
-        case 'n': out += '\n'; break;
-        case 't': out += '\t'; break;
-        case 'r': out += '\r'; break;
-        case 'b': out += '\b'; break;
-        case 'f': out += '\f'; break;
-        case '/': out += '/'; break;
-        case '\\': out += '\\'; break;
-        case '"': out += '"'; break;
+        case 'n':
+          out += '\n';
+          break;
+        case 't':
+          out += '\t';
+          break;
+        case 'r':
+          out += '\r';
+          break;
+        case 'b':
+          out += '\b';
+          break;
+        case 'f':
+          out += '\f';
+          break;
+        case '/':
+          out += '/';
+          break;
+        case '\\':
+          out += '\\';
+          break;
+        case '"':
+          out += '"';
+          break;
         case 'u': {
           if (i_ + 4 > t_.size()) fail("a short \\u escape");
-          const unsigned cp = static_cast<unsigned>(std::strtoul(std::string(t_.substr(i_, 4)).c_str(), nullptr, 16));
+          const unsigned cp = static_cast<unsigned>(
+              std::strtoul(std::string(t_.substr(i_, 4)).c_str(), nullptr, 16));
           i_ += 4;
           if (cp < 0x80) {
             out += static_cast<char>(cp);
@@ -310,7 +349,8 @@ class Reader {
           }
           break;
         }
-        default: fail(std::string("an unknown escape \\") + e);
+        default:
+          fail(std::string("an unknown escape \\") + e);
       }
     }
   }
@@ -326,22 +366,26 @@ struct TreeError {
 double number(const Json& n, const char* key, double fallback) {
   const Json* v = n.get(key);
   if (!v) return fallback;
-  if (v->type != Json::Type::kNumber || !std::isfinite(v->n)) throw TreeError{v->offset, std::string(key) + " must be a number"};
+  if (v->type != Json::Type::kNumber || !std::isfinite(v->n))
+    throw TreeError{v->offset, std::string(key) + " must be a number"};
   return v->n;
 }
 
 bool boolean(const Json& n, const char* key) {
   const Json* v = n.get(key);
   if (!v) return false;
-  if (v->type != Json::Type::kBool) throw TreeError{v->offset, std::string(key) + " must be true or false"};
+  if (v->type != Json::Type::kBool)
+    throw TreeError{v->offset, std::string(key) + " must be true or false"};
   return v->b;
 }
 
 std::vector<double> numbers(const Json& v, const char* what) {
-  if (v.type != Json::Type::kArray) throw TreeError{v.offset, std::string(what) + " must be an array of numbers"};
+  if (v.type != Json::Type::kArray)
+    throw TreeError{v.offset, std::string(what) + " must be an array of numbers"};
   std::vector<double> out;
   for (const Json& x : v.items) {
-    if (x.type != Json::Type::kNumber || !std::isfinite(x.n)) throw TreeError{x.offset, std::string(what) + " must hold numbers"};
+    if (x.type != Json::Type::kNumber || !std::isfinite(x.n))
+      throw TreeError{x.offset, std::string(what) + " must hold numbers"};
     out.push_back(x.n);
   }
   return out;
@@ -354,7 +398,8 @@ shape::Faceting facets(const Json& n) {
 NodePtr read_node(const Json& j) {
   if (j.type != Json::Type::kObject) throw TreeError{j.offset, "a node must be an object"};
   const Json* type = j.get("type");
-  if (!type || type->type != Json::Type::kString) throw TreeError{j.offset, "a node needs \"type\""};
+  if (!type || type->type != Json::Type::kString)
+    throw TreeError{j.offset, "a node needs \"type\""};
   const auto kind = node_kind(type->s);
   if (!kind) throw TreeError{type->offset, "unknown node type \"" + type->s + "\""};
   auto n = std::make_shared<Node>();
@@ -365,7 +410,8 @@ NodePtr read_node(const Json& j) {
     const Json* v = j.get(key);
     if (!v) return fallback;
     const auto xs = numbers(*v, key);
-    if (xs.size() < min || xs.size() > max) throw TreeError{v->offset, std::string(key) + " has the wrong length"};
+    if (xs.size() < min || xs.size() > max)
+      throw TreeError{v->offset, std::string(key) + " has the wrong length"};
     return Vec3{xs[0], xs.size() > 1 ? xs[1] : 0, xs.size() > 2 ? xs[2] : 0};
   };
   switch (n->kind) {
@@ -377,7 +423,8 @@ NodePtr read_node(const Json& j) {
       n->size = vec("size", {1, 1, 0}, 2, 2);
       n->center = boolean(j, "center");
       break;
-    case NodeKind::kSphere: case NodeKind::kCircle:
+    case NodeKind::kSphere:
+    case NodeKind::kCircle:
       n->r = number(j, "r", 1);
       n->faceting = facets(j);
       break;
@@ -388,13 +435,16 @@ NodePtr read_node(const Json& j) {
       n->center = boolean(j, "center");
       n->faceting = facets(j);
       break;
-    case NodeKind::kPolyhedron: case NodeKind::kPolygon: {
+    case NodeKind::kPolyhedron:
+    case NodeKind::kPolygon: {
       const bool poly3 = n->kind == NodeKind::kPolyhedron;
       if (const Json* pts = j.get("points")) {
-        if (pts->type != Json::Type::kArray) throw TreeError{pts->offset, "points must be an array"};
+        if (pts->type != Json::Type::kArray)
+          throw TreeError{pts->offset, "points must be an array"};
         for (const Json& p : pts->items) {
           const auto xs = numbers(p, "a point");
-          if (xs.size() != (poly3 ? 3u : 2u)) throw TreeError{p.offset, "a point has the wrong length"};
+          if (xs.size() != (poly3 ? 3u : 2u))
+            throw TreeError{p.offset, "a point has the wrong length"};
           n->points.push_back(Vec3{xs[0], xs[1], poly3 ? xs[2] : 0});
         }
       }
@@ -419,12 +469,15 @@ NodePtr read_node(const Json& j) {
       break;
     }
     case NodeKind::kMultmatrix: {
-      std::array<std::array<double, 4>, 4> rows{{{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}, {0, 0, 0, 1}}};
+      std::array<std::array<double, 4>, 4> rows{
+          {{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}, {0, 0, 0, 1}}};
       if (const Json* m = j.get("matrix")) {
-        if (m->type != Json::Type::kArray || m->items.size() != 4) throw TreeError{m->offset, "matrix must be 4 rows"};
+        if (m->type != Json::Type::kArray || m->items.size() != 4)
+          throw TreeError{m->offset, "matrix must be 4 rows"};
         for (std::size_t i = 0; i < 4; ++i) {
           const auto xs = numbers(m->items[i], "a matrix row");
-          if (xs.size() != 4) throw TreeError{m->items[i].offset, "a matrix row must have 4 numbers"};
+          if (xs.size() != 4)
+            throw TreeError{m->items[i].offset, "a matrix row must have 4 numbers"};
           for (std::size_t k = 0; k < 4; ++k) rows[i][k] = xs[k];
         }
       }
@@ -436,15 +489,18 @@ NodePtr read_node(const Json& j) {
     case NodeKind::kResize: {
       n->size = vec("size", {0, 0, 0}, 3, 3);
       if (const Json* a = j.get("auto")) {
-        if (a->type != Json::Type::kArray || a->items.size() != 3) throw TreeError{a->offset, "auto must be 3 booleans"};
-        for (std::size_t i = 0; i < 3; ++i) n->auto_size[i] = a->items[i].type == Json::Type::kBool && a->items[i].b;
+        if (a->type != Json::Type::kArray || a->items.size() != 3)
+          throw TreeError{a->offset, "auto must be 3 booleans"};
+        for (std::size_t i = 0; i < 3; ++i)
+          n->auto_size[i] = a->items[i].type == Json::Type::kBool && a->items[i].b;
       }
       break;
     }
     case NodeKind::kColor:
       if (const Json* c = j.get("color")) {
         const auto xs = numbers(*c, "color");
-        if (xs.size() < 3 || xs.size() > 4) throw TreeError{c->offset, "color must be [r, g, b] or [r, g, b, a]"};
+        if (xs.size() < 3 || xs.size() > 4)
+          throw TreeError{c->offset, "color must be [r, g, b] or [r, g, b, a]"};
         n->color = {xs[0], xs[1], xs[2], xs.size() > 3 ? xs[3] : 1};
       }
       break;

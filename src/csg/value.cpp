@@ -30,13 +30,20 @@ Value Value::vector(Vector v) {
 
 bool Value::truthy() const {
   switch (type()) {
-    case Type::kUndef: return false;
-    case Type::kBool: return as_bool();
-    case Type::kNumber: return as_number() != 0;
-    case Type::kString: return !as_string().empty();
-    case Type::kVector: return !as_vector().empty();
-    case Type::kRange: return true;
-    case Type::kFunction: return true;
+    case Type::kUndef:
+      return false;
+    case Type::kBool:
+      return as_bool();
+    case Type::kNumber:
+      return as_number() != 0;
+    case Type::kString:
+      return !as_string().empty();
+    case Type::kVector:
+      return !as_vector().empty();
+    case Type::kRange:
+      return true;
+    case Type::kFunction:
+      return true;
   }
   return false;
 }
@@ -66,13 +73,20 @@ std::string format_number(double x) {
 
 const char* type_name(Value::Type t) {
   switch (t) {
-    case Value::Type::kUndef: return "undefined";
-    case Value::Type::kBool: return "bool";
-    case Value::Type::kNumber: return "number";
-    case Value::Type::kString: return "string";
-    case Value::Type::kVector: return "vector";
-    case Value::Type::kRange: return "range";
-    case Value::Type::kFunction: return "function";
+    case Value::Type::kUndef:
+      return "undefined";
+    case Value::Type::kBool:
+      return "bool";
+    case Value::Type::kNumber:
+      return "number";
+    case Value::Type::kString:
+      return "string";
+    case Value::Type::kVector:
+      return "vector";
+    case Value::Type::kRange:
+      return "range";
+    case Value::Type::kFunction:
+      return "function";
   }
   return "?";
 }
@@ -81,9 +95,15 @@ namespace {
 
 void append(std::string& out, const Value& v, bool quote) {
   switch (v.type()) {
-    case Value::Type::kUndef: out += "undef"; return;
-    case Value::Type::kBool: out += v.as_bool() ? "true" : "false"; return;
-    case Value::Type::kNumber: out += format_number(v.as_number()); return;
+    case Value::Type::kUndef:
+      out += "undef";
+      return;
+    case Value::Type::kBool:
+      out += v.as_bool() ? "true" : "false";
+      return;
+    case Value::Type::kNumber:
+      out += format_number(v.as_number());
+      return;
     case Value::Type::kString:
       if (quote) out += '"';
       out += v.as_string();
@@ -106,7 +126,9 @@ void append(std::string& out, const Value& v, bool quote) {
              format_number(r.end) + "]";
       return;
     }
-    case Value::Type::kFunction: out += closure_text(*v.as_function()); return;
+    case Value::Type::kFunction:
+      out += closure_text(*v.as_function());
+      return;
   }
 }
 
@@ -127,15 +149,21 @@ std::string Value::to_echo() const {
 bool Value::operator==(const Value& o) const {
   if (type() != o.type()) return false;
   switch (type()) {
-    case Type::kUndef: return true;
-    case Type::kBool: return as_bool() == o.as_bool();
-    case Type::kNumber: return as_number() == o.as_number();
-    case Type::kString: return as_string() == o.as_string();
-    case Type::kVector: return as_vector() == o.as_vector();
+    case Type::kUndef:
+      return true;
+    case Type::kBool:
+      return as_bool() == o.as_bool();
+    case Type::kNumber:
+      return as_number() == o.as_number();
+    case Type::kString:
+      return as_string() == o.as_string();
+    case Type::kVector:
+      return as_vector() == o.as_vector();
     case Type::kRange:
       return as_range().begin == o.as_range().begin && as_range().step == o.as_range().step &&
              as_range().end == o.as_range().end;
-    case Type::kFunction: return as_function() == o.as_function();
+    case Type::kFunction:
+      return as_function() == o.as_function();
   }
   return false;
 }

@@ -141,17 +141,21 @@ TEST_P(Corpus, BuildsAsExpected) {
     EXPECT_EQ(evaluated->echoes, want.echoes);
   }
   const Model& m = built->model;
-  const shape::MassProperties mp = m.num_faces() ? shape::mass_properties(m) : shape::MassProperties{};
+  const shape::MassProperties mp =
+      m.num_faces() ? shape::mass_properties(m) : shape::MassProperties{};
   if (want.volume) {
-    EXPECT_TRUE(close(mp.volume, *want.volume)) << "volume " << mp.volume << " want " << *want.volume;
+    EXPECT_TRUE(close(mp.volume, *want.volume))
+        << "volume " << mp.volume << " want " << *want.volume;
   }
   if (want.area) {
     EXPECT_TRUE(close(mp.area, *want.area)) << "area " << mp.area << " want " << *want.area;
   }
   if (want.bbox) {
     for (int i = 0; i < 3; ++i) {
-      EXPECT_TRUE(close(mp.bbox_min[i], want.bbox->first[i])) << "bbox min[" << i << "] " << mp.bbox_min[i];
-      EXPECT_TRUE(close(mp.bbox_max[i], want.bbox->second[i])) << "bbox max[" << i << "] " << mp.bbox_max[i];
+      EXPECT_TRUE(close(mp.bbox_min[i], want.bbox->first[i]))
+          << "bbox min[" << i << "] " << mp.bbox_min[i];
+      EXPECT_TRUE(close(mp.bbox_max[i], want.bbox->second[i]))
+          << "bbox max[" << i << "] " << mp.bbox_max[i];
     }
   }
   for (const auto& [what, n] : want.counts) {

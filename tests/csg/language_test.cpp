@@ -30,25 +30,30 @@ std::string error_of(const std::string& text, EvalOptions options = {}) {
 
 TEST(Diagnostics, ParseErrorHasPlaceLineAndCaret) {
   const std::string msg = error_of("cube(1);\n  sphere(r = );\n");
-  EXPECT_EQ(msg, "t.scad:2:14: expected an expression, found ')'\n    sphere(r = );\n               ^");
+  EXPECT_EQ(msg,
+            "t.scad:2:14: expected an expression, found ')'\n    sphere(r = );\n               ^");
 }
 
 TEST(Diagnostics, UnclosedCommentAndString) {
-  EXPECT_EQ(error_of("cube(1); /* no end").substr(0, 53), "t.scad:1:10: the comment is not closed ('*/' missing)");
-  EXPECT_NE(error_of("echo(\"abc);").find("t.scad:1:6: the string is not closed"), std::string::npos);
+  EXPECT_EQ(error_of("cube(1); /* no end").substr(0, 53),
+            "t.scad:1:10: the comment is not closed ('*/' missing)");
+  EXPECT_NE(error_of("echo(\"abc);").find("t.scad:1:6: the string is not closed"),
+            std::string::npos);
 }
 
 TEST(Diagnostics, WarningForUnknownVariableHasCaret) {
   auto r = run("x = 1;\necho(y);\n");
   ASSERT_TRUE(r) << r.error().message;
   ASSERT_EQ(r->warnings.size(), 1u);
-  EXPECT_EQ(r->warnings[0], "t.scad:2:6: warning: unknown variable 'y' (undef)\n  echo(y);\n       ^");
+  EXPECT_EQ(r->warnings[0],
+            "t.scad:2:6: warning: unknown variable 'y' (undef)\n  echo(y);\n       ^");
   EXPECT_EQ(r->echoes, std::vector<std::string>{"ECHO: undef"});
 }
 
 TEST(Diagnostics, EvaluationErrorNamesThePlace) {
   EXPECT_EQ(error_of("module m() assert(false, \"no\");\nm();"),
-            "t.scad:1:12: assertion 'false' failed: \"no\"\n  module m() assert(false, \"no\");\n             ^");
+            "t.scad:1:12: assertion 'false' failed: \"no\"\n  module m() assert(false, \"no\");\n  "
+            "           ^");
 }
 
 TEST(Limits, EndlessTailRecursionHitsTheStepLimit) {
@@ -62,7 +67,9 @@ TEST(Limits, EndlessLoopOfStatementsHitsTheStepLimit) {
   EvalOptions o;
   o.max_steps = 100000;
   const std::string msg = error_of("module m(n) m(n + 1);\nm(0);", o);
-  EXPECT_TRUE(msg.find("steps") != std::string::npos || msg.find("recursion too deep") != std::string::npos) << msg;
+  EXPECT_TRUE(msg.find("steps") != std::string::npos ||
+              msg.find("recursion too deep") != std::string::npos)
+      << msg;
 }
 
 TEST(Limits, HugeRangeIsRefusedBeforeItIsMade) {
@@ -73,7 +80,8 @@ TEST(Limits, HugeRangeIsRefusedBeforeItIsMade) {
 TEST(Limits, ListSizeLimit) {
   EvalOptions o;
   o.max_list_size = 1000;
-  EXPECT_NE(error_of("x = [for (i = [0 : 5000]) i];", o).find("than the limit (1000)"), std::string::npos);
+  EXPECT_NE(error_of("x = [for (i = [0 : 5000]) i];", o).find("than the limit (1000)"),
+            std::string::npos);
   EXPECT_EQ(error_of("x = [for (i = [0 : 500]) i];", o), "");
 }
 
@@ -91,7 +99,8 @@ constexpr int kDeep = 20000;
 #endif
 
 TEST(Limits, DeepNonTailRecursionRunsOnTheLargeStack) {
-  auto r = run("function d(n) = n == 0 ? 0 : 1 + d(n - 1);\necho(d(" + std::to_string(kDeep) + "));");
+  auto r =
+      run("function d(n) = n == 0 ? 0 : 1 + d(n - 1);\necho(d(" + std::to_string(kDeep) + "));");
   ASSERT_TRUE(r) << r.error().message;
   EXPECT_EQ(r->echoes, std::vector<std::string>{"ECHO: " + std::to_string(kDeep)});
 }
@@ -109,7 +118,8 @@ TEST(Limits, ParserNestingLimit) {
 }
 
 TEST(Files, IncludeIsRefusedWhenFilesAreOff) {
-  EXPECT_NE(error_of("include <x.scad>\ncube(1);").find("t.scad:1:1: reading 'x.scad' (files are turned off)"),
+  EXPECT_NE(error_of("include <x.scad>\ncube(1);")
+                .find("t.scad:1:1: reading 'x.scad' (files are turned off)"),
             std::string::npos);
 }
 
@@ -118,7 +128,8 @@ TEST(Files, MissingIncludeNamesThePlace) {
   o.use_default_library_path = false;
   auto r = evaluate_text("cube(1);\ninclude <no_such_file.scad>\n", "/tmp/t.scad", o);
   ASSERT_FALSE(r);
-  EXPECT_NE(r.error().message.find("/tmp/t.scad:2:1: cannot find 'no_such_file.scad'"), std::string::npos)
+  EXPECT_NE(r.error().message.find("/tmp/t.scad:2:1: cannot find 'no_such_file.scad'"),
+            std::string::npos)
       << r.error().message;
 }
 
@@ -140,7 +151,8 @@ TEST(TreeJson, RoundTripKeepsTheTreeAndItsKey) {
   auto r = run(
       "difference() { cube(10, center = true); rotate([90, 0, 0]) cylinder(h = 12, r = 3, center = "
       "true, $fn = 12); }\ntranslate([20, 0, 0]) linear_extrude(height = 2, scale = [0.5, 0.5]) "
-      "polygon([[0, 0], [4, 0], [0, 3]]);\ntranslate([0, -20, 0]) color([1, 0, 0]) mirror([1, 1, 0]) cube([1, 2, 3]);");
+      "polygon([[0, 0], [4, 0], [0, 3]]);\ntranslate([0, -20, 0]) color([1, 0, 0]) mirror([1, 1, "
+      "0]) cube([1, 2, 3]);");
   ASSERT_TRUE(r) << r.error().message;
   const std::string json = tree_to_json(*r->root);
   auto back = tree_from_json(json);
@@ -148,12 +160,14 @@ TEST(TreeJson, RoundTripKeepsTheTreeAndItsKey) {
   EXPECT_EQ(node_json(**back), node_json(*r->root));  // the same tree, places aside
   EXPECT_EQ(content_key(**back), content_key(*r->root));
   EXPECT_DOUBLE_EQ(volume_of(**back), volume_of(*r->root));
-  // 1000 - 12-gon of r 3 (area 27) x 10, + a prism 6 x 2 scaled to a quarter on top: 6 (1 + 1/4 + 1/2) 2 / 3, + 6.
+  // 1000 - 12-gon of r 3 (area 27) x 10, + a prism 6 x 2 scaled to a quarter on top: 6 (1 + 1/4 +
+  // 1/2) 2 / 3, + 6.
   EXPECT_NEAR(volume_of(*r->root), 1000 - 270 + 7 + 6, 1e-9);
 }
 
 TEST(TreeJson, ErrorsGiveTheByteOffset) {
-  auto bad = tree_from_json("{\"cellforge_csg\": 1, \"root\": {\"type\": \"cube\", \"size\": [1, 2]}}");
+  auto bad =
+      tree_from_json("{\"cellforge_csg\": 1, \"root\": {\"type\": \"cube\", \"size\": [1, 2]}}");
   ASSERT_FALSE(bad);
   EXPECT_EQ(bad.error().message, "byte 54: size has the wrong length");
   auto unknown = tree_from_json("{\"cellforge_csg\": 1, \"root\": {\"type\": \"teapot\"}}");
@@ -173,7 +187,8 @@ TEST(TreeJson, ContentKeyIgnoresPlacesButNotParameters) {
 }
 
 TEST(Build, ColorsArePerFace) {
-  auto r = run("color(\"red\") cube(2);\ncolor([0, 0, 1]) translate([1, 1, 1]) cube(2);\ncube(0.5);");
+  auto r =
+      run("color(\"red\") cube(2);\ncolor([0, 0, 1]) translate([1, 1, 1]) cube(2);\ncube(0.5);");
   ASSERT_TRUE(r) << r.error().message;
   auto b = build(*r->root);
   ASSERT_TRUE(b) << b.error().message;
@@ -195,8 +210,9 @@ TEST(Build, ColorsArePerFace) {
 }
 
 TEST(Build, OneBooleanForARunOfSetOperations) {
-  auto r = run("difference() { union() { cube(4); translate([3, 0, 0]) cube(4); }\n"
-               "  for (i = [0 : 3]) translate([i * 1.5 + 0.5, 1, -1]) cube([0.5, 0.5, 6]); }");
+  auto r =
+      run("difference() { union() { cube(4); translate([3, 0, 0]) cube(4); }\n"
+          "  for (i = [0 : 3]) translate([i * 1.5 + 0.5, 1, -1]) cube([0.5, 0.5, 6]); }");
   ASSERT_TRUE(r);
   auto b = build(*r->root);
   ASSERT_TRUE(b) << b.error().message;
@@ -209,9 +225,11 @@ TEST(Build, CacheRebuildsOnlyTheEditedPart) {
   const std::string dir = testing::TempDir() + "cf_cache_test";
   std::filesystem::remove_all(dir);
   auto script = [](int r) {
-    return "for (i = [0 : 3]) translate([i * 10, 0, 0]) difference() { cube(5); translate([2.5, 2.5, -1]) "
+    return "for (i = [0 : 3]) translate([i * 10, 0, 0]) difference() { cube(5); translate([2.5, "
+           "2.5, -1]) "
            "cylinder(h = 7, r = 1, $fn = 8); }\ntranslate([0, 20, 0]) difference() { cube(5); "
-           "translate([2.5, 2.5, -1]) cylinder(h = 7, r = " + std::to_string(r) + ", $fn = 8); }";
+           "translate([2.5, 2.5, -1]) cylinder(h = 7, r = " +
+           std::to_string(r) + ", $fn = 8); }";
   };
   BuildOptions o;
   o.cache_dir = dir;
@@ -235,14 +253,16 @@ TEST(Build, CacheRebuildsOnlyTheEditedPart) {
   const double octagon = 2 * std::sqrt(2.0);
   EXPECT_NEAR(shape::mass_properties(a->model).volume, 5 * (125 - 5 * octagon), 1e-9);
   EXPECT_NEAR(shape::mass_properties(b->model).volume, 5 * (125 - 5 * octagon), 1e-9);
-  EXPECT_NEAR(shape::mass_properties(c->model).volume, 4 * (125 - 5 * octagon) + 125 - 5 * 4 * octagon, 1e-9);
+  EXPECT_NEAR(shape::mass_properties(c->model).volume,
+              4 * (125 - 5 * octagon) + 125 - 5 * 4 * octagon, 1e-9);
   EXPECT_EQ(c->model.num_volumes(), 5u);
   std::filesystem::remove_all(dir);
 }
 
 // ---- the command
 int cellforge(const std::string& args) {
-  const int rc = std::system((std::string(CELLFORGE_BIN) + " build --no-cache " + args + " > /dev/null 2>&1").c_str());
+  const int rc = std::system(
+      (std::string(CELLFORGE_BIN) + " build --no-cache " + args + " > /dev/null 2>&1").c_str());
   return WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
 }
 
@@ -253,7 +273,9 @@ TEST(Command, ExitCodes) {
     std::ofstream(dir + "ok.scad") << "cube(s);\n";
     std::ofstream(dir + "bad.scad") << "cube(;\n";
   }
-  EXPECT_EQ(cellforge(dir + "ok.scad -D s=2 -o " + dir + "ok.stl -o " + dir + "ok.off --tree " + dir + "ok.json"), 0);
+  EXPECT_EQ(cellforge(dir + "ok.scad -D s=2 -o " + dir + "ok.stl -o " + dir + "ok.off --tree " +
+                      dir + "ok.json"),
+            0);
   EXPECT_TRUE(std::filesystem::exists(dir + "ok.stl"));
   EXPECT_TRUE(std::filesystem::exists(dir + "ok.off"));
   EXPECT_EQ(cellforge(dir + "ok.json -o " + dir + "again.stl"), 0);  // the JSON form builds too

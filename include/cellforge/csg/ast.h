@@ -28,9 +28,9 @@ struct Binding {
 };
 
 enum class ExprKind {
-  kNumber,    // number
-  kString,    // text
-  kBool,      // number != 0
+  kNumber,  // number
+  kString,  // text
+  kBool,    // number != 0
   kUndef,
   kIdent,     // text = name
   kVector,    // items = elements (expressions or list-comprehension elements)
@@ -46,11 +46,11 @@ enum class ExprKind {
   kAssert,    // assert (args) items[0] (or no items)
   kEcho,      // echo (args) items[0] (or no items)
   // list-comprehension elements
-  kLcFor,     // for (args) items[0]
-  kLcForC,    // for (args; items[0]; params) items[1]  (params: the updates)
-  kLcIf,      // if (items[0]) items[1] [else items[2]]
-  kLcLet,     // let (args) items[0]
-  kLcEach,    // each items[0]
+  kLcFor,   // for (args) items[0]
+  kLcForC,  // for (args; items[0]; params) items[1]  (params: the updates)
+  kLcIf,    // if (items[0]) items[1] [else items[2]]
+  kLcLet,   // let (args) items[0]
+  kLcEach,  // each items[0]
 };
 
 struct Expr {
@@ -79,12 +79,12 @@ struct Stmt {
   StmtKind kind = StmtKind::kAssign;
   SourcePos pos;
   std::string name;
-  ExprPtr value;                 // kAssign, kFunction; kIf: the condition
-  std::vector<Binding> args;     // kInstance
-  std::vector<Binding> params;   // kModule, kFunction
+  ExprPtr value;                       // kAssign, kFunction; kIf: the condition
+  std::vector<Binding> args;           // kInstance
+  std::vector<Binding> params;         // kModule, kFunction
   std::vector<StmtPtr> children;       // kInstance, kIf (then), kBlock, kModule (body)
   std::vector<StmtPtr> else_children;  // kIf
-  char modifier = 0;             // '!', '#', '%', '*' or 0
+  char modifier = 0;                   // '!', '#', '%', '*' or 0
 };
 
 // A parsed file: its statements and the include<> / use<> it names. include<> is

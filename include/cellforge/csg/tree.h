@@ -37,12 +37,27 @@
 namespace cellforge::csg {
 
 enum class NodeKind {
-  kGroup, kUnion, kDifference, kIntersection,
-  kCube, kSphere, kCylinder, kPolyhedron, kImport,
-  kSquare, kCircle, kPolygon,
-  kMultmatrix, kResize, kColor,
-  kLinearExtrude, kRotateExtrude,
-  kHull, kMinkowski, kOffset, kProjection,
+  kGroup,
+  kUnion,
+  kDifference,
+  kIntersection,
+  kCube,
+  kSphere,
+  kCylinder,
+  kPolyhedron,
+  kImport,
+  kSquare,
+  kCircle,
+  kPolygon,
+  kMultmatrix,
+  kResize,
+  kColor,
+  kLinearExtrude,
+  kRotateExtrude,
+  kHull,
+  kMinkowski,
+  kOffset,
+  kProjection,
 };
 
 // The name a node kind has in OpenSCAD and in the JSON form ("cube", "multmatrix"...).
@@ -54,7 +69,7 @@ using NodePtr = std::shared_ptr<const Node>;
 
 struct Node {
   NodeKind kind = NodeKind::kGroup;
-  SourcePos pos;        // where the script made it (line 0 when it came from JSON)
+  SourcePos pos;            // where the script made it (line 0 when it came from JSON)
   bool background = false;  // '%': built for display only, left out of the result
   bool highlight = false;   // '#'
 

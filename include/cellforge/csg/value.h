@@ -76,8 +76,9 @@ class Value {
   bool operator==(const Value& o) const;
 
  private:
-  using Data = std::variant<std::monostate, bool, double, std::shared_ptr<const std::string>,
-                            std::shared_ptr<const VectorData>, Range, std::shared_ptr<const Closure>>;
+  using Data =
+      std::variant<std::monostate, bool, double, std::shared_ptr<const std::string>,
+                   std::shared_ptr<const VectorData>, Range, std::shared_ptr<const Closure>>;
   explicit Value(Data d) : data_(std::move(d)) {}
   Data data_;
 };
