@@ -179,6 +179,15 @@ int run(const std::vector<std::string>& argv) {
   csg::BuildOptions bo;
   bo.sources = sources.get();
   bo.cache_dir = a.cache;
+  const bool tty = isatty(STDERR_FILENO) != 0;
+  if (tty) {
+    bo.progress = [](std::size_t done, std::size_t total) {
+      if (total < 2) return;
+      const std::size_t width = 30, filled = width * done / total;
+      std::cerr << "\r[" << std::string(filled, '#') << std::string(width - filled, ' ') << "] " << done
+                << "/" << total << " parts" << (done == total ? "\n" : "") << std::flush;
+    };
+  }
   auto built = csg::build(*root, bo);
   if (!built) {
     std::cerr << built.error().message << '\n';
@@ -230,7 +239,7 @@ int run(const std::vector<std::string>& argv) {
               << ", \"build\": " << num(build_seconds) << ", \"leaves\": " << num(st.leaf_seconds)
               << ", \"boolean\": " << num(st.boolean_seconds)
               << ", \"write\": " << num(write_seconds) << "}}\n";
-  } else if (isatty(STDERR_FILENO)) {
+  } else if (tty) {
     std::cerr << a.input << ": " << m.num_faces() << " faces, " << m.num_volumes()
               << " volumes, volume " << num(mp.volume)
               << (violations.empty() ? ", valid" : ", INVALID") << ", "

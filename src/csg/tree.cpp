@@ -201,7 +201,9 @@ class Builder {
       }
     };
     split(root);
-    for (const Node* c : pieces) {
+    for (std::size_t i = 0; i < pieces.size(); ++i) {
+      const Node* c = pieces[i];
+      if (options_.progress) options_.progress(i, pieces.size());
       Part p;
       const std::string key = content_key(*c);
       if (cache_.load(key, p.model, p.colors)) {
@@ -219,6 +221,7 @@ class Builder {
       p.hi = mp.bbox_max;
       parts.push_back(std::move(p));
     }
+    if (options_.progress) options_.progress(pieces.size(), pieces.size());
     if (parts.empty()) {
       out.dimension = 0;
       return;
@@ -625,6 +628,34 @@ class Builder {
         std::vector<std::vector<Vec2>> holes;
         for (std::size_t i = 1; i < paths.size(); ++i) holes.push_back(loop(paths[i]));
         region = shape::polygon(loop(paths[0]), std::move(holes));
+        if (!region && paths.size() > 1) {
+          // Not an outline with holes inside it: OpenSCAD fills the paths even-odd,
+          // the symmetric difference of their polygons, one path at a time.
+          std::optional<shape::Shape2D> fill;
+          for (const auto& path : paths) {
+            if (path.size() < 3) continue;
+            auto one = shape::polygon(loop(path));
+            check(one, n);
+            if (!fill) {
+              fill = shape::shape_of(std::move(*one));
+              continue;
+            }
+            const shape::Shape2D pair[2] = {std::move(*fill), shape::shape_of(std::move(*one))};
+            using boolean::Expr;
+            const Expr either = Expr::op(boolean::Op::kUnion, {Expr::of(0), Expr::of(1)});
+            const Expr both = Expr::op(boolean::Op::kIntersection, {Expr::of(0), Expr::of(1)});
+            auto x = boolean::evaluate_2d(pair, Expr::op(boolean::Op::kDifference, {either, both}));
+            check(x, n);
+            fill = std::move(*x);
+          }
+          if (!fill) return std::nullopt;
+          if (!is_identity(t)) {
+            auto moved = shape::transformed(*fill, t);
+            check(moved, n);
+            fill = std::move(*moved);
+          }
+          return from_shape(std::move(*fill));
+        }
         break;
       }
       default:

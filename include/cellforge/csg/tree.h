@@ -22,6 +22,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -109,6 +110,8 @@ struct BuildOptions {
   const Sources* sources = nullptr;
   // The folder of the on-disk cache of subtree results; empty: no cache.
   std::string cache_dir;
+  // Called as the top-level parts are built: (parts done, parts in all).
+  std::function<void(std::size_t, std::size_t)> progress;
 };
 
 struct BuildStats {
