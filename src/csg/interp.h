@@ -91,7 +91,7 @@ class Interp {
   // A file's statements with its include<>s spliced in and its use<>s attached to env.
   std::vector<const Stmt*> file_statements(const File& f, const EnvPtr& env, int depth);
 
-  // builtin_modules.cpp: null when no built-in module has the name.
+  // builtin_modules.cpp: false when no built-in module has the name.
   bool call_builtin_module(const Stmt& s, const Args& args, const EnvPtr& env,
                            std::vector<NodePtr>& out);
 
@@ -117,7 +117,6 @@ class Interp {
   std::uint64_t steps_ = 0;
   const char* stack_base_ = nullptr;
   NodePtr root_override_;  // the first '!' subtree
-  int include_depth_ = 0;
 };
 
 // Numbers and vectors out of values (for the built-ins).
