@@ -21,7 +21,7 @@ if [ "${1:-}" = "--all" ]; then
   ALL=1
   shift
 fi
-BUILD=${1:-$ROOT/build}
+BUILD=$(cd "${1:-$ROOT/build}" && pwd)
 CF=$BUILD/bin/cellforge
 T=${COMPARE_TIMEOUT:-120}
 KNOWN=$ROOT/docs/compatibility.md
