@@ -222,10 +222,11 @@ Shape2D read_plane(const Model& m) {
       ends.pop_back();
       if (w != start) {
         if (auto it = at.find(w); it != at.end()) {  // a simple loop closes at w
-          std::vector<std::uint32_t> cut(chain.begin() + static_cast<std::ptrdiff_t>(it->second),
+          const std::size_t from = it->second;  // before the erase below frees *it
+          std::vector<std::uint32_t> cut(chain.begin() + static_cast<std::ptrdiff_t>(from),
                                          chain.end());
           for (std::uint32_t c : cut) at.erase(c);
-          chain.resize(it->second);
+          chain.resize(from);
           loops.push_back(make_loop(m, std::move(cut)));
         }
         at[w] = chain.size();
