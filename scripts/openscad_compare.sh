@@ -6,9 +6,8 @@
 #   scripts/openscad_compare.sh [--all] [BUILD_DIR]
 #
 # Compares every file of tests/scad/ (those marked `// expect no-openscad: WHY` are
-# skipped with the reason); with --all also every example the openscad package ships
-# (/usr/share/openscad/examples) and every MCAD file that instantiates geometry or
-# echoes. A file whose results differ must be listed, with the reason, in
+# skipped with the reason); with --all also cellforge's examples/, every example the
+# openscad package ships (/usr/share/openscad/examples) and every MCAD file. A file whose results differ must be listed, with the reason, in
 # docs/compatibility.md (as `label`); a difference that is not listed fails the
 # script. The per-file results and both programs' times go to
 # BUILD_DIR/openscad-compare.txt.
@@ -148,6 +147,9 @@ for f in "$ROOT"/tests/scad/*.scad; do
   record "tests/scad/$(basename "$f")" "$f"
 done
 if [ $ALL -eq 1 ]; then
+  for f in "$ROOT"/examples/*.scad; do
+    record "cellforge-examples/$(basename "$f")" "$f"
+  done
   for f in $(find /usr/share/openscad/examples -name '*.scad' | sort); do
     record "examples/${f#/usr/share/openscad/examples/}" "$f"
   done
