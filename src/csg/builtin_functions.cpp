@@ -296,7 +296,9 @@ bool Interp::call_builtin_function(const std::string& name, const Args& args, So
     double returns = 1, col = 0;
     if (args.size() > 2 && !to_number(arg(2), returns)) return bad();
     if (args.size() > 3 && !to_number(arg(3), col)) return bad();
-    if (returns < 0 || col < 0) return bad();
+    if (!(returns >= 0) || !(col >= 0)) return bad();
+    returns = std::min(returns, 1e15);  // beyond any list: "all of them"
+    col = std::min(col, 1e15);
     const std::size_t want = static_cast<std::size_t>(returns);
     const std::size_t c = static_cast<std::size_t>(col);
     Vector entries;
@@ -350,7 +352,9 @@ bool Interp::call_builtin_function(const std::string& name, const Args& args, So
       return bad();
     if (args.size() > 3) {
       if (!to_number(arg(3), seed)) return bad();
-      deterministic_rng().seed(static_cast<unsigned int>(static_cast<long long>(seed)));
+      // OpenSCAD converts the seed to an unsigned int; out-of-range seeds wrap.
+      const double wrapped = std::isfinite(seed) ? std::fmod(std::trunc(seed), 4294967296.0) : 0;
+      deterministic_rng().seed(static_cast<unsigned int>(static_cast<long long>(wrapped)));
     }
     if (!(count >= 0) || count > static_cast<double>(options_.max_list_size)) return bad();
     std::uniform_real_distribution<double> dist(std::min(lo, hi), std::max(lo, hi));

@@ -429,8 +429,21 @@ class Builder {
     if (!r) fail(n.pos, std::string(node_name(n.kind)) + "(): " + r.error().message);
   }
 
+  // More than a million segments per circle is refused before the faceting rule
+  // turns it into an int (and before building it would run out of memory).
+  void check_segments(const Node& n, double r, const shape::Faceting& f) const {
+    constexpr double kMax = 1e6;
+    const double fa = std::max(f.fa, shape::kMinimumFaFs), fs = std::max(f.fs, shape::kMinimumFaFs);
+    const double segments = f.fn > 0 ? f.fn : std::min(360.0 / fa, std::fabs(r) * 2 * M_PI / fs);
+    if (std::isfinite(f.fn) && !(segments <= kMax)) {
+      fail(n.pos, std::string(node_name(n.kind)) + "(): more than 10^6 segments per circle");
+    }
+  }
+
   Model leaf3(const Node& n) {
     Model m;
+    if (n.kind == NodeKind::kSphere) check_segments(n, n.r, n.faceting);
+    if (n.kind == NodeKind::kCylinder) check_segments(n, std::max(n.r1, n.r2), n.faceting);
     switch (n.kind) {
       case NodeKind::kCube:
         if (n.size.x == 0 || n.size.y == 0 || n.size.z == 0) return m;
@@ -611,6 +624,7 @@ class Builder {
         break;
       case NodeKind::kCircle:
         if (n.r == 0) return std::nullopt;
+        check_segments(n, n.r, n.faceting);
         region = shape::circle(n.r, n.faceting);
         break;
       case NodeKind::kPolygon: {
@@ -804,14 +818,15 @@ class Builder {
       shape::RotateExtrudeOptions o = n.rotate;
       if (o.angle == 0) return Model();
       o.angle = std::clamp(o.angle, -360.0, 360.0);
+      double r = 0;
+      for (const auto& reg : s->regions) {
+        for (const auto& l : reg.loops) {
+          for (Vec2 p : l) r = std::max(r, std::fabs(p.x));
+        }
+      }
+      check_segments(n, r, n.rotate.faceting);
       if (several) {
         // The same segments for every region: those of the whole profile.
-        double r = 0;
-        for (const auto& reg : s->regions) {
-          for (const auto& l : reg.loops) {
-            for (Vec2 p : l) r = std::max(r, std::fabs(p.x));
-          }
-        }
         o.faceting =
             shape::Faceting{.fn = static_cast<double>(shape::fragments(r, n.rotate.faceting))};
       }
