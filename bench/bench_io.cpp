@@ -118,6 +118,23 @@ void BM_WriteBinaryStl(benchmark::State& state) {
 }
 BENCHMARK(BM_WriteBinaryStl)->Unit(benchmark::kMillisecond);
 
+// N copies of one triangle (issue 18: 200,000 of them took 48 s to convert): every
+// edge has N face uses, so any per-edge work quadratic in the uses shows here.
+void BM_ImportIdenticalTriangles(benchmark::State& state) {
+  io::PolygonSoup soup;
+  soup.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  soup.polygons.assign(static_cast<std::size_t>(state.range(0)), {0, 1, 2});
+  for (auto _ : state) {
+    Model m;
+    auto r = io::import_soup(m, soup, {});
+    if (!r) state.SkipWithError(r.error().message.c_str());
+    benchmark::DoNotOptimize(m);
+  }
+  state.counters["triangles/s"] = benchmark::Counter(
+      static_cast<double>(state.range(0)) * state.iterations(), benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_ImportIdenticalTriangles)->Arg(20000)->Arg(200000)->Unit(benchmark::kMillisecond);
+
 // admesh reading (and checking) the same file, as an external process.
 void BM_AdmeshReadSameFile(benchmark::State& state) {
   if (std::system("command -v admesh > /dev/null 2>&1") != 0) {

@@ -6,3 +6,6 @@ if(NOT GMP_INCLUDE_DIR OR NOT GMP_LIBRARY)
 endif()
 target_include_directories(${layer} PRIVATE ${GMP_INCLUDE_DIR})
 target_link_libraries(${layer} PUBLIC ${GMP_LIBRARY})
+# Its stages run on threads (Options::threads).
+find_package(Threads REQUIRED)
+target_link_libraries(${layer} PUBLIC Threads::Threads)

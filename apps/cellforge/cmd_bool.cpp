@@ -2,13 +2,13 @@
 // difference (the first minus the others) of solids read from files, written to OUT
 // (boolean/boolean.h). --report json prints the counts, validity, volume and the
 // time of each stage.
-#include <charconv>
+#include <filesystem>
 #include <iostream>
 
 #include "cellforge/boolean/boolean.h"
+#include "cellforge/io/mesh_io.h"
 #include "cellforge/shape/faceting.h"
 #include "cellforge/shape/mass.h"
-#include "cellforge/io/mesh_io.h"
 #include "cellforge/topo/validate.h"
 #include "command.h"
 
@@ -48,57 +48,51 @@ std::string report_json(const boolean::BooleanResult& r, bool valid, double volu
 }
 
 int run(const std::vector<std::string>& args) {
-  if (args.empty()) {
-    std::cerr << kUsage << '\n';
-    return 2;
-  }
+  CLI::App app{"regularized union, intersection or difference of solids, exactly",
+               "cellforge bool"};
+  std::string operation, out, report;
+  std::vector<std::string> words;
+  bool ascii = false;
+  boolean::Options options;
+  app.add_option("OPERATION", operation, "union, intersection or difference")->required();
+  app.add_option("OPERANDS", words, "the operand files, and KEY=VALUE import options");
+  app.add_option("-o", out, "the result's file")->required();
+  add_count(app, "--threads", options.threads, 1, "threads for the intersection stage");
+  app.add_option("--report", report, "json: print counts, validity and stage times");
+  app.add_flag("--ascii", ascii, "write ASCII STL");
+  app.footer(kUsage);
+  if (auto code = parse(app, args)) return *code;
   boolean::Op op;
-  if (args[0] == "union") {
+  if (operation == "union") {
     op = boolean::Op::kUnion;
-  } else if (args[0] == "intersection") {
+  } else if (operation == "intersection") {
     op = boolean::Op::kIntersection;
-  } else if (args[0] == "difference") {
+  } else if (operation == "difference") {
     op = boolean::Op::kDifference;
   } else {
-    std::cerr << "cellforge bool: unknown operation '" << args[0] << "'\n" << kUsage << '\n';
+    std::cerr << "cellforge bool: unknown operation '" << operation
+              << "' (union, intersection, difference)\n";
     return 2;
   }
+  if (!report.empty() && report != "json") {
+    std::cerr << "cellforge bool: --report takes 'json'\n";
+    return 2;
+  }
+  const bool json = report == "json";
   std::vector<std::string> inputs;
-  std::string out;
-  bool json = false;
-  boolean::Options options;
   io::ReadOptions read;
   io::WriteOptions write;
-  for (std::size_t i = 1; i < args.size(); ++i) {
-    const std::string& a = args[i];
+  write.stl_binary = !ascii;
+  for (const std::string& a : words) {
     std::string key, value;
-    if (a == "-o" && i + 1 < args.size()) {
-      out = args[++i];
-    } else if (a == "--threads" && i + 1 < args.size()) {
-      const std::string& n = args[++i];
-      auto [end, ec] = std::from_chars(n.data(), n.data() + n.size(), options.threads);
-      if (ec != std::errc() || end != n.data() + n.size() || options.threads < 1) {
-        std::cerr << "cellforge bool: --threads takes a positive integer, not '" << n << "'\n";
+    if (a.find('=') != std::string::npos && split_key_value(a, key, value) &&
+        !std::filesystem::exists(a)) {
+      if (Status s = io::set_option(read, key, value); !s) {
+        std::cerr << "cellforge bool: " << s.error().message << '\n';
         return 2;
       }
-    } else if (a == "--report" && i + 1 < args.size()) {
-      if (args[++i] != "json") {
-        std::cerr << "cellforge bool: --report takes 'json'\n";
-        return 2;
-      }
-      json = true;
-    } else if (a == "--ascii") {
-      write.stl_binary = false;
-    } else if (split_key_value(a, key, value)) {
-      if (Status s = io::set_option(read.import, key, value); !s) {
-        std::cerr << "cellforge bool: " << s.error().message << "\n" << kUsage << '\n';
-        return 2;
-      }
-    } else if (!a.empty() && a[0] != '-') {
-      inputs.push_back(a);
     } else {
-      std::cerr << "cellforge bool: unexpected argument '" << a << "'\n" << kUsage << '\n';
-      return 2;
+      inputs.push_back(a);
     }
   }
   if (inputs.size() < 2 || out.empty()) {
@@ -146,8 +140,8 @@ int run(const std::vector<std::string>& args) {
   return 0;
 }
 
-const CommandRegistration kBool{Command{
-    "bool", "union, intersection or difference of solids, exactly", kUsage, run}};
+const CommandRegistration kBool{
+    Command{"bool", "union, intersection or difference of solids, exactly", kUsage, run, true}};
 
 }  // namespace
 }  // namespace cellforge::cli

@@ -5,10 +5,13 @@
 // native JSON) or one of the bundled Euler-operator examples (example:box,
 // example:box_with_hole, example:nonmanifold); OUT is a model file by extension, or
 // the canonical dump (topo/dump.h) for '-' and *.txt.
+#include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <map>
+#include <set>
 #include <sstream>
 
 #include "cellforge/io/mesh_io.h"
@@ -20,58 +23,36 @@
 namespace cellforge::cli {
 namespace {
 
+constexpr const char* kSummary =
+    "store, load, list and query models in an SQLite or PostgreSQL database";
 constexpr const char* kUsage =
-    "usage: cellforge db save IN --name N [--source FILE] [--object O] [--db DB]\n"
-    "       cellforge db load N -o OUT [--version V] [--faces CONDITION] [--db DB]\n"
+    "usage: cellforge db save IN [--name N] [--source FILE] [--object O] [--format F] [--db DB]\n"
+    "       cellforge db load N -o OUT [--version V] [--faces CONDITION] [--format F] [--db DB]\n"
     "       cellforge db list [--db DB]\n"
-    "       cellforge db rm N [--db DB]\n"
+    "       cellforge db rm N [--version V] [--db DB]\n"
     "       cellforge db info N [--version V] [--db DB]\n"
     "       cellforge db sql \"SELECT ...\" [--json] [--timeout S] [--limit N] [--db DB]\n"
     "  DB: an SQLite file (default cellforge.db) or a postgresql:// connection string.\n"
-    "  IN: a model file (.stl .obj .off .3mf .json) or example:box |\n"
-    "      example:box_with_hole | example:nonmanifold (the bundled Euler examples).\n"
+    "  Only save creates an SQLite file; the other commands say when it is missing.\n"
+    "  IN: a model file (.stl .obj .off .3mf .json), - for standard input (with\n"
+    "      --format F), or example:box | example:box_with_hole | example:nonmanifold\n"
+    "      (the bundled Euler examples). --name defaults to the file's stem (\"part\"\n"
+    "      for part.stl, \"box\" for example:box).\n"
     "  OUT: a model file by extension (.json keeps everything the topology holds),\n"
-    "       or the canonical dump (topo/dump.h) for *.txt and '-' (standard output).\n"
+    "       or the canonical dump (topo/dump.h) for *.txt and '-' (standard output;\n"
+    "       with --format F, that format instead).\n"
     "  Saving a name again adds a version; load and info take the latest unless\n"
-    "  --version is given. load --faces loads only the faces satisfying CONDITION,\n"
+    "  --version is given; rm removes every version, or one with --version.\n"
+    "  load --faces loads only the faces satisfying CONDITION,\n"
     "  SQL on the face row f and the volume row v (e.g. \"f.group_key = 1\", or a\n"
     "  spatial query on face_tiles, docs/database.md), as a sheet model. sql runs\n"
     "  one read-only query (tables and views in docs/database.md;\n"
     "  face_edge_points is seed 004's Table 1), cancelled after --timeout seconds\n"
-    "  (default 300), printing at most --limit rows (default 10000; 0: all).";
-
-struct Args {
-  std::vector<std::string> positional;
-  std::map<std::string, std::string> options;  // --name N, -o OUT, ...
-  bool json = false;
-};
-
-bool parse(const std::vector<std::string>& argv, Args& out, std::string& error) {
-  static const char* kValued[] = {"--db",     "--name",  "-o",       "--version", "--source",
-                                  "--object", "--faces", "--timeout", "--limit"};
-  for (std::size_t i = 0; i < argv.size(); ++i) {
-    const std::string& a = argv[i];
-    if (a == "--json") {
-      out.json = true;
-      continue;
-    }
-    bool valued = false;
-    for (const char* v : kValued) valued = valued || a == v;
-    if (valued) {
-      if (i + 1 >= argv.size()) {
-        error = a + " needs a value";
-        return false;
-      }
-      out.options[a] = argv[++i];
-    } else if (a.size() > 1 && a[0] == '-' && a != "-") {
-      error = "unknown option " + a;
-      return false;
-    } else {
-      out.positional.push_back(a);
-    }
-  }
-  return true;
-}
+    "  (default 300), printing at most --limit rows (default 10000; 0: all).\n"
+    "  --json prints an array of objects: integers and finite reals as numbers,\n"
+    "  other reals (inf, NaN) as null, blobs as \"\\\\x\" and hex digits, repeated\n"
+    "  column names made unique (\"id\", \"id_2\").\n"
+    "  A name that begins with '-' goes after --: cellforge db rm -- -odd.";
 
 int fail(const std::string& message) {
   std::cerr << "cellforge db: " << message << '\n';
@@ -83,7 +64,7 @@ int usage_error(const std::string& message) {
   return 2;
 }
 
-Result<Model> read_input(const std::string& in) {
+Result<Model> read_input(const std::string& in, const io::ReadOptions& options) {
   Model m;
   Status s;
   if (in == "example:box") {
@@ -100,7 +81,7 @@ Result<Model> read_input(const std::string& in) {
                  "unknown example '" + in +
                      "' (example:box, example:box_with_hole, example:nonmanifold)"};
   } else {
-    auto r = io::read_file(m, in);
+    auto r = io::read_file(m, in, options);
     if (!r) return r.error();
   }
   if (!s) return s.error();
@@ -126,7 +107,39 @@ void print_info(const VolumeInfo& v) {
   if (!v.source.empty()) std::cout << "source:\n" << v.source << '\n';
 }
 
-std::string json_string(const std::string& s) {
+// Length of the valid UTF-8 sequence at s[i] (1 for ASCII), or 0.
+std::size_t utf8_length(const std::string& s, std::size_t i) {
+  const auto c = static_cast<unsigned char>(s[i]);
+  if (c < 0x80) return 1;
+  const std::size_t n = c >= 0xC2 && c < 0xE0   ? 2
+                        : c >= 0xE0 && c < 0xF0 ? 3
+                        : c >= 0xF0 && c < 0xF5 ? 4
+                                                : 0;
+  if (n == 0 || i + n > s.size()) return 0;
+  std::uint32_t cp = c & (0x7F >> n);
+  for (std::size_t k = 1; k < n; ++k) {
+    const auto b = static_cast<unsigned char>(s[i + k]);
+    if ((b & 0xC0) != 0x80) return 0;
+    cp = (cp << 6) | (b & 0x3F);
+  }
+  static constexpr std::uint32_t kMin[5] = {0, 0, 0x80, 0x800, 0x10000};
+  if (cp < kMin[n] || cp > 0x10FFFF || (cp >= 0xD800 && cp <= 0xDFFF)) return 0;
+  return n;
+}
+
+// A JSON string; bytes that are not UTF-8 (text a query made) become U+FFFD.
+std::string json_string(const std::string& text) {
+  std::string s;
+  for (std::size_t i = 0; i < text.size();) {
+    const std::size_t n = utf8_length(text, i);
+    if (n == 0) {
+      s += "\xEF\xBF\xBD";
+      ++i;
+    } else {
+      s.append(text, i, n);
+      i += n;
+    }
+  }
   std::string out = "\"";
   for (unsigned char c : s) {
     if (c == '"' || c == '\\') {
@@ -164,16 +177,41 @@ bool is_json_number(const std::string& s) {
   return i == s.size();
 }
 
+// Column names as JSON keys, made unique: a repeated name gets _2, _3, ... (past
+// any name the query already has).
+std::vector<std::string> unique_keys(const std::vector<std::string>& columns) {
+  std::vector<std::string> out;
+  const std::set<std::string> taken(columns.begin(), columns.end());
+  std::set<std::string> used;
+  for (const std::string& c : columns) {
+    std::string key = c;
+    for (int k = 2; used.count(key) || (key != c && taken.count(key)); ++k)
+      key = c + "_" + std::to_string(k);
+    used.insert(key);
+    out.push_back(key);
+  }
+  return out;
+}
+
 void print_json(const QueryResult& r) {
+  const std::vector<std::string> keys = unique_keys(r.columns);
   std::cout << "[";
   for (std::size_t k = 0; k < r.rows.size(); ++k) {
     std::cout << (k ? ",\n " : "\n ") << "{";
     for (std::size_t c = 0; c < r.columns.size(); ++c) {
       const auto& v = r.rows[k][c];
-      std::cout << (c ? ", " : "") << json_string(r.columns[c]) << ": "
-                << (!v                   ? "null"
-                    : is_json_number(*v) ? *v
-                                         : json_string(*v));
+      const ValueKind kind =
+          k < r.kinds.size() && c < r.kinds[k].size() ? r.kinds[k][c] : ValueKind::kText;
+      std::string value;
+      if (!v) {
+        value = "null";
+      } else if (kind == ValueKind::kInteger || kind == ValueKind::kReal) {
+        // Infinity and NaN have no JSON number: null.
+        value = is_json_number(*v) ? *v : "null";
+      } else {
+        value = json_string(*v);  // text, and blobs as \x and hex digits
+      }
+      std::cout << (c ? ", " : "") << json_string(keys[c]) << ": " << value;
     }
     std::cout << "}";
   }
@@ -202,59 +240,105 @@ void print_table(const QueryResult& r) {
   std::cout << "(" << r.rows.size() << (r.rows.size() == 1 ? " row)\n" : " rows)\n");
 }
 
-int run(const std::vector<std::string>& argv) {
-  Args a;
-  std::string error;
-  if (!parse(argv, a, error)) return usage_error(error);
-  if (a.positional.empty()) return usage_error("which db command?");
-  const std::string cmd = a.positional[0];
-  const auto arg = [&](std::size_t i) { return i < a.positional.size() ? a.positional[i] : ""; };
-  const auto option = [&](const char* k) {
-    const auto it = a.options.find(k);
-    return it == a.options.end() ? std::string() : it->second;
-  };
-  int version = 0;
-  if (const std::string v = option("--version"); !v.empty()) {
-    try {
-      version = std::stoi(v);
-    } catch (const std::exception&) {
-      return usage_error("--version takes a number");
-    }
-    if (version < 1) return usage_error("--version takes a number from 1");
-  }
-  const std::size_t wanted = cmd == "list" ? 1 : 2;
-  if (a.positional.size() != wanted) return usage_error("wrong number of arguments for " + cmd);
+std::string stem_of(const std::string& in) {
+  if (in.rfind("example:", 0) == 0) return in.substr(8);
+  return std::filesystem::path(in).stem().string();
+}
 
-  auto opened = open_store(option("--db"));
+int run(const std::vector<std::string>& argv) {
+  CLI::App app{kSummary, "cellforge db"};
+  app.footer(kUsage);
+  app.require_subcommand(1, 1);
+  std::string db, in, name, source, object, format, out, faces, sql;
+  int version = 0;
+  bool json = false;
+  double timeout = 300;
+  std::size_t limit = 10000;
+  // --db before or after the subcommand: `db --db x.db list` and `db list --db x.db`.
+  app.add_option("--db", db, "an SQLite file (default cellforge.db) or a postgresql:// URL");
+  const auto with_db = [&](CLI::App* c) {
+    c->add_option("--db", db, "an SQLite file (default cellforge.db) or a postgresql:// URL");
+    c->set_help_flag("-h,--help", "print this help and exit");
+    return c;
+  };
+  CLI::App* save = with_db(app.add_subcommand("save", "save a model as a new version"));
+  save->add_option("IN", in, "a model file, - for standard input, or example:NAME")->required();
+  save->add_option("--name", name, "the volume's name (default: IN's stem)");
+  save->add_option("--source", source, "a script file stored with the version");
+  save->add_option("--object", object, "an object (scene) that lists the name");
+  save->add_option("--format", format, "the format of IN (needed for -)");
+  CLI::App* load = with_db(app.add_subcommand("load", "load a version into a file"));
+  load->add_option("NAME", name, "the volume's name")->required();
+  load->add_option("-o", out, "a model file, *.txt or - for the canonical dump")->required();
+  add_count(*load, "--version", version, 1, "the version (default: the latest)");
+  load->add_option("--faces", faces, "load only the faces satisfying this SQL condition");
+  load->add_option("--format", format, "write OUT in this format (with -: to standard output)");
+  CLI::App* list = with_db(app.add_subcommand("list", "the latest version of every name"));
+  CLI::App* rm = with_db(app.add_subcommand("rm", "remove a name's versions, or one"));
+  rm->add_option("NAME", name, "the volume's name")->required();
+  add_count(*rm, "--version", version, 1, "remove only this version");
+  CLI::App* info = with_db(app.add_subcommand("info", "what a stored version is"));
+  info->add_option("NAME", name, "the volume's name")->required();
+  add_count(*info, "--version", version, 1, "the version (default: the latest)");
+  CLI::App* query = with_db(app.add_subcommand("sql", "run one read-only SQL query"));
+  query->add_option("QUERY", sql, "one SELECT statement")->required();
+  query->add_flag("--json", json, "print an array of JSON objects");
+  query->add_option("--timeout", timeout, "seconds before the query is cancelled (default 300)");
+  query->add_option("--limit", limit, "the most rows printed (default 10000; 0: all)");
+  if (auto code = parse(app, argv)) return *code;
+  if (!(timeout > 0) || !std::isfinite(timeout))
+    return usage_error("--timeout takes seconds above 0");
+
+  // Only save creates a database file: for the others a missing SQLite file is an
+  // error, not a new empty database.
+  const bool pg = db.rfind("postgresql://", 0) == 0 || db.rfind("postgres://", 0) == 0;
+  const std::string file = db.empty() ? "cellforge.db" : db;
+  if (!pg && !save->parsed() && !std::filesystem::exists(file))
+    return fail("no database " + file + " (db save creates it; --db names another)");
+  auto opened = open_store(db);
   if (!opened) return fail(opened.error().message);
   Store& store = *opened.value();
 
-  if (cmd == "save") {
-    if (!a.options.count("--name")) return usage_error("save needs --name N");
-    auto m = read_input(arg(1));
+  if (save->parsed()) {
+    if (save->count("--name") == 0) {
+      if (in == "-") return usage_error("save from standard input needs --name N");
+      name = stem_of(in);
+    }
+    io::ReadOptions read;
+    if (!format.empty()) {
+      auto f = io::format_from_name(format);
+      if (!f) return usage_error(f.error().message);
+      read.format = *f;
+    }
+    auto m = read_input(in, read);
     if (!m) return fail(m.error().message);
     PutOptions o;
-    o.object = option("--object");
-    if (const std::string src = option("--source"); !src.empty()) {
-      std::ifstream f(src, std::ios::binary);
-      if (!f) return fail("cannot read " + src);
-      o.source.assign(std::istreambuf_iterator<char>(f), {});
+    o.object = object;
+    if (!source.empty()) {
+      auto bytes = io::read_bytes(source);
+      if (!bytes) return fail(bytes.error().message);
+      o.source.assign(bytes->begin(), bytes->end());
     }
-    auto info = store.put(option("--name"), m.value(), o);
-    if (!info) return fail(info.error().message);
-    std::cout << "saved " << info->name << " version " << info->version << " (" << info->type
-              << ", " << info->faces << " faces) in " << store.backend() << '\n';
+    auto saved = store.put(name, m.value(), o);
+    if (!saved) return fail(saved.error().message);
+    std::cout << "saved " << saved->name << " version " << saved->version << " (" << saved->type
+              << ", " << saved->faces << " faces) in " << store.backend() << '\n';
     return 0;
   }
-  if (cmd == "load") {
-    const std::string out = option("-o");
-    if (out.empty()) return usage_error("load needs -o OUT");
-    auto m = a.options.count("--faces") ? store.get_faces_where(arg(1), option("--faces"), version)
-                                        : store.get(arg(1), version);
+  if (load->parsed()) {
+    auto m =
+        !faces.empty() ? store.get_faces_where(name, faces, version) : store.get(name, version);
     if (!m) return fail(m.error().message);
-    const bool dump = out == "-" || (out.size() > 4 && out.substr(out.size() - 4) == ".txt");
+    io::WriteOptions write;
+    if (!format.empty()) {
+      auto f = io::format_from_name(format);
+      if (!f) return usage_error(f.error().message);
+      write.format = *f;
+    }
+    const bool dump =
+        !write.format && (out == "-" || (out.size() > 4 && out.substr(out.size() - 4) == ".txt"));
     if (!dump) {
-      if (Status s = io::write_file(m.value(), out); !s) return fail(s.error().message);
+      if (Status s = io::write_file(m.value(), out, write); !s) return fail(s.error().message);
       return 0;
     }
     const std::string text = canonical_dump(m.value());
@@ -263,65 +347,54 @@ int run(const std::vector<std::string>& argv) {
       return 0;
     }
     std::ofstream f(out, std::ios::binary);
-    if (!(f << text)) return fail("cannot write " + out);
+    f << text;
+    f.close();
+    if (!f) return fail("cannot write " + out);
     return 0;
   }
-  if (cmd == "list") {
+  if (list->parsed()) {
     auto l = store.list();
     if (!l) return fail(l.error().message);
     for (const VolumeInfo& v : l.value()) {
       std::cout << v.name << "  version " << v.version << "  " << v.type << "  " << v.faces
                 << " faces  " << v.created << '\n';
+      if (!std::cout) break;  // main reports the failed write
     }
     return 0;
   }
-  if (cmd == "rm") {
-    auto n = store.remove(arg(1));
+  if (rm->parsed()) {
+    auto n = version > 0 ? store.remove_version(name, version) : store.remove(name);
     if (!n) return fail(n.error().message);
-    if (n.value() == 0) return fail("no volume named '" + arg(1) + "'");
-    std::cout << "removed " << arg(1) << " (" << n.value() << " versions)\n";
-    return 0;
-  }
-  if (cmd == "info") {
-    auto info = store.info(arg(1), version);
-    if (!info) return fail(info.error().message);
-    print_info(info.value());
-    return 0;
-  }
-  if (cmd == "sql") {
-    QueryOptions q;
-    q.max_rows = 10000;
-    try {
-      std::size_t used = 0;
-      if (const std::string t = option("--timeout"); !t.empty()) {
-        q.timeout = std::stod(t, &used);
-        if (used != t.size() || !(q.timeout > 0)) throw std::invalid_argument(t);
-      }
-      if (const std::string n = option("--limit"); !n.empty()) {
-        q.max_rows = std::stoul(n, &used);
-        if (used != n.size() || n[0] == '-') throw std::invalid_argument(n);
-      }
-    } catch (const std::exception&) {
-      return usage_error("--timeout takes seconds above 0, --limit a count of rows");
+    if (n.value() == 0) {
+      return fail(version > 0 ? "no version " + std::to_string(version) + " of '" + name + "'"
+                              : "no volume named '" + name + "'");
     }
-    auto r = store.query(arg(1), q);
-    if (!r) return fail(r.error().message);
-    a.json ? print_json(r.value()) : print_table(r.value());
-    if (r->truncated) {
-      std::cerr << "cellforge db: only the first " << q.max_rows
-                << " rows are printed (--limit N for more, 0 for all)\n";
-    }
+    if (version > 0)
+      std::cout << "removed " << name << " version " << version << '\n';
+    else
+      std::cout << "removed " << name << " (" << n.value() << " versions)\n";
     return 0;
   }
-  return usage_error("unknown db command '" + cmd + "'");
+  if (info->parsed()) {
+    auto i = store.info(name, version);
+    if (!i) return fail(i.error().message);
+    print_info(i.value());
+    return 0;
+  }
+  QueryOptions q;
+  q.timeout = timeout;
+  q.max_rows = limit;
+  auto r = store.query(sql, q);
+  if (!r) return fail(r.error().message);
+  json ? print_json(r.value()) : print_table(r.value());
+  if (r->truncated) {
+    std::cerr << "cellforge db: only the first " << q.max_rows
+              << " rows are printed (--limit N for more, 0 for all)\n";
+  }
+  return 0;
 }
 
-const CommandRegistration registration({
-    "db",
-    "store, load, list and query models in an SQLite or PostgreSQL database",
-    kUsage,
-    run,
-});
+const CommandRegistration registration({"db", kSummary, kUsage, run, true});
 
 }  // namespace
 }  // namespace cellforge::cli

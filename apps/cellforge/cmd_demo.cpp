@@ -63,11 +63,16 @@ std::tuple<VertexId, EdgeId, FaceId> pick(const Model& m, Vec3 p) {
   return {v, e, m.face_of(m.first_use(e))};
 }
 
+constexpr const char* kUsage =
+    "usage: cellforge demo\n"
+    "  Builds a cube, a cube with a through hole and a non-manifold group with the Euler\n"
+    "  operators, validates each and prints counts, Euler-Poincare figures and the 9\n"
+    "  adjacency queries for one vertex, edge and face.";
+
 int run(const std::vector<std::string>& args) {
-  if (!args.empty()) {
-    std::cerr << "cellforge demo: takes no arguments\n";
-    return 2;
-  }
+  CLI::App app{"build, validate and query the bundled Euler-operator examples", "cellforge demo"};
+  app.footer(kUsage);
+  if (auto code = parse(app, args)) return *code;
   int invalid = 0;
   struct Example {
     const char* title;
@@ -107,15 +112,8 @@ int run(const std::vector<std::string>& args) {
   return invalid == 0 ? 0 : 1;
 }
 
-const CommandRegistration registration({
-    "demo",
-    "build, validate and query the bundled Euler-operator examples",
-    "usage: cellforge demo\n"
-    "  Builds a cube, a cube with a through hole and a non-manifold group with the Euler\n"
-    "  operators, validates each and prints counts, Euler-Poincare figures and the 9\n"
-    "  adjacency queries for one vertex, edge and face.",
-    run,
-});
+const CommandRegistration registration(
+    {"demo", "build, validate and query the bundled Euler-operator examples", kUsage, run, true});
 
 }  // namespace
 }  // namespace cellforge::cli

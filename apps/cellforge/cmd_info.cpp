@@ -11,15 +11,21 @@
 namespace cellforge::cli {
 namespace {
 
+constexpr const char* kSummary =
+    "read a model file and report counts, validity, defects and mass properties";
 constexpr const char* kUsage =
-    "usage: cellforge info FILE [--json] [--no-self-intersections] [KEY=VALUE...]\n"
-    "  FILE: .stl (ASCII or binary) .obj .off .3mf .json\n"
+    "usage: cellforge info FILE [--json] [--strict] [--no-self-intersections]\n"
+    "                      [--format F] [KEY=VALUE...]\n"
+    "  FILE: .stl (ASCII or binary) .obj .off .3mf .json, or - for standard input\n"
+    "  (with --format stl|obj|off|3mf|json).\n"
     "  KEY=VALUE import options: weld_tolerance=T (weld positions closer than T;\n"
     "  default 0: only equal ones), merge_coplanar=true (coplanar triangles become\n"
-    "  polygon faces), repair_orientation=true, volumes=auto|none.\n"
+    "  polygon faces), repair_orientation=true, volumes=auto|none; read limits\n"
+    "  max_bytes=N and max_3mf_bytes=N (K, M, G suffixes; 0: none; docs/io.md).\n"
     "  --json prints one JSON object with the keys vertices, edges, faces, loops,\n"
     "  volumes, groups, euler_characteristic, valid, closed, manifold, volume, area,\n"
-    "  centroid, bbox and the detailed findings (docs/io.md).";
+    "  centroid, bbox and the detailed findings (docs/io.md).\n"
+    "  --strict exits 1 when the model is not valid (after printing the report).";
 
 std::string report_json(const io::ImportReport& r) {
   std::string s = "{\"input_positions\": " + std::to_string(r.input_positions) +
@@ -35,31 +41,40 @@ std::string report_json(const io::ImportReport& r) {
 }
 
 int run(const std::vector<std::string>& args) {
-  std::string file;
-  bool json = false;
+  CLI::App app{kSummary, "cellforge info"};
+  std::string file, format;
+  std::vector<std::string> options;
+  bool json = false, strict = false, no_self = false;
+  app.add_option("FILE", file, "the model file, or - for standard input")->required();
+  app.add_option("KEY=VALUE", options, "import options and read limits (below)");
+  app.add_flag("--json", json, "print one JSON object");
+  app.add_flag("--strict", strict, "exit 1 when the model is not valid");
+  app.add_flag("--no-self-intersections", no_self, "skip the self-intersection check");
+  app.add_option("--format", format, "the format of FILE (needed for -): stl obj off 3mf json");
+  app.footer(kUsage);
+  if (auto code = parse(app, args)) return *code;
   io::ReadOptions read;
   io::DiagnoseOptions diag;
-  for (const std::string& a : args) {
+  diag.self_intersections = !no_self;
+  for (const std::string& a : options) {
     std::string key, value;
-    if (a == "--json") {
-      json = true;
-    } else if (a == "--no-self-intersections") {
-      diag.self_intersections = false;
-    } else if (split_key_value(a, key, value)) {
-      if (Status s = io::set_option(read.import, key, value); !s) {
-        std::cerr << "cellforge info: " << s.error().message << "\n" << kUsage << '\n';
-        return 2;
-      }
-    } else if (file.empty() && (a.empty() || a[0] != '-')) {
-      file = a;
-    } else {
-      std::cerr << "cellforge info: unexpected argument '" << a << "'\n" << kUsage << '\n';
+    if (!split_key_value(a, key, value)) {
+      std::cerr << "cellforge info: unexpected argument '" << a
+                << "' (one FILE, then KEY=VALUE options)\n";
+      return 2;
+    }
+    if (Status s = io::set_option(read, key, value); !s) {
+      std::cerr << "cellforge info: " << s.error().message << '\n';
       return 2;
     }
   }
-  if (file.empty()) {
-    std::cerr << kUsage << '\n';
-    return 2;
+  if (!format.empty()) {
+    auto f = io::format_from_name(format);
+    if (!f) {
+      std::cerr << "cellforge info: " << f.error().message << '\n';
+      return 2;
+    }
+    read.format = *f;
   }
   Model m;
   auto r = io::read_file(m, file, read);
@@ -81,12 +96,10 @@ int run(const std::vector<std::string>& args) {
               << " degenerate polygons dropped, " << rep.flipped_faces << " faces flipped, "
               << rep.closed_shells << " closed shells\n";
   }
-  return 0;
+  return strict && !d.valid ? 1 : 0;
 }
 
-const CommandRegistration kInfo{
-    Command{"info", "read a model file and report counts, validity, defects and mass properties",
-            kUsage, run}};
+const CommandRegistration kInfo{Command{"info", kSummary, kUsage, run, true}};
 
 }  // namespace
 }  // namespace cellforge::cli

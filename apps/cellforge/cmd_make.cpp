@@ -4,15 +4,16 @@
 // fn, fa, fs, twist, scale, slices, angle); `$fn=` is read as `fn=`.
 #include <algorithm>
 #include <charconv>
+#include <cmath>
 #include <functional>
 #include <iostream>
 #include <map>
 #include <sstream>
 
+#include "cellforge/io/mesh_io.h"
 #include "cellforge/shape/mass.h"
 #include "cellforge/shape/primitives.h"
 #include "cellforge/shape/sweep.h"
-#include "cellforge/io/mesh_io.h"
 #include "command.h"
 
 namespace cellforge::cli {
@@ -36,8 +37,12 @@ constexpr const char* kUsage =
     "    rotate_extrude  shape=square|circle|ngon size r|d n x y angle start fn fa fs\n"
     "  (the 2D shape of a sweep is OpenSCAD's square(size) (center_shape=true centres it),\n"
     "   circle(r) or a regular n-gon of circumradius r, translated by [x, y])\n"
-    "  OUT: .stl .obj .off .3mf .json; --ascii writes ASCII STL.\n"
-    "  Prints the counts, volume, area, centroid and bounding box of the result.";
+    "  Every kind also takes max_vertices=N: the most vertices it may make (default\n"
+    "  10000000, checked before anything is built; docs/shape.md).\n"
+    "  OUT: .stl .obj .off .3mf .json, or - for standard output with --format F;\n"
+    "  --ascii writes ASCII STL.\n"
+    "  Prints the counts, volume, area, centroid and bounding box of the result\n"
+    "  (on standard error when the model goes to standard output).";
 
 using Params = std::map<std::string, std::string>;
 
@@ -102,13 +107,26 @@ class Reader {
     if (!fn) return fn.error();
     if (!fa) return fa.error();
     if (!fs) return fs.error();
-    return Faceting{.fn = *fn, .fa = *fa, .fs = *fs};
+    auto limit = max_vertices();
+    if (!limit) return limit.error();
+    return Faceting{.fn = *fn, .fa = *fa, .fs = *fs, .max_vertices = *limit};
   }
   Result<int> count(const std::string& key, int fallback) const {
     auto v = number(key, fallback);
     if (!v) return v.error();
-    if (*v != static_cast<int>(*v)) return bad(key, p_.at(key), "an integer");
+    // Checked in double before the conversion, which is undefined out of range.
+    if (!(std::fabs(*v) <= 2147483647.0) || *v != std::trunc(*v))
+      return bad(key, p_.at(key), "a whole number of at most 2147483647");
     return static_cast<int>(*v);
+  }
+  Result<std::uint64_t> max_vertices() const {
+    if (!has("max_vertices")) return kDefaultMaxVertices;
+    const std::string& t = p_.at("max_vertices");
+    std::uint64_t n = 0;
+    const auto r = std::from_chars(t.data(), t.data() + t.size(), n);
+    if (t.empty() || r.ec != std::errc() || r.ptr != t.data() + t.size())
+      return bad("max_vertices", t, "a count of vertices");
+    return n;
   }
 
  private:
@@ -168,15 +186,19 @@ Result<GroupId> regular(Model& m, const Params& p, const std::string& kind) {
   TRY(n, r.count("n", kind == "prism" ? 6 : 4));
   TRY(h, r.number("h", 1));
   TRY(center, r.boolean("center"));
+  TRY(limit, r.max_vertices());
   if (kind == "frustum") {
     TRY(r1, r.number("r1", 1));
     TRY(r2, r.number("r2", 0.5));
-    return make_frustum(m, {.sides = n, .r1 = r1, .r2 = r2, .h = h, .center = center});
+    return make_frustum(
+        m, {.sides = n, .r1 = r1, .r2 = r2, .h = h, .center = center, .max_vertices = limit});
   }
   TRY(radius, r.number("r", 1));
   if (kind == "prism")
-    return make_regular_prism(m, {.sides = n, .r = radius, .h = h, .center = center});
-  return make_pyramid(m, {.sides = n, .r = radius, .h = h, .center = center});
+    return make_regular_prism(
+        m, {.sides = n, .r = radius, .h = h, .center = center, .max_vertices = limit});
+  return make_pyramid(m,
+                      {.sides = n, .r = radius, .h = h, .center = center, .max_vertices = limit});
 }
 
 Result<GroupId> polyhedron(Model& m, const Params& p) {
@@ -311,59 +333,70 @@ std::string joined(const std::vector<std::string>& items) {
   return s;
 }
 
-void print_summary(const Model& m, GroupId g, const std::string& kind) {
+void print_summary(std::ostream& os, const Model& m, GroupId g, const std::string& kind) {
   std::size_t v = 0, e = 0, f = 0;
   for (VertexId x : m.vertices()) v += m.group_of(x) == g;
   for (EdgeId x : m.edges()) e += m.group_of(x) == g;
   for (FaceId x : m.faces()) f += m.group_of(x) == g;
   const MassProperties p = mass_properties(m, g);
-  std::cout << kind << ": " << v << " vertices, " << e << " edges, " << f << " faces";
-  if (!m.attribute(g, "segments").empty())
-    std::cout << ", " << m.attribute(g, "segments") << " segments";
-  std::cout << "\n";
-  if (p.solid) std::cout << "volume " << format_number(p.volume) << "\n";
-  std::cout << "area " << format_number(p.area) << "\ncentroid " << p.centroid << "\nbbox "
-            << p.bbox_min << " .. " << p.bbox_max << "\n";
+  os << kind << ": " << v << " vertices, " << e << " edges, " << f << " faces";
+  if (!m.attribute(g, "segments").empty()) os << ", " << m.attribute(g, "segments") << " segments";
+  os << "\n";
+  if (p.solid) os << "volume " << format_number(p.volume) << "\n";
+  os << "area " << format_number(p.area) << "\ncentroid " << p.centroid << "\nbbox " << p.bbox_min
+     << " .. " << p.bbox_max << "\n";
 }
 
 int run(const std::vector<std::string>& args) {
-  if (args.empty()) {
-    std::cerr << kUsage << '\n';
-    return 2;
-  }
+  CLI::App app{"build a primitive or sweep (OpenSCAD parameters) and write it to a file",
+               "cellforge make"};
+  std::string kind_name, out, format;
+  std::vector<std::string> keys;
+  bool ascii = false;
+  app.add_option("KIND", kind_name, "cube, cylinder, sphere, ... (below)")->required();
+  app.add_option("KEY=VALUE", keys, "the kind's parameters");
+  app.add_option("-o", out, "the file to write, or - for standard output")->required();
+  app.add_flag("--ascii", ascii, "write ASCII STL (default binary)");
+  app.add_option("--format", format, "the format of OUT (needed for -)");
+  app.footer(kUsage);
+  if (auto code = parse(app, args)) return *code;
   std::vector<std::string> names;
   for (const Kind& k : kinds()) names.push_back(k.name);
   const auto kind = std::find_if(kinds().begin(), kinds().end(),
-                                 [&](const Kind& k) { return k.name == args[0]; });
+                                 [&](const Kind& k) { return k.name == kind_name; });
   if (kind == kinds().end()) {
-    std::cerr << "cellforge make: unknown kind '" << args[0] << "' (valid: " << joined(names)
+    std::cerr << "cellforge make: unknown kind '" << kind_name << "' (valid: " << joined(names)
               << ")\n";
     return 2;
   }
   Params params;
-  std::string out;
   io::WriteOptions write;
-  for (std::size_t i = 1; i < args.size(); ++i) {
-    std::string key, value;
-    if (args[i] == "-o" && i + 1 < args.size()) {
-      out = args[++i];
-    } else if (args[i] == "--ascii") {
-      write.stl_binary = false;
-    } else if (split_key_value(args[i], key, value)) {
-      if (key[0] == '$') key.erase(0, 1);
-      if (std::find(kind->keys.begin(), kind->keys.end(), key) == kind->keys.end()) {
-        std::cerr << "cellforge make " << kind->name << ": unknown key '" << key
-                  << "' (valid: " << joined(kind->keys) << ")\n";
-        return 2;
-      }
-      params[key] = value;
-    } else {
-      std::cerr << "cellforge make: unexpected argument '" << args[i] << "'\n" << kUsage << '\n';
+  write.stl_binary = !ascii;
+  if (!format.empty()) {
+    auto f = io::format_from_name(format);
+    if (!f) {
+      std::cerr << "cellforge make: " << f.error().message << '\n';
       return 2;
     }
+    write.format = *f;
   }
-  if (out.empty()) {
-    std::cerr << "cellforge make: missing -o OUT\n" << kUsage << '\n';
+  for (const std::string& a : keys) {
+    std::string key, value;
+    if (!split_key_value(a, key, value)) {
+      std::cerr << "cellforge make: unexpected argument '" << a << "' (KEY=VALUE expected)\n";
+      return 2;
+    }
+    if (key[0] == '$') key.erase(0, 1);
+    if (key != "max_vertices" &&
+        std::find(kind->keys.begin(), kind->keys.end(), key) == kind->keys.end()) {
+      std::cerr << "cellforge make " << kind->name << ": unknown key '" << key
+                << "' (valid: " << joined(kind->keys) << ", max_vertices)\n";
+      return 2;
+    }
+    params[key] = value;
+  }
+  if (out == "-" && !write.format) {
+    std::cerr << "cellforge make: writing standard output needs --format FORMAT\n";
     return 2;
   }
   Model m;
@@ -376,14 +409,15 @@ int run(const std::vector<std::string>& args) {
     std::cerr << "cellforge make: " << s.error().message << '\n';
     return 1;
   }
-  print_summary(m, *g, kind->name);
-  std::cout << "wrote " << out << '\n';
+  std::ostream& report = out == "-" ? std::cerr : std::cout;
+  print_summary(report, m, *g, kind->name);
+  report << "wrote " << out << '\n';
   return 0;
 }
 
 const CommandRegistration kMake{
     Command{"make", "build a primitive or sweep (OpenSCAD parameters) and write it to a file",
-            kUsage, run}};
+            kUsage, run, true}};
 
 }  // namespace
 }  // namespace cellforge::cli

@@ -1,5 +1,9 @@
 // cellforge: the command-line entry point. Subcommands live in cmd_*.cpp.
 #include <algorithm>
+#include <cerrno>
+#include <climits>
+#include <cstdio>
+#include <cstring>
 #include <iostream>
 
 #include "command.h"
@@ -17,6 +21,42 @@ bool split_key_value(const std::string& arg, std::string& key, std::string& valu
   key = arg.substr(0, eq);
   value = arg.substr(eq + 1);
   return true;
+}
+
+std::optional<int> parse(CLI::App& app, const std::vector<std::string>& args) {
+  app.set_help_flag("-h,--help", "print this help and exit");
+  app.allow_extras(false);
+  std::vector<std::string> reversed(args.rbegin(), args.rend());  // CLI11 takes them last first
+  try {
+    app.parse(reversed);
+  } catch (const CLI::CallForHelp&) {
+    std::cout << app.help();
+    return 0;
+  } catch (const CLI::ParseError& e) {
+    std::cerr << app.get_name() << ": " << e.what() << "\n(" << app.get_name()
+              << " --help for the options)\n";
+    return 2;
+  }
+  return std::nullopt;
+}
+
+CLI::Option* add_count(CLI::App& app, const std::string& name, int& out, int low,
+                       const std::string& help) {
+  return app.add_option(name, out, help)
+      ->check(CLI::Validator(
+          [low](std::string& v) -> std::string {
+            // CLI11 converts after checks: refuse what is not a plain integer here too.
+            std::size_t i = v.size() > 0 && (v[0] == '-' || v[0] == '+') ? 1 : 0;
+            if (i == v.size()) return "expected a whole number, got '" + v + "'";
+            for (std::size_t k = i; k < v.size(); ++k)
+              if (v[k] < '0' || v[k] > '9') return "expected a whole number, got '" + v + "'";
+            errno = 0;
+            const long long n = std::strtoll(v.c_str(), nullptr, 10);
+            if (errno != 0 || n < low || n > INT_MAX)
+              return "expected a whole number from " + std::to_string(low) + ", got '" + v + "'";
+            return std::string();
+          },
+          "INT>=" + std::to_string(low)));
 }
 
 namespace {
@@ -63,6 +103,7 @@ int main(int argc, char** argv) {
       print_help(std::cout);
       return args.size() > 1 ? 2 : 0;
     }
+    if (c->parses_help) return c->run({"--help"});
     std::cout << c->usage << '\n';
     return 0;
   }
@@ -72,10 +113,31 @@ int main(int argc, char** argv) {
     print_help(std::cerr);
     return 2;
   }
+  const std::vector<std::string> rest(args.begin() + 1, args.end());
+  if (!c->parses_help) {
+    for (const std::string& a : rest) {
+      if (a == "--") break;
+      if (a == "--help" || a == "-h") {
+        std::cout << c->usage << '\n';
+        return 0;
+      }
+    }
+  }
+  int code = 1;
   try {
-    return c->run(std::vector<std::string>(args.begin() + 1, args.end()));
+    code = c->run(rest);
   } catch (const std::exception& e) {
     std::cerr << "cellforge " << c->name << ": " << e.what() << '\n';
-    return 1;
+    code = 1;
   }
+  // Output that did not reach its file (a full disk, /dev/full, a closed pipe) is a
+  // failure: every write to standard output is checked here, at its flush.
+  std::cout.flush();
+  errno = 0;
+  if (!std::cout || std::fflush(stdout) != 0 || std::ferror(stdout)) {
+    std::cerr << "cellforge " << c->name << ": cannot write standard output"
+              << (errno ? std::string(": ") + std::strerror(errno) : std::string()) << '\n';
+    return code == 0 ? 1 : code;
+  }
+  return code;
 }

@@ -12,9 +12,11 @@
 // the line's global key, so that edges lying on one 3D line get every vertex on it
 // (no T-junctions) when the result is built.
 #include "boolean/arrangement.h"
+#include "boolean/parallel.h"
 
 #include <algorithm>
 #include <cassert>
+#include <mutex>
 #include <numeric>
 
 #include "cellforge/geom/predicates.h"
@@ -163,10 +165,18 @@ H3<T> Arrangement::point3(std::uint32_t p) const {
   }
   if constexpr (std::is_same_v<T, Fp>) {
     return h3f[p - pos.size()];
+  } else if constexpr (std::is_same_v<T, Dd>) {
+    return compute3<T>(*this, points[p - pos.size()]);
   } else {
-    auto it = exact3.find(p);
-    if (it == exact3.end()) it = exact3.emplace(p, compute3<T>(*this, points[p - pos.size()])).first;
-    return it->second;
+    {
+      std::shared_lock read(*exact3_lock);
+      auto it = exact3.find(p);
+      if (it != exact3.end()) return it->second;
+    }
+    H3<T> h = compute3<T>(*this, points[p - pos.size()]);
+    std::unique_lock write(*exact3_lock);
+    exact3.emplace(p, h);
+    return h;
   }
 }
 
@@ -198,6 +208,8 @@ H3<T> Arrangement::rep3(const RepPoint& r) const {
 }
 
 template H3<Fp> Arrangement::rep3<Fp>(const RepPoint&) const;
+template H3<Dd> Arrangement::rep3<Dd>(const RepPoint&) const;
+template H3<Dd> Arrangement::point3<Dd>(std::uint32_t) const;
 template H3<Dyadic> Arrangement::rep3<Dyadic>(const RepPoint&) const;
 template H3<Fp> Arrangement::point3<Fp>(std::uint32_t) const;
 template H3<Dyadic> Arrangement::point3<Dyadic>(std::uint32_t) const;
@@ -215,12 +227,29 @@ int Arrangement::w2_sign(const Cluster& c, std::uint32_t p) const {
 }
 
 int Arrangement::side(const Cluster& c, const Line& l, std::uint32_t p) const {
-  if (p >= pos.size()) {  // a crossing of this line lies on it
+  // Points on the line by construction (every point of a cluster lies in its plane):
+  if (p >= pos.size()) {
     const PointDef& d = points[p - pos.size()];
     const auto li = static_cast<std::uint32_t>(&l - c.lines.data());
-    if (d.kind == PointKind::kCross && &clusters[d.a] == &c && (d.b == li || d.c == li)) return 0;
+    // a crossing of this line, or of another trace of this line's plane;
+    if (d.kind == PointKind::kCross && &clusters[d.a] == &c) {
+      if (d.b == li || d.c == li) return 0;
+      if (l.kind == LineKind::kTrace)
+        for (std::uint32_t m : {d.b, d.c})
+          if (c.lines[m].kind == LineKind::kTrace &&
+              plane_of[cluster_of[c.lines[m].a]] == plane_of[cluster_of[l.a]])
+            return 0;
+    }
+    if (d.kind == PointKind::kLpi) {
+      // where this edge's segment meets a plane, or a segment meets this trace's plane;
+      if (l.kind == LineKind::kThrough && ordered(l.a, l.b) == ordered(d.a, d.b)) return 0;
+      if (l.kind == LineKind::kTrace && plane_of[cluster_of[l.a]] == plane_of[cluster_of[d.c]]) return 0;
+    }
   } else if (l.kind == LineKind::kThrough && (p == l.a || p == l.b)) {
-    return 0;
+    return 0;  // an end of this edge;
+  } else if (l.kind == LineKind::kTrace) {
+    const Tri& t = tris[l.a];  // a corner of the triangle whose plane this traces.
+    if (p == t.v[0] || p == t.v[1] || p == t.v[2]) return 0;
   }
   const int s = decide([&]<class T>() {
     const auto L = coeffs<T>(c, l);
@@ -346,6 +375,14 @@ bool Arrangement::rounds_exactly(std::uint32_t p) const {
   return true;
 }
 
+bool Arrangement::coordinate_is(std::uint32_t p, int axis, double x) const {
+  if (p < pos.size()) return pos[p][axis] == x;
+  return decide([&]<class T>() {
+           const H3<T> h = point3<T>(p);
+           return h.c[axis] - T(x) * h.c[3];
+         }) == 0;
+}
+
 void Arrangement::approx2(const Cluster& c, std::uint32_t p, double& u, double& v,
                           double& err) const {
   const H2<Fp> h = point2<Fp>(c, p);
@@ -430,13 +467,20 @@ namespace {
 
 std::uint32_t Arrangement::lpi_point(std::uint32_t p, std::uint32_t q, std::uint32_t cluster) {
   if (p > q) std::swap(p, q);
-  // Keyed by the segment, then by the plane's cluster: few planes meet one segment.
-  auto& list = lpi_ids_[ordered(p, q)];
-  for (auto [c, id] : list)
-    if (c == cluster) return id;
-  const std::uint32_t id = new_point({PointKind::kLpi, p, q, clusters[cluster].ref}, nullptr);
-  list.push_back({cluster, id});
-  return id;
+  const std::uint32_t plane = plane_of[cluster];
+  auto [it, fresh] = lpi_ids_.try_emplace({ordered(p, q), plane}, 0);
+  if (fresh) it->second = new_point({PointKind::kLpi, p, q, clusters[plane].ref}, nullptr);
+  return it->second;
+}
+
+std::uint32_t Arrangement::crossing_point(std::uint32_t ci, std::uint32_t li, std::uint32_t m) {
+  Cluster& c = clusters[ci];
+  const Line* through = &c.lines[li];
+  const Line* trace = &c.lines[m];
+  if (through->kind != LineKind::kThrough) std::swap(through, trace);
+  if (through->kind == LineKind::kThrough && trace->kind == LineKind::kTrace)
+    return lpi_point(through->a, through->b, cluster_of[trace->a]);
+  return new_point({PointKind::kCross, ci, std::min(li, m), std::max(li, m)}, &c);
 }
 
 std::uint32_t Arrangement::add_line(Cluster& c, Line l) {
@@ -518,71 +562,113 @@ bool Arrangement::segment_enters(const Tri& x, std::uint32_t p, std::uint32_t q)
   return above > 0 && below > 0;
 }
 
-void Arrangement::intersect() {
+// What the exact test of one candidate pair found, gathered per range of pairs so
+// that ranges can be tested on threads and applied in order (the same result at any
+// thread count).
+struct Arrangement::PairEvents {
+  std::vector<std::array<std::uint32_t, 3>> edge_points;  // edge p, q; the vertex on it
+  std::vector<std::array<std::uint32_t, 2>> coplanar, same_plane;  // pairs to join
+  std::vector<std::array<std::uint32_t, 2>> touching;  // triangle, vertex on its plane
+  std::vector<std::array<std::uint32_t, 3>> crossing;  // i, j, which of them is cut
+  std::size_t tested = 0, hit = 0;
+};
+
+void Arrangement::test_pair(std::uint32_t i, std::uint32_t j, PairEvents& ev) const {
+  ++ev.tested;
+  auto record = [&](std::uint32_t p, std::uint32_t q, std::uint32_t v) { ev.edge_points.push_back({p, q, v}); };
+  const Tri& a = tris[i];
+  const Tri& b = tris[j];
+  const Vec3 a0 = pos[a.v[0]], a1 = pos[a.v[1]], a2 = pos[a.v[2]];
+  int ob[3], pos_b = 0, neg_b = 0;
+  for (int k = 0; k < 3; ++k) {
+    ob[k] = side_of(a, b.v[k]);
+    pos_b += ob[k] > 0;
+    neg_b += ob[k] < 0;
+  }
+  if (pos_b == 3 || neg_b == 3) return;
+  // Neighbours in one mesh, the common case: sharing an edge and not coplanar, they
+  // meet in that edge alone; sharing a corner with the rest of b on one side of a's
+  // plane, in that corner alone. Either is each one's own boundary already.
+  int shared = 0;
+  for (std::uint32_t v : b.v) shared += v == a.v[0] || v == a.v[1] || v == a.v[2];
+  if ((shared == 2 && pos_b + neg_b == 1) || (shared == 1 && (pos_b == 2 || neg_b == 2))) return;
+  if (pos_b == 0 && neg_b == 0) {
+    ev.same_plane.push_back({i, j});
+    int oa[3] = {0, 0, 0};
+    vertices_on_edges(*this, a, b, ob, record);
+    vertices_on_edges(*this, b, a, oa, record);
+    const int k = dominant_axis(cross(a1 - a0, a2 - a0));
+    if (coplanar_overlap(*this, a, b, k)) {
+      ev.coplanar.push_back({i, j});
+      ++ev.hit;
+    }
+    return;
+  }
+  int oa[3], pos_a = 0, neg_a = 0;
+  for (int k = 0; k < 3; ++k) {
+    oa[k] = side_of(b, a.v[k]);
+    pos_a += oa[k] > 0;
+    neg_a += oa[k] < 0;
+  }
+  if (pos_a == 3 || neg_a == 3) return;
+  vertices_on_edges(*this, a, b, ob, record);
+  vertices_on_edges(*this, b, a, oa, record);
+  // b cuts a's cluster where it crosses a's plane, or where one of its edges lies in
+  // that plane (the surfaces meet along the edge even when b stays on one side);
+  // an edge that a shares is a's own boundary already.
+  auto cuts = [&](const Tri& x, const Tri& y, const int o[3], int pos_y, int neg_y) {
+    if (pos_y > 0 && neg_y > 0) return true;
+    if (pos_y + neg_y != 1) return false;
+    std::uint32_t e[2];
+    int n = 0;
+    for (int k = 0; k < 3; ++k)
+      if (o[k] == 0) e[n++] = y.v[k];
+    return segment_enters(x, e[0], e[1]);
+  };
+  const bool cut_a = cuts(a, b, ob, pos_b, neg_b), cut_b = cuts(b, a, oa, pos_a, neg_a);
+  // A corner of one resting on the other's plane, the rest on one side: a point
+  // where the surfaces touch, a vertex of the other's arrangement if inside it.
+  auto touch = [&](std::uint32_t x, const Tri& y, const int o[3], int pos_y, int neg_y) {
+    if (pos_y + neg_y != 2 || (pos_y != 0 && neg_y != 0)) return;
+    for (int k = 0; k < 3; ++k)
+      if (o[k] == 0) ev.touching.push_back({x, y.v[k]});
+  };
+  touch(i, b, ob, pos_b, neg_b);
+  touch(j, a, oa, pos_a, neg_a);
+  if (!cut_a && !cut_b) return;
+  ev.crossing.push_back({i, j, static_cast<std::uint32_t>(cut_a) | (static_cast<std::uint32_t>(cut_b) << 1)});
+  ++ev.hit;
+}
+
+void Arrangement::intersect(int threads) {
   std::vector<std::array<std::uint32_t, 3>> crossing;  // i, j, which of them is cut
   std::vector<std::array<std::uint32_t, 2>> touching;  // triangle, vertex on its plane
   UnionFind coplanar(tris.size());
-  auto record = [&](std::uint32_t p, std::uint32_t q, std::uint32_t v) {
-    edge_points.push_back({edge_key(p, q), v});
+  UnionFind same_plane(tris.size());
+  // Candidate pairs in batches, each cut into one range per thread.
+  std::vector<std::array<std::uint32_t, 2>> batch;
+  constexpr std::size_t kBatch = 1 << 16;
+  batch.reserve(kBatch);
+  auto run_batch = [&] {
+    std::vector<PairEvents> ev = parallel_ranges<PairEvents>(batch.size(), threads, [&](std::size_t lo, std::size_t hi, PairEvents& out) {
+      for (std::size_t k = lo; k < hi; ++k) test_pair(batch[k][0], batch[k][1], out);
+    });
+    for (const PairEvents& e : ev) {
+      pairs_tested += e.tested;
+      pairs_hit += e.hit;
+      for (auto [p, q, v] : e.edge_points) edge_points.push_back({edge_key(p, q), v});
+      for (auto [x, y] : e.coplanar) coplanar.unite(x, y);
+      for (auto [x, y] : e.same_plane) same_plane.unite(x, y);
+      touching.insert(touching.end(), e.touching.begin(), e.touching.end());
+      crossing.insert(crossing.end(), e.crossing.begin(), e.crossing.end());
+    }
+    batch.clear();
   };
   bvh.pairs([&](std::uint32_t i, std::uint32_t j) {
-    ++pairs_tested;
-    const Tri& a = tris[i];
-    const Tri& b = tris[j];
-    const Vec3 a0 = pos[a.v[0]], a1 = pos[a.v[1]], a2 = pos[a.v[2]];
-    int ob[3], pos_b = 0, neg_b = 0;
-    for (int k = 0; k < 3; ++k) {
-      ob[k] = side_of(a, b.v[k]);
-      pos_b += ob[k] > 0;
-      neg_b += ob[k] < 0;
-    }
-    if (pos_b == 3 || neg_b == 3) return;
-    if (pos_b == 0 && neg_b == 0) {
-      int oa[3] = {0, 0, 0};
-      vertices_on_edges(*this, a, b, ob, record);
-      vertices_on_edges(*this, b, a, oa, record);
-      const int k = dominant_axis(cross(a1 - a0, a2 - a0));
-      if (coplanar_overlap(*this, a, b, k)) {
-        coplanar.unite(i, j);
-        ++pairs_hit;
-      }
-      return;
-    }
-    int oa[3], pos_a = 0, neg_a = 0;
-    for (int k = 0; k < 3; ++k) {
-      oa[k] = side_of(b, a.v[k]);
-      pos_a += oa[k] > 0;
-      neg_a += oa[k] < 0;
-    }
-    if (pos_a == 3 || neg_a == 3) return;
-    vertices_on_edges(*this, a, b, ob, record);
-    vertices_on_edges(*this, b, a, oa, record);
-    // b cuts a's cluster where it crosses a's plane, or where one of its edges lies in
-    // that plane (the surfaces meet along the edge even when b stays on one side);
-    // an edge that a shares is a's own boundary already.
-    auto cuts = [&](const Tri& x, const Tri& y, const int o[3], int pos_y, int neg_y) {
-      if (pos_y > 0 && neg_y > 0) return true;
-      if (pos_y + neg_y != 1) return false;
-      std::uint32_t e[2];
-      int n = 0;
-      for (int k = 0; k < 3; ++k)
-        if (o[k] == 0) e[n++] = y.v[k];
-      return segment_enters(x, e[0], e[1]);
-    };
-    const bool cut_a = cuts(a, b, ob, pos_b, neg_b), cut_b = cuts(b, a, oa, pos_a, neg_a);
-    // A corner of one resting on the other's plane, the rest on one side: a point
-    // where the surfaces touch, a vertex of the other's arrangement if inside it.
-    auto touch = [&](std::uint32_t x, const Tri& y, const int o[3], int pos_y, int neg_y) {
-      if (pos_y + neg_y != 2 || (pos_y != 0 && neg_y != 0)) return;
-      for (int k = 0; k < 3; ++k)
-        if (o[k] == 0) touching.push_back({x, y.v[k]});
-    };
-    touch(i, b, ob, pos_b, neg_b);
-    touch(j, a, oa, pos_a, neg_a);
-    if (!cut_a && !cut_b) return;
-    crossing.push_back({i, j, static_cast<std::uint32_t>(cut_a) | (static_cast<std::uint32_t>(cut_b) << 1)});
-    ++pairs_hit;
+    batch.push_back({i, j});
+    if (batch.size() == kBatch) run_batch();
   });
+  run_batch();
 
   // Clusters: components of the coplanar-overlap relation, numbered by their
   // smallest triangle.
@@ -614,6 +700,15 @@ void Arrangement::intersect() {
                            c.nk_sign);
     }
     c.touched = c.tris.size() > 1;
+  }
+  // A plane's clusters take the cluster of its smallest triangle (whatever the
+  // order of the joins was).
+  plane_of.resize(clusters.size());
+  std::vector<std::uint32_t> first(tris.size(), kInvalidIndex);
+  for (std::uint32_t t = 0; t < tris.size(); ++t) {
+    std::uint32_t& f = first[same_plane.find(t)];
+    if (f == kInvalidIndex) f = cluster_of[t];
+    plane_of[cluster_of[t]] = f;
   }
 
   for (auto [t, v] : touching) {
@@ -658,9 +753,7 @@ void Arrangement::add_pair(std::uint32_t t, std::uint32_t b) {
   auto drop_new_points = [&] {
     while (points.size() > points_before) {
       const PointDef d = points.back();
-      auto& list = lpi_ids_[ordered(d.a, d.b)];
-      list.pop_back();
-      if (list.empty()) lpi_ids_.erase(ordered(d.a, d.b));
+      lpi_ids_.erase({ordered(d.a, d.b), plane_of[cluster_of[d.c]]});
       exact3.erase(static_cast<std::uint32_t>(pos.size() + points.size() - 1));  // the id is reused
       points.pop_back();
       h3f.pop_back();
@@ -693,6 +786,21 @@ void Arrangement::add_pair(std::uint32_t t, std::uint32_t b) {
 void Arrangement::split() {
   for (std::uint32_t ci = 0; ci < clusters.size(); ++ci)
     if (clusters[ci].touched) split_cluster(ci);
+}
+
+void Arrangement::release_pieces() {
+  for (Cluster& c : clusters) {
+    std::vector<Piece>().swap(c.pieces);
+    std::vector<Constraint>().swap(c.constraints);
+    std::vector<std::uint32_t>().swap(c.touch_points);
+  }
+  for (SoupFace& f : faces) {
+    std::vector<std::vector<std::uint32_t>>().swap(f.loops);
+    std::vector<std::uint32_t>().swap(f.tris);
+  }
+  std::vector<Box>().swap(tri_boxes);
+  bvh = Bvh();
+  lpi_ids_ = {};
 }
 
 void Arrangement::piece_box(const Cluster& c, Piece& p) const {
@@ -770,12 +878,13 @@ void Arrangement::split_cluster(std::uint32_t ci) {
         segments.push_back({through_line(a, b), a, b});
       }
   }
-  std::unordered_map<std::uint32_t, std::uint32_t> traces;  // other cluster -> line
+  // One line per other plane (the halves of a planar quad are two clusters, one plane).
+  std::unordered_map<std::uint32_t, std::uint32_t> traces;  // other plane -> line
   for (const Constraint& k2 : c.constraints) {
-    auto [it, fresh] = traces.try_emplace(k2.other_cluster, 0);
+    auto [it, fresh] = traces.try_emplace(plane_of[k2.other_cluster], 0);
     if (fresh) {
       Line l = Line::make(LineKind::kTrace, k2.other_tri);
-      l.key = pair_key(ci, k2.other_cluster);
+      l.key = pair_key(plane_of[ci], plane_of[k2.other_cluster]);
       it->second = add_line(c, std::move(l));
     }
     if (k2.p != k2.q && !equal3(k2.p, k2.q)) segments.push_back({it->second, k2.p, k2.q});
@@ -792,23 +901,83 @@ void Arrangement::split_cluster(std::uint32_t ci) {
     c.pieces.push_back(std::move(made[1]));
     piece_box(c, c.pieces.back());
   };
-  auto split_all = [&](std::uint32_t line, std::uint32_t p, std::uint32_t q, Box sb) {
-    for (std::size_t pi = 0, n = c.pieces.size(); pi < n; ++pi) {
-      const Box& pb = c.pieces[pi].box2;
-      if (pb.lo.x > sb.hi.x || sb.lo.x > pb.hi.x || pb.lo.y > sb.hi.y || sb.lo.y > pb.hi.y)
-        continue;
-      cut(pi, line, p, q);
-    }
-  };
-  for (const Segment& s : segments) {
-    Box sb;
-    for (std::uint32_t q : {s.p, s.q}) {
+  // Segments, with bounds in (u, v) that hold their exact ends.
+  std::vector<Box> seg_box(segments.size());
+  for (std::size_t si = 0; si < segments.size(); ++si)
+    for (std::uint32_t q : {segments[si].p, segments[si].q}) {
       double u, v, e;
       approx2(c, q, u, v, e);
-      sb.add(Vec3{u - e, v - e, 0});
-      sb.add(Vec3{u + e, v + e, 0});
+      seg_box[si].add(Vec3{u - e, v - e, 0});
+      seg_box[si].add(Vec3{u + e, v + e, 0});
     }
-    split_all(s.line, s.p, s.q, sb);
+  // Each segment cuts the pieces of `region` (indices into c.pieces) whose boxes meet
+  // its own; the pieces it makes join the region.
+  auto cut_all = [&](std::vector<std::uint32_t>& region, const std::vector<std::uint32_t>& segs) {
+    for (std::uint32_t si : segs) {
+      const Segment& s = segments[si];
+      const Box& sb = seg_box[si];
+      for (std::size_t k = 0, n = region.size(); k < n; ++k) {
+        const Box& pb = c.pieces[region[k]].box2;
+        if (pb.lo.x > sb.hi.x || sb.lo.x > pb.hi.x || pb.lo.y > sb.hi.y || sb.lo.y > pb.hi.y)
+          continue;
+        const std::size_t before = c.pieces.size();
+        cut(region[k], s.line, s.p, s.q);
+        if (c.pieces.size() > before) region.push_back(static_cast<std::uint32_t>(before));
+      }
+    }
+  };
+  // Many segments in one cluster (a plate with many holes): whole chords of few
+  // pieces would run across the whole cluster, making long slivers and costing
+  // segments x pieces. The cluster is first cut, as a k-d tree, by axis-parallel
+  // lines u = m or v = m (m a double: the median of the segments' middles), each
+  // half keeping the segments that may reach it, until a region holds few. Those
+  // lines only separate pieces of one classification; the merge removes them.
+  constexpr std::size_t kLeafSegments = 16;
+  auto subdivide = [&](auto&& self, std::vector<std::uint32_t> region, std::vector<std::uint32_t> segs,
+                       int depth) -> void {
+    if (segs.size() <= kLeafSegments || depth >= 40) return cut_all(region, segs);
+    Box rb;
+    for (std::uint32_t pi : region) rb.add(c.pieces[pi].box2);
+    const int axis = rb.hi.x - rb.lo.x >= rb.hi.y - rb.lo.y ? 0 : 1;
+    std::vector<double> mids;
+    mids.reserve(segs.size());
+    for (std::uint32_t si : segs) mids.push_back((seg_box[si].lo[axis] + seg_box[si].hi[axis]) / 2);
+    std::nth_element(mids.begin(), mids.begin() + mids.size() / 2, mids.end());
+    const double m = mids[mids.size() / 2];
+    std::vector<std::uint32_t> segs_lo, segs_hi;
+    for (std::uint32_t si : segs) {
+      if (seg_box[si].lo[axis] <= m) segs_lo.push_back(si);
+      if (seg_box[si].hi[axis] >= m) segs_hi.push_back(si);
+    }
+    // A split that leaves every segment on both sides gains nothing.
+    if (!(m > rb.lo[axis] && m < rb.hi[axis]) || segs_lo.size() == segs.size() ||
+        segs_hi.size() == segs.size())
+      return cut_all(region, segs);
+    const std::uint32_t l =
+        add_line(c, Line::make(axis == 0 ? LineKind::kAxisU : LineKind::kAxisV, 0, 0, m));
+    c.lines[l].key = fresh_key();
+    std::vector<std::uint32_t> lo, hi;
+    for (std::uint32_t pi : region) {
+      const std::size_t before = c.pieces.size();
+      cut(pi, l, kInvalidIndex, kInvalidIndex);
+      if (c.pieces.size() > before) {  // made[0] is on the positive side (u or v > m)
+        hi.push_back(pi);
+        lo.push_back(static_cast<std::uint32_t>(before));
+        continue;
+      }
+      int s = 0;
+      for (std::size_t q = 0; q < c.pieces[pi].pts.size() && s == 0; ++q)
+        s = side(c, c.lines[l], c.pieces[pi].pts[q]);
+      (s > 0 ? hi : lo).push_back(pi);
+    }
+    self(self, std::move(lo), std::move(segs_lo), depth + 1);
+    self(self, std::move(hi), std::move(segs_hi), depth + 1);
+  };
+  {
+    std::vector<std::uint32_t> all_segs(segments.size()), region(c.pieces.size());
+    std::iota(all_segs.begin(), all_segs.end(), 0u);
+    std::iota(region.begin(), region.end(), 0u);
+    subdivide(subdivide, std::move(region), std::move(all_segs), 0);
   }
   // A touching point becomes a vertex where the lines u = p_u and v = p_v through it
   // cross (it lies on both exactly, as a double); they cut only the pieces it is in.
@@ -863,7 +1032,7 @@ bool Arrangement::split_piece(Cluster& c, std::uint32_t ci, std::size_t pi, std:
       const std::uint32_t m = P.lines[q];
       auto [it, fresh] = crossings.try_emplace(ordered(li, m), 0);
       if (fresh) {
-        it->second = new_point({PointKind::kCross, ci, std::min(li, m), std::max(li, m)}, &c);
+        it->second = crossing_point(ci, li, m);
         c.lines[li].points.push_back(it->second);
         c.lines[m].points.push_back(it->second);
       }

@@ -22,6 +22,8 @@
 #pragma once
 #include <array>
 #include <cstdint>
+#include <memory>
+#include <shared_mutex>
 #include <unordered_map>
 #include <vector>
 
@@ -121,9 +123,13 @@ class Arrangement {
               std::uint32_t operands);
 
   // Stage 1: candidate pairs, exact tests, clusters and their constraints.
-  void intersect();
+  // Stage 1 on `threads` threads (0: all); the same result at any count.
+  void intersect(int threads = 1);
   // Stage 2: each cluster cut into convex pieces.
   void split();
+  // Frees what only stages 1 to 4 read (the pieces, the constraints, the triangles'
+  // boxes and tree, the input faces' loops), before the result is built.
+  void release_pieces();
 
   // ---- data
   std::vector<Vec3> pos;
@@ -133,6 +139,10 @@ class Arrangement {
   std::vector<Box> tri_boxes;
   Bvh bvh;
   std::vector<std::uint32_t> cluster_of;  // by triangle
+  // By cluster: the first cluster found to lie in the same plane (coplanar triangles
+  // that were tested as a pair, such as the two halves of a planar quad). Points are
+  // keyed by plane rather than cluster, so that one point has one id.
+  std::vector<std::uint32_t> plane_of;
   std::vector<Cluster> clusters;
   std::vector<PointDef> points;  // ids below pos.size() are the input vertices
   std::vector<H3<Fp>> h3f;       // by point id - pos.size()
@@ -153,8 +163,10 @@ class Arrangement {
   std::vector<std::uint32_t> key_parent;
 
   std::size_t pairs_tested = 0, pairs_hit = 0;
-  // Exact homogeneous coordinates of points that needed them, computed once.
+  // Exact homogeneous coordinates of points that needed them, computed once; the lock
+  // lets stages on threads share it.
   mutable std::unordered_map<std::uint32_t, H3<Dyadic>> exact3;
+  mutable std::unique_ptr<std::shared_mutex> exact3_lock = std::make_unique<std::shared_mutex>();
 
   // ---- exact evaluation
   template <class T>
@@ -185,11 +197,20 @@ class Arrangement {
   // Whether approx3(p) is known to be p's exact position (always for input vertices;
   // for implicit points when the filter's arithmetic was exact and the quotient is).
   bool rounds_exactly(std::uint32_t p) const;
+  // Whether coordinate `axis` of point p is exactly the double x (an exact test).
+  bool coordinate_is(std::uint32_t p, int axis, double x) const;
   void approx2(const Cluster& c, std::uint32_t p, double& u, double& v, double& err) const;
 
  private:
   std::uint32_t new_point(PointDef def, const Cluster* home);
+  struct PairEvents;
+  void test_pair(std::uint32_t i, std::uint32_t j, PairEvents& ev) const;
   std::uint32_t lpi_point(std::uint32_t p, std::uint32_t q, std::uint32_t cluster);
+  // Where lines li and m of cluster ci cross: an edge's line and another plane's trace
+  // meet where the edge's segment meets that plane, an lpi point of lower degree than
+  // the crossing of two lines lifted onto the plane, and shared with every other
+  // cluster that finds it.
+  std::uint32_t crossing_point(std::uint32_t ci, std::uint32_t li, std::uint32_t m);
   std::uint32_t add_line(Cluster& c, Line l);
   void add_pair(std::uint32_t t, std::uint32_t b);
   bool segment_enters(const Tri& x, std::uint32_t p, std::uint32_t q) const;
@@ -200,8 +221,21 @@ class Arrangement {
                    std::unordered_map<std::uint64_t, std::uint32_t>& crossings);
   void piece_box(const Cluster& c, Piece& p) const;
 
-  // segment {p, q} -> (cluster, point) for each plane it was cut by
-  std::unordered_map<std::uint64_t, std::vector<std::pair<std::uint32_t, std::uint32_t>>> lpi_ids_;
+  // The point where segment pq meets the plane of a cluster, by ((p, q), cluster):
+  // one segment may cross the planes of very many clusters (a plate's edge and the
+  // planes of the cylinders through it).
+  struct LpiKey {
+    std::uint64_t segment;
+    std::uint32_t cluster;
+    bool operator==(const LpiKey&) const = default;
+  };
+  struct LpiKeyHash {
+    std::size_t operator()(const LpiKey& k) const {
+      std::uint64_t h = (k.segment ^ (static_cast<std::uint64_t>(k.cluster) << 1)) * 0x9E3779B97F4A7C15ull;
+      return static_cast<std::size_t>(h ^ (h >> 32));
+    }
+  };
+  std::unordered_map<LpiKey, std::uint32_t, LpiKeyHash> lpi_ids_;
 };
 
 }  // namespace cellforge::boolean

@@ -6,8 +6,10 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <numeric>
 #include <unordered_map>
 
+#include "boolean/parallel.h"
 #include "boolean/stages.h"
 #include "cellforge/geom/intersect.h"
 #include "cellforge/geom/predicates.h"
@@ -88,8 +90,33 @@ struct VecHash {
   }
 };
 
+std::vector<FaceId> face_list(const Model& m) {
+  std::vector<FaceId> out;
+  out.reserve(m.num_faces());
+  for (FaceId f : m.faces()) out.push_back(f);
+  return out;
+}
+
+// The triangles of each face that `wanted` accepts (none for the others), in the
+// order given, computed on threads.
+template <class Wanted>
+std::vector<std::vector<std::array<VertexId, 3>>> triangulate_faces(const Model& m,
+                                                                    const std::vector<FaceId>& faces,
+                                                                    int threads, Wanted wanted) {
+  using Tiles = std::vector<std::vector<std::array<VertexId, 3>>>;
+  std::vector<Tiles> parts = parallel_ranges<Tiles>(faces.size(), threads, [&](std::size_t lo, std::size_t hi, Tiles& out) {
+    for (std::size_t i = lo; i < hi; ++i)
+      out.push_back(wanted(faces[i]) ? io::triangulate_face(m, faces[i]) : std::vector<std::array<VertexId, 3>>{});
+  });
+  Tiles all;
+  all.reserve(faces.size());
+  for (Tiles& p : parts)
+    for (auto& t : p) all.push_back(std::move(t));
+  return all;
+}
+
 // The operands' faces that bound a cell on one side, as outward triangles.
-Result<Arrangement> make_soup(std::span<const Model* const> operands) {
+Result<Arrangement> make_soup(std::span<const Model* const> operands, int threads) {
   std::vector<Vec3> pos;
   std::unordered_map<Vec3, std::uint32_t, VecHash> ids;
   std::vector<Tri> tris;
@@ -109,7 +136,14 @@ Result<Arrangement> make_soup(std::span<const Model* const> operands) {
       return it->second;
     };
     const std::size_t before = tris.size();
-    for (FaceId f : m.faces()) {
+    const std::vector<FaceId> face_ids = face_list(m);
+    const std::vector<std::vector<std::array<VertexId, 3>>> tiled =
+        triangulate_faces(m, face_ids, threads, [&](FaceId f) {
+          return m.front_volume(f).is_valid() != m.back_volume(f).is_valid();
+        });
+    for (std::size_t fi = 0; fi < face_ids.size(); ++fi) {
+      const FaceId f = face_ids[fi];
+      const auto& triangles = tiled[fi];
       const bool front = m.front_volume(f).is_valid(), back = m.back_volume(f).is_valid();
       if (front == back) continue;  // a sheet, or a face between two of its cells
       SoupFace sf;
@@ -124,7 +158,7 @@ Result<Arrangement> make_soup(std::span<const Model* const> operands) {
         sf.loops.push_back(std::move(loop));
       }
       const auto sfi = static_cast<std::uint32_t>(faces.size());
-      for (const auto& t : io::triangulate_face(m, f)) {
+      for (const auto& t : triangles) {
         Tri tri{{vid(t[0]), vid(t[1]), vid(t[2])}, k, f.value, sfi};
         if (front) std::swap(tri.v[1], tri.v[2]);
         if (collinear3d(pos[tri.v[0]], pos[tri.v[1]], pos[tri.v[2]])) continue;
@@ -145,13 +179,15 @@ Result<Arrangement> make_soup(std::span<const Model* const> operands) {
 
 // Pairs of result triangles, from different faces and with no common vertex, that
 // meet; only pairs with a vertex rounding may have moved can have come to meet.
-std::size_t rounding_crossings(const Model& m, const std::vector<bool>& rounded) {
+std::size_t rounding_crossings(const Model& m, const std::vector<bool>& rounded, int threads) {
   std::vector<std::array<VertexId, 3>> tris;
   std::vector<std::uint32_t> face;  // of each triangle
-  for (FaceId f : m.faces())
-    for (const auto& t : io::triangulate_face(m, f)) {
+  const std::vector<FaceId> face_ids = face_list(m);
+  const auto tiled = triangulate_faces(m, face_ids, threads, [](FaceId) { return true; });
+  for (std::size_t fi = 0; fi < face_ids.size(); ++fi)
+    for (const auto& t : tiled[fi]) {
       tris.push_back(t);
-      face.push_back(f.value);
+      face.push_back(face_ids[fi].value);
     }
   std::vector<Box> boxes(tris.size());
   std::vector<char> moved(tris.size(), 0);
@@ -163,8 +199,8 @@ std::size_t rounding_crossings(const Model& m, const std::vector<bool>& rounded)
   // Each triangle with a moved vertex against every triangle its box meets (a pair of
   // two moved ones once), so that a part whose vertices are all doubles costs nothing.
   const Bvh bvh(boxes);
-  std::size_t count = 0;
-  for (std::uint32_t i = 0; i < tris.size(); ++i) {
+  std::vector<std::size_t> counts = parallel_ranges<std::size_t>(tris.size(), threads, [&](std::size_t lo, std::size_t hi, std::size_t& count) {
+  for (std::uint32_t i = static_cast<std::uint32_t>(lo); i < hi; ++i) {
     if (!moved[i]) continue;
     const Box& bi = boxes[i];
     bvh.query([&](const Box& b) { return b.overlaps(bi); }, [&](std::uint32_t j) {
@@ -177,7 +213,8 @@ std::size_t rounding_crossings(const Model& m, const std::vector<bool>& rounded)
       if (triangles_meet(a, b)) ++count;
     });
   }
-  return count;
+  });
+  return std::accumulate(counts.begin(), counts.end(), std::size_t{0});
 }
 
 }  // namespace
@@ -186,7 +223,6 @@ std::size_t rounding_crossings(const Model& m, const std::vector<bool>& rounded)
 
 Result<BooleanResult> evaluate(std::span<const Model* const> operands, const Expr& expr,
                                const Options& options) {
-  (void)options;
   if (operands.empty()) return Error{ErrorCode::kInvalidInput, "boolean: no operands"};
   if (expr.max_operand() >= static_cast<int>(operands.size()))
     return Error{ErrorCode::kInvalidInput, "boolean: the expression names operand " +
@@ -195,14 +231,14 @@ Result<BooleanResult> evaluate(std::span<const Model* const> operands, const Exp
   Report report;
   const std::size_t exact_before = exact_evaluations();
   auto t = Clock::now();
-  auto soup = make_soup(operands);
+  auto soup = make_soup(operands, options.threads);
   if (!soup) return soup.error();
   Arrangement& a = *soup;
   report.input_triangles = a.tris.size();
   report.seconds.soup = seconds_since(t);
 
   t = Clock::now();
-  a.intersect();
+  a.intersect(options.threads);
   report.candidate_pairs = a.pairs_tested;
   report.intersecting_pairs = a.pairs_hit;
   report.seconds.intersect = seconds_since(t);
@@ -212,17 +248,18 @@ Result<BooleanResult> evaluate(std::span<const Model* const> operands, const Exp
   report.seconds.split = seconds_since(t);
 
   t = Clock::now();
-  std::vector<OutPoly> polys = classify_and_select(a, expr, report);
+  std::vector<OutPoly> polys = classify_and_select(a, expr, report, options.threads);
   report.seconds.classify = seconds_since(t);
+  a.release_pieces();
   report.implicit_points = a.points.size();
 
   t = Clock::now();
-  auto result = build_result(a, std::move(polys), report);
+  auto result = build_result(a, std::move(polys), report, options.threads);
   report.seconds.output = seconds_since(t);
   if (!result) return result.error();
 
   t = Clock::now();
-  report.rounding_self_intersections = rounding_crossings(result->model, result->rounded);
+  report.rounding_self_intersections = rounding_crossings(result->model, result->rounded, options.threads);
   report.seconds.check = seconds_since(t);
   report.exact_fallbacks = exact_evaluations() - exact_before;
   result->report = report;

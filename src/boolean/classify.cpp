@@ -15,8 +15,8 @@
 // operand joined across manifold edges, consistently oriented, that touch nothing.
 #include <algorithm>
 #include <optional>
-#include <optional>
 
+#include "boolean/parallel.h"
 #include "boolean/stages.h"
 #include "cellforge/geom/predicates.h"
 #include "cellforge/geom/union_find.h"
@@ -38,8 +38,20 @@ V3<T> normal_t(const Arrangement& a, const Tri& t) {
 
 int sgn(double x) { return x > 0 ? 1 : (x < 0 ? -1 : 0); }
 
+// Winding numbers by operand on the two sides of a point; `touched` lists the
+// operands a ray met (with repeats), so that a ray over many operands costs what it
+// crosses, not the operand count.
 struct Windings {
   std::vector<int> front, back;
+  std::vector<std::uint32_t> touched;
+  void reset(std::size_t operands) {
+    if (front.size() != operands) {
+      front.assign(operands, 0);
+      back.assign(operands, 0);
+    }
+    for (std::uint32_t o : touched) front[o] = back[o] = 0;
+    touched.clear();
+  }
 };
 
 class RayCaster {
@@ -48,8 +60,7 @@ class RayCaster {
 
   void cast(const RepPoint& r, Windings& w) const {
     ++rays;
-    w.front.assign(a_.operands, 0);
-    w.back.assign(a_.operands, 0);
+    w.reset(a_.operands);
     // Along the axis closest to the piece's normal: the ray leaves the piece's plane
     // at once, so the edges lying in that plane are not met edge-on.
     k_ = a_.clusters[r.cluster].k;
@@ -149,6 +160,7 @@ class RayCaster {
     }
     if (in_front && sf == -mk) w.front[t.operand] += mk;
     if (in_back && sb == -mk) w.back[t.operand] += mk;
+    w.touched.push_back(t.operand);
   }
 
   const Arrangement& a_;
@@ -157,17 +169,61 @@ class RayCaster {
   mutable std::optional<H3<Dyadic>> exact_x_;  // and exactly, once needed
 };
 
-// +1: keep with the reference normal outward; -1: keep reversed; 0: drop.
-int select(const Expr& expr, const Windings& w, std::vector<bool>& in_front,
-           std::vector<bool>& in_back) {
-  for (std::size_t k = 0; k < w.front.size(); ++k) {
-    in_front[k] = w.front[k] > 0;
-    in_back[k] = w.back[k] > 0;
+// The expression on the windings of a point's two sides. A flat expression (one
+// union, intersection or difference of distinct operands, as a run of OpenSCAD's set
+// operations becomes) is decided from the operands the ray met alone; any other
+// through Expr::contains.
+class Selector {
+ public:
+  Selector(const Expr& expr, std::size_t operands) : expr_(expr), member_(operands, 0) {
+    flat_ = expr.kind != Expr::Kind::kOperand && !expr.children.empty();
+    for (const Expr& c : expr.children) {
+      flat_ &= c.kind == Expr::Kind::kOperand && c.operand >= 0 &&
+               static_cast<std::size_t>(c.operand) < operands && !member_[c.operand];
+      if (flat_) member_[c.operand] = 1;
+    }
+    if (flat_) first_ = static_cast<std::uint32_t>(expr.children[0].operand);
   }
-  const bool f = expr.contains(in_front), b = expr.contains(in_back);
-  if (f == b) return 0;
-  return b ? 1 : -1;
-}
+
+  // +1: keep with the reference normal outward; -1: keep reversed; 0: drop.
+  int select(const Windings& w) {
+    const bool f = contains(w, w.front), b = contains(w, w.back);
+    if (f == b) return 0;
+    return b ? 1 : -1;
+  }
+
+ private:
+  bool contains(const Windings& w, const std::vector<int>& wind) {
+    if (!flat_) {
+      inside_.assign(wind.size(), false);
+      for (std::uint32_t o : w.touched) inside_[o] = wind[o] > 0;
+      return expr_.contains(inside_);
+    }
+    seen_.clear();  // the member operands the point is inside, once each
+    for (std::uint32_t o : w.touched)
+      if (member_[o] && wind[o] > 0) seen_.push_back(o);
+    std::sort(seen_.begin(), seen_.end());
+    seen_.erase(std::unique(seen_.begin(), seen_.end()), seen_.end());
+    switch (expr_.kind) {
+      case Expr::Kind::kUnion:
+        return !seen_.empty();
+      case Expr::Kind::kIntersection:
+        return seen_.size() == expr_.children.size();
+      case Expr::Kind::kDifference:
+        return seen_.size() == 1 && seen_[0] == first_;
+      case Expr::Kind::kOperand:
+        break;
+    }
+    return false;
+  }
+
+  const Expr& expr_;
+  std::vector<char> member_;
+  bool flat_ = false;
+  std::uint32_t first_ = 0;
+  std::vector<bool> inside_;
+  std::vector<std::uint32_t> seen_;
+};
 
 // Reverses a loop and its edge keys (keys[i] belongs to the edge pts[i] -> pts[i+1]).
 void reverse_loop(std::vector<std::uint32_t>& pts, std::vector<std::uint32_t>& keys) {
@@ -208,49 +264,85 @@ bool covers(const Arrangement& a, std::uint32_t t, const RepPoint& r) {
 
 }  // namespace
 
-std::vector<OutPoly> classify_and_select(const Arrangement& a, const Expr& expr, Report& report) {
-  RayCaster rays(a);
-  Windings w;
-  std::vector<bool> in_front(a.operands), in_back(a.operands);
+std::vector<OutPoly> classify_and_select(const Arrangement& a, const Expr& expr, Report& report,
+                                         int threads) {
   std::vector<OutPoly> out;
+  // A ray per job on threads, each range with its own caster; verdicts read in order.
+  struct Verdict {
+    std::uint32_t source = kInvalidIndex;  // the input triangle it lies on; none: skip it
+    int keep = 0;
+  };
+  struct Part {
+    std::vector<Verdict> verdicts;
+    std::size_t rays = 0;
+  };
+  auto classify = [&](std::size_t n, auto&& job) {
+    std::vector<Part> parts = parallel_ranges<Part>(n, threads, [&](std::size_t lo, std::size_t hi, Part& part) {
+      RayCaster rays(a);
+      Windings w;
+      Selector selector(expr, a.operands);
+      for (std::size_t k = lo; k < hi; ++k) {
+        Verdict v;
+        if (std::optional<RepPoint> r = job(k, v.source)) {
+          rays.cast(*r, w);
+          v.keep = selector.select(w);
+        }
+        part.verdicts.push_back(v);
+      }
+      part.rays = rays.rays;
+    });
+    std::vector<Verdict> all;
+    for (Part& p : parts) {
+      all.insert(all.end(), p.verdicts.begin(), p.verdicts.end());
+      report.rays += p.rays;
+    }
+    return all;
+  };
 
   // Pieces of the clusters something cuts.
+  std::vector<std::array<std::uint32_t, 2>> jobs;  // cluster, piece
   for (std::uint32_t ci = 0; ci < a.clusters.size(); ++ci) {
     const Cluster& c = a.clusters[ci];
     if (!c.touched) continue;
     report.touched_triangles += c.tris.size();
-    for (const Piece& p : c.pieces) {
-      const RepPoint r = rep_of(a, ci, p);
-      std::uint32_t source = kInvalidIndex;
-      int source_sign = 0;
-      if (c.tris.size() == 1) {
-        source = c.tris[0];
-        source_sign = c.tri_sign[0];
-      } else {
-        for (std::size_t k = 0; k < c.tris.size(); ++k) {
-          if (!covers(a, c.tris[k], r)) continue;
-          if (source == kInvalidIndex || (source_sign < 0 && c.tri_sign[k] > 0)) {
-            source = c.tris[k];
-            source_sign = c.tri_sign[k];
-          }
-        }
-        if (source == kInvalidIndex) continue;  // outside every triangle of the cluster
-      }
-      ++report.pieces;
-      rays.cast(r, w);
-      const int keep = select(expr, w, in_front, in_back);
-      if (keep == 0) continue;
-      OutPoly poly;
-      poly.cluster = ci;
-      poly.normal_sign = keep;
-      poly.tri = source;
-      std::vector<std::uint32_t> pts = p.pts, keys(p.lines.size());
-      for (std::size_t k = 0; k < p.lines.size(); ++k) keys[k] = c.lines[p.lines[k]].key;
-      if (c.nk_sign * keep < 0) reverse_loop(pts, keys);
-      poly.loops.push_back(std::move(pts));
-      poly.keys.push_back(std::move(keys));
-      out.push_back(std::move(poly));
+    for (std::uint32_t pi = 0; pi < c.pieces.size(); ++pi) jobs.push_back({ci, pi});
+  }
+  const std::vector<Verdict> pieces = classify(jobs.size(), [&](std::size_t k, std::uint32_t& source) {
+    const auto [ci, pi] = jobs[k];
+    const Cluster& c = a.clusters[ci];
+    const RepPoint r = rep_of(a, ci, c.pieces[pi]);
+    if (c.tris.size() == 1) {
+      source = c.tris[0];
+      return std::optional<RepPoint>(r);
     }
+    int source_sign = 0;
+    for (std::size_t t = 0; t < c.tris.size(); ++t) {
+      if (!covers(a, c.tris[t], r)) continue;
+      if (source == kInvalidIndex || (source_sign < 0 && c.tri_sign[t] > 0)) {
+        source = c.tris[t];
+        source_sign = c.tri_sign[t];
+      }
+    }
+    // Outside every triangle of the cluster: no face.
+    return source == kInvalidIndex ? std::nullopt : std::optional<RepPoint>(r);
+  });
+  for (std::size_t k = 0; k < jobs.size(); ++k) {
+    const Verdict& v = pieces[k];
+    if (v.source == kInvalidIndex) continue;
+    ++report.pieces;
+    if (v.keep == 0) continue;
+    const Cluster& c = a.clusters[jobs[k][0]];
+    const Piece& p = c.pieces[jobs[k][1]];
+    OutPoly poly;
+    poly.cluster = jobs[k][0];
+    poly.normal_sign = v.keep;
+    poly.tri = v.source;
+    std::vector<std::uint32_t> pts = p.pts, keys(p.lines.size());
+    for (std::size_t i = 0; i < p.lines.size(); ++i) keys[i] = c.lines[p.lines[i]].key;
+    if (c.nk_sign * v.keep < 0) reverse_loop(pts, keys);
+    poly.loops.push_back(std::move(pts));
+    poly.keys.push_back(std::move(keys));
+    out.push_back(std::move(poly));
   }
 
   // Untouched triangles, a patch at a time.
@@ -290,18 +382,25 @@ std::vector<OutPoly> classify_and_select(const Arrangement& a, const Expr& expr,
     }
     i = j;
   }
-  std::vector<int> patch_keep(a.tris.size(), 2);
-  std::vector<int> tri_keep(a.tris.size(), 0);
+  // One ray per patch, from its root triangle.
+  std::vector<std::uint32_t> roots;
+  std::vector<char> is_root(a.tris.size(), 0);
   for (std::uint32_t t = 0; t < a.tris.size(); ++t) {
     if (!untouched(t)) continue;
     const std::uint32_t root = patches.find(t);
-    if (patch_keep[root] == 2) {
-      const Tri& rt = a.tris[root];
-      rays.cast({a.cluster_of[root], {rt.v[0], rt.v[1], rt.v[2]}}, w);
-      patch_keep[root] = select(expr, w, in_front, in_back);
-    }
-    tri_keep[t] = patch_keep[root];
+    if (!is_root[root]) roots.push_back(root);
+    is_root[root] = 1;
   }
+  const std::vector<Verdict> patch = classify(roots.size(), [&](std::size_t k, std::uint32_t& source) {
+    const Tri& rt = a.tris[roots[k]];
+    source = roots[k];
+    return std::optional<RepPoint>(RepPoint{a.cluster_of[roots[k]], {rt.v[0], rt.v[1], rt.v[2]}});
+  });
+  std::vector<int> patch_keep(a.tris.size(), 0);
+  for (std::size_t k = 0; k < roots.size(); ++k) patch_keep[roots[k]] = patch[k].keep;
+  std::vector<int> tri_keep(a.tris.size(), 0);
+  for (std::uint32_t t = 0; t < a.tris.size(); ++t)
+    if (untouched(t)) tri_keep[t] = patch_keep[patches.find(t)];
   auto edge_keys = [&](const std::vector<std::uint32_t>& loop) {
     std::vector<std::uint32_t> keys(loop.size());
     for (std::size_t k = 0; k < loop.size(); ++k)
@@ -360,7 +459,6 @@ std::vector<OutPoly> classify_and_select(const Arrangement& a, const Expr& expr,
       out.push_back(std::move(poly));
     }
   }
-  report.rays = rays.rays;
   return out;
 }
 

@@ -246,6 +246,89 @@ std::vector<std::vector<std::uint32_t>> boundary(const Arrangement& a,
   return loops;
 }
 
+// A region that cannot become one face (its boundary would pass a vertex twice, or
+// swallow a vertex another face uses) merges as far as it can: one shared edge at a
+// time, keeping each union whose boundary passes no vertex twice and swallows no
+// vertex of a face outside it. Edges with an end that does not round exactly go
+// first, so that what stays apart is cut along exact edges where it can be: a vertex
+// left on a cut that the faces would otherwise have dropped is rounded, and may move
+// off the line it lies on.
+std::vector<OutPoly> merge_greedily(const Arrangement& a, const std::vector<const OutPoly*>& members,
+                                    const std::vector<OutPoly>& all,
+                                    const std::unordered_map<std::uint32_t, std::vector<std::uint32_t>>& users) {
+  const std::size_t n = members.size();
+  // The region's pieces in `all`, and the group each is in.
+  std::vector<std::uint32_t> index(n), group(n);
+  for (std::uint32_t i = 0; i < n; ++i) {
+    index[i] = static_cast<std::uint32_t>(members[i] - all.data());
+    group[i] = i;
+  }
+  std::unordered_map<std::uint32_t, char> inside;  // pieces of the union being tried
+  std::vector<std::vector<std::uint32_t>> parts(n);  // group -> members
+  for (std::uint32_t i = 0; i < n; ++i) parts[i] = {i};
+  std::vector<std::vector<std::vector<std::uint32_t>>> loops(n);
+  for (std::uint32_t i = 0; i < n; ++i) loops[i] = members[i]->loops;
+  // Edges between two pieces of the region.
+  struct Shared {
+    bool exact;
+    std::uint64_t key;
+    std::uint32_t x, y;
+    bool operator<(const Shared& o) const { return exact != o.exact ? !exact : key < o.key; }
+  };
+  std::map<std::uint64_t, std::vector<std::uint32_t>> by_edge;
+  for (std::uint32_t i = 0; i < n; ++i)
+    for (const auto& loop : members[i]->loops)
+      for (std::size_t k = 0; k < loop.size(); ++k) by_edge[ordered(loop[k], loop[(k + 1) % loop.size()])].push_back(i);
+  std::vector<Shared> edges;
+  for (const auto& [key, who] : by_edge) {
+    if (who.size() != 2 || who[0] == who[1]) continue;
+    const auto p = static_cast<std::uint32_t>(key >> 32), q = static_cast<std::uint32_t>(key);
+    edges.push_back({a.rounds_exactly(p) && a.rounds_exactly(q), key, who[0], who[1]});
+  }
+  std::sort(edges.begin(), edges.end());
+  for (bool changed = true; changed;) {
+    changed = false;
+    for (const Shared& e : edges) {
+      const std::uint32_t gx = group[e.x], gy = group[e.y];
+      if (gx == gy) continue;
+      std::vector<const OutPoly*> both;
+      inside.clear();
+      for (std::uint32_t g : {gx, gy})
+        for (std::uint32_t i : parts[g]) {
+          both.push_back(members[i]);
+          inside[index[i]] = 1;
+        }
+      std::vector<std::vector<std::uint32_t>> b = boundary(a, both);
+      std::vector<std::uint32_t> seen;
+      for (const auto& loop : b) seen.insert(seen.end(), loop.begin(), loop.end());
+      std::sort(seen.begin(), seen.end());
+      bool ok = !b.empty() && std::adjacent_find(seen.begin(), seen.end()) == seen.end();
+      for (const OutPoly* q : both)
+        for (const auto& loop : q->loops)
+          for (std::uint32_t v : loop)
+            if (ok && !std::binary_search(seen.begin(), seen.end(), v))
+              for (std::uint32_t u : users.at(v)) ok &= inside.count(u) != 0;
+      if (!ok) continue;
+      for (std::uint32_t i : parts[gy]) group[i] = gx;
+      parts[gx].insert(parts[gx].end(), parts[gy].begin(), parts[gy].end());
+      parts[gy].clear();
+      loops[gx] = std::move(b);
+      changed = true;
+    }
+  }
+  std::vector<OutPoly> out;
+  for (std::uint32_t g = 0; g < n; ++g) {
+    if (parts[g].empty()) continue;
+    OutPoly m = *members[parts[g][0]];
+    if (parts[g].size() > 1) {
+      m.loops = std::move(loops[g]);
+      m.keys.clear();
+    }
+    out.push_back(std::move(m));
+  }
+  return out;
+}
+
 double loop_volume6(const std::vector<Vec3>& pos, const std::vector<std::uint32_t>& loop) {
   double v = 0;
   const Vec3 o = pos[loop[0]];
@@ -255,7 +338,8 @@ double loop_volume6(const std::vector<Vec3>& pos, const std::vector<std::uint32_
 
 }  // namespace
 
-Result<BooleanResult> build_result(Arrangement& a, std::vector<OutPoly> polys, Report& report) {
+Result<BooleanResult> build_result(Arrangement& a, std::vector<OutPoly> polys, Report& report,
+                                   int threads) {
   // 1. One id per exact position, among the points a face or a line holds.
   std::vector<std::uint32_t> used;
   for (const OutPoly& p : polys)
@@ -361,7 +445,7 @@ Result<BooleanResult> build_result(Arrangement& a, std::vector<OutPoly> polys, R
             if (!keep_apart && !std::binary_search(seen.begin(), seen.end(), v))
               for (std::uint32_t u : users[v]) keep_apart |= regions.find(u) != f;
       if (keep_apart) {
-        for (const OutPoly* q : members[f]) merged.push_back(*q);
+        for (OutPoly& q : merge_greedily(a, members[f], polys, users)) merged.push_back(std::move(q));
       } else if (!m.loops.empty()) {
         merged.push_back(std::move(m));
       }
@@ -381,11 +465,26 @@ Result<BooleanResult> build_result(Arrangement& a, std::vector<OutPoly> polys, R
         }
     std::sort(nb.begin(), nb.end());
     nb.erase(std::unique(nb.begin(), nb.end()), nb.end());
+    // Three points of one recorded line are collinear without arithmetic.
+    std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> lines_at;  // point -> line roots
+    for (const auto& [root, list] : lc.points)
+      for (std::uint32_t q : list) lines_at[q].push_back(root);
+    auto on_one_line = [&](std::uint32_t x, std::uint32_t y, std::uint32_t z) {
+      const auto fx = lines_at.find(x), fy = lines_at.find(y), fz = lines_at.find(z);
+      if (fx == lines_at.end() || fy == lines_at.end() || fz == lines_at.end()) return false;
+      for (std::uint32_t r : fy->second)
+        if (std::find(fx->second.begin(), fx->second.end(), r) != fx->second.end() &&
+            std::find(fz->second.begin(), fz->second.end(), r) != fz->second.end())
+          return true;
+      return false;
+    };
     std::unordered_map<std::uint32_t, char> drop;
     for (std::size_t i = 0; i < nb.size();) {
       std::size_t j = i;
       while (j < nb.size() && nb[j].first == nb[i].first) ++j;
-      if (j - i == 2 && a.collinear3(nb[i].second, nb[i].first, nb[i + 1].second)) drop[nb[i].first] = 1;
+      if (j - i == 2 && (on_one_line(nb[i].second, nb[i].first, nb[i + 1].second) ||
+                         a.collinear3(nb[i].second, nb[i].first, nb[i + 1].second)))
+        drop[nb[i].first] = 1;
       i = j;
     }
     std::vector<OutPoly> kept;
@@ -466,6 +565,14 @@ Result<BooleanResult> build_result(Arrangement& a, std::vector<OutPoly> polys, R
     mf.back = cell[shells.find(f)];
     in.faces.push_back(std::move(mf));
   }
+  std::vector<char> inexact(in.positions.size(), 0);
+  for (auto [point, i] : index) inexact[i] = !a.rounds_exactly(point);
+  std::vector<std::uint32_t> point_of(in.positions.size());
+  for (auto [point, i] : index) point_of[i] = point;
+  nudge_rounding(
+      in, inexact,
+      [&](std::uint32_t i, int axis) { return a.coordinate_is(point_of[i], axis, in.positions[i][axis]); },
+      threads);
   auto built = build_mesh(result.model, in);
   if (!built) return Error{ErrorCode::kUnsupported, "boolean: the result could not be built: " + built.error().message};
   std::vector<FaceSource> by_id;
@@ -491,7 +598,7 @@ Result<BooleanResult> build_result(Arrangement& a, std::vector<OutPoly> polys, R
   for (auto [point, i] : index) {
     const VertexId v = built->vertices[i];
     if (v.value >= result.rounded.size()) result.rounded.resize(v.value + 1, false);
-    result.rounded[v.value] = !a.rounds_exactly(point);
+    result.rounded[v.value] = inexact[i];
   }
   (void)report;
   return result;

@@ -38,6 +38,11 @@ Result<std::string> write_off(const Model& m, const WriteOptions& options);
 // threemf.cpp (an error of kind kUnsupported when built without lib3mf)
 Result<std::vector<PolygonSoup>> parse_3mf(std::span<const std::uint8_t> bytes);
 Result<std::string> write_3mf(const Model& m);
+// zip_size.cpp: an error when the entries of the ZIP archive in `bytes` declare more
+// than max_unpacked bytes in all (0: no limit), from its central directory alone.
+// An archive whose directory cannot be read passes, for the ZIP reader to refuse.
+Status check_zip_size(std::string_view format, std::span<const std::uint8_t> bytes,
+                      std::uint64_t max_unpacked);
 // json.cpp
 Result<ReadResult> read_json(Model& m, std::string_view text);
 std::string write_json(const Model& m);

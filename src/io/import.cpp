@@ -150,9 +150,27 @@ std::vector<std::uint32_t> patches(const std::vector<Polygon>& polys, const Edge
 std::vector<bool> closed_patches(const std::vector<Polygon>& polys, const EdgeTable& edges,
                                  const std::vector<std::uint32_t>& patch, std::uint32_t count) {
   std::vector<bool> closed(count, true);
+  std::vector<std::pair<std::uint32_t, int>> sides;  // (patch, +1 forward / -1 backward)
   for (std::uint32_t e = 0; e < edges.num_edges(); ++e) {
     const auto uses = edges.uses(e);
-    // Balance per patch among this edge's uses (few uses per edge: quadratic is fine).
+    if (uses.size() > 8) {
+      // Many faces on one edge (200,000 copies of one triangle): balance by patch
+      // after sorting, not use against use.
+      sides.clear();
+      for (std::uint32_t d : uses)
+        sides.push_back({patch[edges.poly_of(d)], edges.forward(d) ? 1 : -1});
+      std::sort(sides.begin(), sides.end());
+      for (std::size_t i = 0; i < sides.size();) {
+        int balance = 0;
+        std::size_t j = i;
+        for (; j < sides.size() && sides[j].first == sides[i].first; ++j)
+          balance += sides[j].second;
+        if (balance != 0) closed[sides[i].first] = false;
+        i = j;
+      }
+      continue;
+    }
+    // Balance per patch among this edge's few uses.
     for (std::uint32_t c : uses) {
       const std::uint32_t pa = patch[edges.poly_of(c)];
       if (!closed[pa]) continue;

@@ -7,11 +7,13 @@
 // from a count in the file); the tables it fills go through restore(), which checks
 // every key and validates the model.
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <unordered_map>
 
 #include "cellforge/topo/snapshot.h"
 #include "io/formats.h"
@@ -32,7 +34,10 @@ void put_number(std::string& out, double d) {
   out += buf;
 }
 
-void put_string(std::string& out, std::string_view s) {
+void put_string(std::string& out, std::string_view text) {
+  // The reader takes only UTF-8: a name set through the API that is not UTF-8 is
+  // written with U+FFFD for its stray bytes.
+  const std::string s = valid_utf8(text);
   out += '"';
   for (char ch : s) {
     const auto c = static_cast<unsigned char>(ch);
@@ -183,6 +188,10 @@ class JsonReader {
     return parse_error("json", position_of(text_, offset), message);
   }
   Error error(const std::string& message) const { return error_at(i_, message); }
+  std::string line_col(std::size_t offset) const {
+    const TextPos p = position_of(text_, offset);
+    return std::to_string(p.line) + ":" + std::to_string(p.col);
+  }
   std::size_t offset() const { return i_; }
 
   void skip_ws() {
@@ -320,8 +329,29 @@ class JsonReader {
     if (Status s = expect('{'); !s) return s;
     if (accept('}')) return Status::Ok();
     std::string key;
+    // The keys seen in this object and where: a key given twice is an error (the
+    // reader would otherwise append the second value to the first).
+    // The model's objects have a handful of keys: the first eight are kept in place
+    // (short keys need no allocation), the rest in a hash map.
+    std::array<std::pair<std::string, std::size_t>, 8> first_keys;
+    std::unordered_map<std::string, std::size_t> more_keys;
+    std::size_t count = 0;
     do {
+      skip_ws();
+      const std::size_t at = i_;
       if (Status s = string(key); !s) return s;
+      std::size_t first = std::string::npos;
+      for (std::size_t k = 0; k < std::min(count, first_keys.size()); ++k)
+        if (first_keys[k].first == key) first = first_keys[k].second;
+      if (const auto it = more_keys.find(key); it != more_keys.end()) first = it->second;
+      if (first != std::string::npos)
+        return error_at(at,
+                        "duplicate key " + quote(key) + " (first at line " + line_col(first) + ")");
+      if (count < first_keys.size())
+        first_keys[count] = {key, at};
+      else
+        more_keys.emplace(key, at);
+      ++count;
       if (Status s = expect(':'); !s) return s;
       if (Status s = member(key); !s) return s;
     } while (accept(','));
@@ -610,7 +640,7 @@ void append(Snapshot& a, const Snapshot& b) {
 }  // namespace
 
 Result<ReadResult> read_json(Model& m, std::string_view text) {
-  if (text.empty()) return byte_error("json", 0, "empty file");
+  if (Status s = check_not_blank("json", text); !s) return s.error();
   if (Status s = check_utf8("json", text); !s) return s.error();
   JsonReader reader(text);
   Snapshot file;

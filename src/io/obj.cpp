@@ -33,7 +33,7 @@ bool resolve(std::int64_t i, std::int64_t count, std::int64_t& out) {
 }  // namespace
 
 Result<PolygonSoup> parse_obj(std::string_view text) {
-  if (text.empty()) return byte_error("obj", 0, "empty file");
+  if (Status s = check_not_blank("obj", text); !s) return s.error();
   if (Status s = check_utf8("obj", text); !s) return s.error();
   Tokenizer tok(text, true);
   ObjState st;

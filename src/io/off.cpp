@@ -28,7 +28,7 @@ Line next_line(Tokenizer& tok, std::string_view& pending) {
 }  // namespace
 
 Result<PolygonSoup> parse_off(std::string_view text) {
-  if (text.empty()) return byte_error("off", 0, "empty file");
+  if (Status s = check_not_blank("off", text); !s) return s.error();
   if (Status s = check_utf8("off", text); !s) return s.error();
   Tokenizer tok(text, true);
   std::string_view pending = tok.next();

@@ -130,7 +130,10 @@ Result<PolygonSoup> parse_ascii(std::string_view text) {
 }  // namespace
 
 Result<PolygonSoup> parse_stl(std::span<const std::uint8_t> bytes) {
-  if (bytes.empty()) return byte_error("stl", 0, "empty file");
+  if (Status s =
+          check_not_blank("stl", {reinterpret_cast<const char*>(bytes.data()), bytes.size()});
+      !s)
+    return s.error();
   const bool solid = starts_with_solid(bytes);
   if (bytes.size() >= kHeader) {
     const std::uint64_t n = read_u32(bytes.data() + 80);

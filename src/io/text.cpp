@@ -80,6 +80,37 @@ Status check_utf8(std::string_view format, std::string_view text) {
   return Status::Ok();
 }
 
+std::string valid_utf8(std::string_view text) {
+  std::string out;
+  out.reserve(text.size());
+  for (std::size_t i = 0; i < text.size();) {
+    const std::size_t n = static_cast<unsigned char>(text[i]) < 0x80 ? 1 : utf8_length(text, i);
+    if (n == 0) {
+      out += "\xEF\xBF\xBD";  // U+FFFD
+      ++i;
+    } else {
+      out.append(text.substr(i, n));
+      i += n;
+    }
+  }
+  return out;
+}
+
+bool is_blank(std::string_view text) {
+  for (char c : text) {
+    if (c != ' ' && c != '\t' && c != '\n' && c != '\r' && c != '\f' && c != '\v') return false;
+  }
+  return true;
+}
+
+Status check_not_blank(std::string_view format, std::string_view text) {
+  if (text.empty()) return byte_error(format, 0, "empty file");
+  if (is_blank(text))
+    return byte_error(format, 0,
+                      "empty file (" + std::to_string(text.size()) + " bytes of whitespace only)");
+  return Status::Ok();
+}
+
 void Tokenizer::skip_space() {
   while (i_ < text_.size()) {
     const char c = text_[i_];

@@ -25,6 +25,15 @@ Error byte_error(std::string_view format, std::size_t offset, const std::string&
 // surrogates and code points above U+10FFFF are invalid), or Ok.
 Status check_utf8(std::string_view format, std::string_view text);
 
+// The text with each byte that is not part of valid UTF-8 replaced by U+FFFD.
+std::string valid_utf8(std::string_view text);
+// Whether the text is only whitespace (or nothing).
+bool is_blank(std::string_view text);
+// The one rule for empty input in every format: a file of no bytes, or of
+// whitespace only, is an error "byte 0: empty file". A file with content but no
+// geometry (comments only, zero counts) is a model without entities.
+Status check_not_blank(std::string_view format, std::string_view text);
+
 // Whitespace-separated tokens with their positions. `#` comments are skipped when
 // `hash_comments` is set.
 class Tokenizer {

@@ -2,13 +2,18 @@
 // of indices; holes are spliced in where they touch it or through bridges to
 // visible outer vertices (nearest first, each candidate checked with exact
 // orientation tests), the ring is split where it passes a point twice crossing
-// itself, then ears are cut while one exists. O(n^2) per face (O(n^3) with
-// pinched rings), fine for the faces a B-rep has; triangles, the common case, are
-// returned as they are.
+// itself, then ears are cut while one exists. Ears are sought along the ring from
+// the last one cut, and a candidate is tested only against the vertices in the grid
+// cells its box covers, so that a face with thousands of holes (a plate after a
+// Boolean) costs about n log n rather than n^2; repeated points are found by hashing.
+// Triangles, the common case, are returned as they are.
 #include "cellforge/io/triangulate.h"
 
 #include <algorithm>
+#include <cmath>
+#include <cstring>
 #include <numeric>
+#include <unordered_map>
 
 #include "cellforge/geom/intersect.h"
 #include "cellforge/geom/polygon.h"
@@ -18,6 +23,19 @@ namespace cellforge::io {
 namespace {
 
 using Tri = std::array<std::uint32_t, 3>;
+
+struct PointHash {
+  std::size_t operator()(Vec2 p) const {
+    std::uint64_t h = 0;
+    for (double d : {p.x + 0.0, p.y + 0.0}) {  // -0.0 == 0.0: one key
+      std::uint64_t bits;
+      std::memcpy(&bits, &d, sizeof bits);
+      h = (h ^ bits) * 0x9E3779B97F4A7C15ull;
+      h ^= h >> 29;
+    }
+    return static_cast<std::size_t>(h);
+  }
+};
 
 // Direction p->q leaves vertex p (between prev and next, interior on the left)
 // into the interior.
@@ -35,8 +53,22 @@ class Clipper {
   // any other through a bridge from its rightmost vertex, rightmost hole first, so
   // that the holes not yet joined lie to the left of the bridge's start.
   void bridge(std::vector<std::uint32_t>& outer, std::vector<std::vector<std::uint32_t>> holes) {
+    // Whether any hole shares a point with another loop at all: usually none does,
+    // and the search for touching holes is skipped.
+    bool any_touch = false;
+    {
+      std::unordered_map<Vec2, std::size_t, PointHash> loop_of;
+      const auto note = [&](const std::vector<std::uint32_t>& loop, std::size_t id) {
+        for (std::uint32_t v : loop) {
+          auto [it, fresh] = loop_of.try_emplace(p_[v], id);
+          if (!fresh && it->second != id) any_touch = true;
+        }
+      };
+      note(outer, 0);
+      for (std::size_t h = 0; h < holes.size(); ++h) note(holes[h], h + 1);
+    }
     while (!holes.empty()) {
-      if (join_touching(outer, holes)) continue;
+      if (any_touch && join_touching(outer, holes)) continue;
       const auto right_of = [&](std::uint32_t a, std::uint32_t b) {  // a beyond b
         return p_[a].x > p_[b].x || (p_[a].x == p_[b].x && p_[a].y < p_[b].y);
       };
@@ -81,33 +113,98 @@ class Clipper {
     const auto in_cone = [&](std::size_t k, Vec2 q) {
       return inside_cone(at(k + n - 1), at(k), at(k + 1), q);
     };
-    for (std::size_t i = 0; i < n; ++i)
-      for (std::size_t j = i + 1; j < n; ++j) {
-        if (at(i) != at(j)) continue;
-        if (!(in_cone(i, at(j + n - 1)) || in_cone(i, at(j + 1))) ||
-            !(in_cone(j, at(i + n - 1)) || in_cone(j, at(i + 1))))
-          continue;
-        rings.emplace_back(ring.begin() + i + 1, ring.begin() + j + 1);
-        rings.emplace_back(ring.begin() + j + 1, ring.end());
-        rings.back().insert(rings.back().end(), ring.begin(), ring.begin() + i + 1);
-        return true;
-      }
+    // The positions where the ring passes a point again, as pairs (i, j), i < j,
+    // tried in order.
+    std::unordered_map<Vec2, std::vector<std::size_t>, PointHash> seen;
+    std::vector<std::pair<std::size_t, std::size_t>> repeats;
+    for (std::size_t k = 0; k < n; ++k) {
+      auto& list = seen[at(k)];
+      for (std::size_t i : list) repeats.push_back({i, k});
+      list.push_back(k);
+    }
+    std::sort(repeats.begin(), repeats.end());
+    for (auto [i, j] : repeats) {
+      if (!(in_cone(i, at(j + n - 1)) || in_cone(i, at(j + 1))) ||
+          !(in_cone(j, at(i + n - 1)) || in_cone(j, at(i + 1))))
+        continue;
+      rings.emplace_back(ring.begin() + i + 1, ring.begin() + j + 1);
+      rings.emplace_back(ring.begin() + j + 1, ring.end());
+      rings.back().insert(rings.back().end(), ring.begin(), ring.begin() + i + 1);
+      return true;
+    }
     return false;
   }
 
-  void clip_ring(std::vector<std::uint32_t> ring, std::vector<Tri>& out) const {
-    while (ring.size() > 3) {
-      const std::size_t n = ring.size();
-      std::size_t pick = n;
-      for (std::size_t i = 0; i < n && pick == n; ++i)
-        if (is_ear(ring, i, true)) pick = i;
-      for (std::size_t i = 0; i < n && pick == n; ++i)  // degenerate: any convex corner
-        if (is_ear(ring, i, false)) pick = i;
-      if (pick == n) pick = 0;  // all on a line: zero-area triangles keep the edges
-      out.push_back({ring[(pick + n - 1) % n], ring[pick], ring[(pick + 1) % n]});
-      ring.erase(ring.begin() + static_cast<std::ptrdiff_t>(pick));
+  // Cuts ears off the ring: the next strict ear along the ring from the last one
+  // cut (no ring vertex inside or on the triangle but its corners' points); when a
+  // whole round finds none, any convex corner; when there is none, the current
+  // corner (all on a line: zero-area triangles keep the edges).
+  void clip_ring(const std::vector<std::uint32_t>& ring, std::vector<Tri>& out) const {
+    std::size_t count = ring.size();
+    if (count < 3) return;
+    std::vector<std::uint32_t> prev(count), next(count);
+    std::vector<char> alive(count, 1);
+    for (std::size_t k = 0; k < count; ++k) {
+      prev[k] = static_cast<std::uint32_t>((k + count - 1) % count);
+      next[k] = static_cast<std::uint32_t>((k + 1) % count);
     }
-    if (ring.size() == 3) out.push_back({ring[0], ring[1], ring[2]});
+    // A grid of about one ring vertex a cell over the ring's box.
+    double lo[2] = {1e308, 1e308}, hi[2] = {-1e308, -1e308};
+    for (std::uint32_t v : ring) {
+      lo[0] = std::min(lo[0], p_[v].x), hi[0] = std::max(hi[0], p_[v].x);
+      lo[1] = std::min(lo[1], p_[v].y), hi[1] = std::max(hi[1], p_[v].y);
+    }
+    const int g = std::max(1, static_cast<int>(std::sqrt(static_cast<double>(count))));
+    const double w[2] = {(hi[0] - lo[0]) / g, (hi[1] - lo[1]) / g};
+    const auto cell = [&](double x, int axis) {
+      if (!(w[axis] > 0)) return 0;
+      const double c = std::floor((x - lo[axis]) / w[axis]);
+      return static_cast<int>(std::clamp(c, 0.0, static_cast<double>(g - 1)));
+    };
+    std::vector<std::vector<std::uint32_t>> grid(static_cast<std::size_t>(g) * g);
+    for (std::size_t k = 0; k < count; ++k) {
+      const Vec2 q = p_[ring[k]];
+      grid[static_cast<std::size_t>(cell(q.y, 1)) * g + cell(q.x, 0)].push_back(static_cast<std::uint32_t>(k));
+    }
+    const auto is_ear = [&](std::uint32_t k, bool strict) {
+      const Vec2 a = p_[ring[prev[k]]], b = p_[ring[k]], c = p_[ring[next[k]]];
+      if (orient2d(a, b, c) <= 0) return false;
+      if (!strict) return true;
+      const int x0 = cell(std::min({a.x, b.x, c.x}), 0), x1 = cell(std::max({a.x, b.x, c.x}), 0);
+      const int y0 = cell(std::min({a.y, b.y, c.y}), 1), y1 = cell(std::max({a.y, b.y, c.y}), 1);
+      for (int y = y0; y <= y1; ++y)
+        for (int x = x0; x <= x1; ++x)
+          for (std::uint32_t m : grid[static_cast<std::size_t>(y) * g + x]) {
+            if (!alive[m]) continue;
+            const Vec2 q = p_[ring[m]];
+            if (q == a || q == b || q == c) continue;
+            if (orient2d(a, b, q) >= 0 && orient2d(b, c, q) >= 0 && orient2d(c, a, q) >= 0) return false;
+          }
+      return true;
+    };
+    const auto cut = [&](std::uint32_t k) {
+      out.push_back({ring[prev[k]], ring[k], ring[next[k]]});
+      next[prev[k]] = next[k];
+      prev[next[k]] = prev[k];
+      alive[k] = 0;
+      --count;
+    };
+    std::uint32_t cur = 0;
+    while (count > 3) {
+      std::uint32_t pick = cur;
+      bool found = false;
+      for (std::size_t s = 0; s < count && !found; ++s, pick = next[pick]) found = is_ear(pick, true);
+      if (found) {
+        pick = prev[pick];  // the loop stepped past it
+      } else {
+        pick = cur;
+        for (std::size_t s = 0; s < count && !found; ++s, pick = next[pick]) found = is_ear(pick, false);
+        pick = found ? prev[pick] : cur;
+      }
+      cur = next[pick];
+      cut(pick);
+    }
+    out.push_back({ring[prev[cur]], ring[cur], ring[next[cur]]});
   }
 
   // Splices in a hole with a vertex at a point of the ring, at the copy of that
@@ -141,15 +238,21 @@ class Clipper {
                           const std::vector<std::uint32_t>& hole, std::size_t mi,
                           const std::vector<std::vector<std::uint32_t>>& others) {
     const Vec2 m = p_[hole[mi]];
-    std::vector<std::size_t> order(outer.size());
-    std::iota(order.begin(), order.end(), 0);
     const auto dist = [&](std::size_t k) {
       const Vec2 q = p_[outer[k]];
       return (q.x - m.x) * (q.x - m.x) + (q.y - m.y) * (q.y - m.y);
     };
-    std::sort(order.begin(), order.end(),
-              [&](std::size_t a, std::size_t b) { return dist(a) < dist(b); });
-    for (std::size_t k : order) {
+    // Nearest first, from a heap: usually one of the first few is visible.
+    std::vector<std::pair<double, std::size_t>> heap;
+    heap.reserve(outer.size());
+    for (std::size_t k = 0; k < outer.size(); ++k) heap.push_back({dist(k), k});
+    const auto farther = [](const auto& a, const auto& b) { return a > b; };
+    std::make_heap(heap.begin(), heap.end(), farther);
+    std::size_t nearest = heap.empty() ? 0 : heap.front().second;
+    while (!heap.empty()) {
+      std::pop_heap(heap.begin(), heap.end(), farther);
+      const std::size_t k = heap.back().second;
+      heap.pop_back();
       const Vec2 q = p_[outer[k]];
       const Vec2 q_prev = p_[outer[(k + outer.size() - 1) % outer.size()]];
       const Vec2 q_next = p_[outer[(k + 1) % outer.size()]];
@@ -159,7 +262,7 @@ class Clipper {
                       [&](const auto& other) { return clear(other, m, q); }))
         return k;
     }
-    return order.front();  // nothing visible (a degenerate face): the nearest vertex
+    return nearest;  // nothing visible (a degenerate face): the nearest vertex
   }
 
   // Segment mq, from a point m of hole loop `loop` or beside it, meets none of its

@@ -1,5 +1,7 @@
 #include "shape/draft.h"
 
+#include <cmath>
+
 namespace cellforge::shape {
 
 Draft Draft::solid(std::string kind) {
@@ -64,6 +66,17 @@ void Draft::faceting(const Faceting& f, int segments) {
 }
 
 Result<GroupId> commit(Model& m, const Draft& d) {
+  // Every result finite and within the predicates' range (faceting.h).
+  for (std::size_t i = 0; i < d.mesh.positions.size(); ++i) {
+    const Vec3 p = d.mesh.positions[i];
+    for (double c : {p.x, p.y, p.z}) {
+      if (!(std::fabs(c) <= kMaxCoordinate)) {
+        return invalid("the parameters put vertex " + std::to_string(i) + " at (" +
+                       format_number(p.x) + ", " + format_number(p.y) + ", " + format_number(p.z) +
+                       "), beyond the coordinate limit of 2^120 (about 1.3e36)");
+      }
+    }
+  }
   auto built = build_mesh(m, d.mesh);
   if (!built) return built.error();
   const GroupId g = built->group;

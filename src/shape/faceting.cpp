@@ -3,8 +3,10 @@
 
 #include <algorithm>
 #include <charconv>
+#include <climits>
 #include <cmath>
 #include <numbers>
+#include <utility>
 
 namespace cellforge::shape {
 
@@ -20,19 +22,43 @@ double reduce_degrees(double x) {
 
 }  // namespace
 
+int saturated_count(double x) {
+  if (!(x > 0)) return 0;
+  if (x >= static_cast<double>(INT_MAX)) return INT_MAX;
+  return static_cast<int>(x);
+}
+
+Status check_faceting(const Faceting& f) {
+  for (const auto& [name, value] : {std::pair{"fn", f.fn}, {"fa", f.fa}, {"fs", f.fs}}) {
+    if (!std::isfinite(value) || value < 0)
+      return Error{ErrorCode::kInvalidInput,
+                   std::string(name) + " must be finite and >= 0, got " + format_number(value)};
+  }
+  return Status::Ok();
+}
+
+Status check_vertex_count(std::uint64_t vertices, std::uint64_t max_vertices,
+                          const std::string& what) {
+  if (vertices <= max_vertices) return Status::Ok();
+  return Error{ErrorCode::kInvalidInput, what + " would make " + std::to_string(vertices) +
+                                             " vertices, more than the limit of " +
+                                             std::to_string(max_vertices) +
+                                             " (max_vertices raises it)"};
+}
+
 int fragments(double r, const Faceting& f) {
   const double fn = f.fn;
   if (r < kGridFine || std::isinf(fn) || std::isnan(fn)) return 3;
-  if (fn > 0.0) return static_cast<int>(fn >= 3 ? fn : 3);
+  if (fn > 0.0) return fn >= 3 ? saturated_count(fn) : 3;
   const double fa = std::max(f.fa, kMinimumFaFs);
   const double fs = std::max(f.fs, kMinimumFaFs);
-  return static_cast<int>(
+  return saturated_count(
       std::ceil(std::fmax(std::fmin(360.0 / fa, r * 2 * std::numbers::pi / fs), 5)));
 }
 
 int arc_fragments(double r, double angle_degrees, const Faceting& f) {
   const double n = std::ceil(fragments(r, f) * std::fabs(angle_degrees) / 360.0);
-  return std::max(1, static_cast<int>(n));
+  return std::max(1, saturated_count(n));
 }
 
 double sin_degrees(double x) {

@@ -67,8 +67,12 @@ Status check_sides(int sides) {
 }
 
 Result<GroupId> regular_solid(Model& m, const char* kind, int sides, double r1, double r2, double h,
-                              bool center) {
+                              bool center, std::uint64_t max_vertices) {
   if (Status s = check_sides(sides); !s) return s.error();
+  if (Status s = check_vertex_count(2ull * static_cast<std::uint64_t>(sides), max_vertices,
+                                    std::string(kind) + " sides=" + std::to_string(sides));
+      !s)
+    return s.error();
   if (Status s = need_positive("h", h); !s) return s.error();
   Draft d = Draft::solid(kind);
   d.attribute("sides", sides);
@@ -106,7 +110,12 @@ Result<GroupId> make_cylinder(Model& m, const CylinderOptions& o) {
   if (Status s = need_non_negative("r1", o.r1); !s) return s.error();
   if (Status s = need_non_negative("r2", o.r2); !s) return s.error();
   if (o.r1 == 0 && o.r2 == 0) return invalid("r1 and r2 are both 0");
+  if (Status s = check_faceting(o.faceting); !s) return s.error();
   const int n = fragments(std::max(o.r1, o.r2), o.faceting);
+  if (Status s = check_vertex_count(2ull * static_cast<std::uint64_t>(n), o.faceting.max_vertices,
+                                    "a cylinder of " + std::to_string(n) + " segments");
+      !s)
+    return s.error();
   const double z1 = o.center ? -o.h / 2 : 0, z2 = o.center ? o.h / 2 : o.h;
   Draft d = Draft::solid("cylinder");
   d.attribute("h", o.h);
@@ -126,8 +135,14 @@ Result<GroupId> make_cylinder(Model& m, const CylinderOptions& o) {
 
 Result<GroupId> make_sphere(Model& m, const SphereOptions& o) {
   if (Status s = need_positive("r", o.r); !s) return s.error();
+  if (Status s = check_faceting(o.faceting); !s) return s.error();
   const int n = fragments(o.r, o.faceting);
-  const int rings = (n + 1) / 2;
+  const int rings = static_cast<int>((static_cast<std::int64_t>(n) + 1) / 2);
+  if (Status s = check_vertex_count(
+          static_cast<std::uint64_t>(n) * static_cast<std::uint64_t>(rings),
+          o.faceting.max_vertices, "a sphere of " + std::to_string(n) + " segments");
+      !s)
+    return s.error();
   Draft d = Draft::solid("sphere");
   d.attribute("r", o.r);
   d.faceting(o.faceting, n);
@@ -182,14 +197,14 @@ Result<GroupId> make_torus(Model& m, const TorusOptions& o) {
 
 Result<GroupId> make_regular_prism(Model& m, const RegularPrismOptions& o) {
   if (Status s = need_positive("r", o.r); !s) return s.error();
-  auto g = regular_solid(m, "prism", o.sides, o.r, o.r, o.h, o.center);
+  auto g = regular_solid(m, "prism", o.sides, o.r, o.r, o.h, o.center, o.max_vertices);
   if (g) m.set_attribute(*g, "r", format_number(o.r));
   return g;
 }
 
 Result<GroupId> make_pyramid(Model& m, const PyramidOptions& o) {
   if (Status s = need_positive("r", o.r); !s) return s.error();
-  auto g = regular_solid(m, "pyramid", o.sides, o.r, 0, o.h, o.center);
+  auto g = regular_solid(m, "pyramid", o.sides, o.r, 0, o.h, o.center, o.max_vertices);
   if (g) m.set_attribute(*g, "r", format_number(o.r));
   return g;
 }
@@ -197,7 +212,7 @@ Result<GroupId> make_pyramid(Model& m, const PyramidOptions& o) {
 Result<GroupId> make_frustum(Model& m, const FrustumOptions& o) {
   if (Status s = need_positive("r1", o.r1); !s) return s.error();
   if (Status s = need_positive("r2", o.r2); !s) return s.error();
-  auto g = regular_solid(m, "frustum", o.sides, o.r1, o.r2, o.h, o.center);
+  auto g = regular_solid(m, "frustum", o.sides, o.r1, o.r2, o.h, o.center, o.max_vertices);
   if (g) {
     m.set_attribute(*g, "r1", format_number(o.r1));
     m.set_attribute(*g, "r2", format_number(o.r2));

@@ -109,7 +109,12 @@ Result<Region> rectangle(Vec2 size, bool center) {
 Result<Region> circle(double r, const Faceting& faceting) {
   if (!(r > 0) || !std::isfinite(r))
     return invalid("circle r must be positive, got " + format_number(r));
+  if (Status s = check_faceting(faceting); !s) return s.error();
   const int n = fragments(r, faceting);
+  if (Status s = check_vertex_count(static_cast<std::uint64_t>(n), faceting.max_vertices,
+                                    "a circle of " + std::to_string(n) + " segments");
+      !s)
+    return s.error();
   Region region;
   region.loops.emplace_back();
   for (int i = 0; i < n; ++i) {

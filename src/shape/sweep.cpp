@@ -60,14 +60,14 @@ double lerp(double a, double b, double t) { return (1 - t) * a + t * b; }
 
 double helix_slices(double r_sqr, double height, double twist, const Faceting& f) {
   twist = std::fabs(twist);
-  const int min_slices = std::max(static_cast<int>(std::ceil(twist / 120.0)), 1);
+  const int min_slices = std::max(saturated_count(std::ceil(twist / 120.0)), 1);
   if (std::sqrt(r_sqr) < kGridFine || !std::isfinite(f.fn)) return min_slices;
-  if (f.fn > 0.0) return std::max(static_cast<int>(std::ceil(twist / 360.0 * f.fn)), min_slices);
+  if (f.fn > 0.0) return std::max(saturated_count(std::ceil(twist / 360.0 * f.fn)), min_slices);
   const double t = twist * std::numbers::pi / 180;
   const double c = height / t;
   const double arc = t * std::sqrt(r_sqr + c * c);
-  const int fa_slices = static_cast<int>(std::ceil(twist / std::max(f.fa, kMinimumFaFs)));
-  const int fs_slices = static_cast<int>(std::ceil(arc / std::max(f.fs, kMinimumFaFs)));
+  const int fa_slices = saturated_count(std::ceil(twist / std::max(f.fa, kMinimumFaFs)));
+  const int fs_slices = saturated_count(std::ceil(arc / std::max(f.fs, kMinimumFaFs)));
   return std::max(std::min(fa_slices, fs_slices), min_slices);
 }
 
@@ -75,9 +75,9 @@ int conical_helix_slices(double r_sqr, double height, double twist, double scale
                          const Faceting& f) {
   twist = std::fabs(twist);
   const double r = std::sqrt(r_sqr);
-  const int min_slices = std::max(static_cast<int>(std::ceil(twist / 120.0)), 1);
+  const int min_slices = std::max(saturated_count(std::ceil(twist / 120.0)), 1);
   if (r < kGridFine || !std::isfinite(f.fn)) return min_slices;
-  if (f.fn > 0.0) return std::max(static_cast<int>(std::ceil(twist * f.fn / 360)), min_slices);
+  if (f.fn > 0.0) return std::max(saturated_count(std::ceil(twist * f.fn / 360)), min_slices);
   const double rads = twist * std::numbers::pi / 180;
   const double end = scale > 1 ? rads * scale / (scale - 1) : rads / (1 - scale);
   const double start = end - rads;
@@ -85,16 +85,16 @@ int conical_helix_slices(double r_sqr, double height, double twist, double scale
   auto spiral = [a](double th) { return 0.5 * a * (th * std::sqrt(1 + th * th) + std::asinh(th)); };
   const double len = spiral(end) - spiral(start);
   const double total = std::sqrt(len * len + height * height);
-  const int fs_slices = static_cast<int>(std::ceil(total / std::max(f.fs, kMinimumFaFs)));
-  const int fa_slices = static_cast<int>(std::ceil(twist / std::max(f.fa, kMinimumFaFs)));
+  const int fs_slices = saturated_count(std::ceil(total / std::max(f.fs, kMinimumFaFs)));
+  const int fa_slices = saturated_count(std::ceil(twist / std::max(f.fa, kMinimumFaFs)));
   return std::max(std::min(fa_slices, fs_slices), min_slices);
 }
 
 int diagonal_slices(double delta_sqr, double height, const Faceting& f) {
   if (std::sqrt(delta_sqr) < kGridFine || !std::isfinite(f.fn)) return 1;
-  if (f.fn > 0.0) return std::max(static_cast<int>(f.fn), 1);
+  if (f.fn > 0.0) return std::max(saturated_count(f.fn), 1);
   const double len = std::sqrt(delta_sqr + height * height);
-  return std::max(static_cast<int>(std::ceil(len / std::max(f.fs, kMinimumFaFs))), 1);
+  return std::max(saturated_count(std::ceil(len / std::max(f.fs, kMinimumFaFs))), 1);
 }
 
 int slices_for(const Profile& p, const LinearExtrudeOptions& o) {
@@ -139,7 +139,20 @@ Status check_extrude(const LinearExtrudeOptions& o, bool has_holes) {
                  "scale 0 closes the top in an apex, which a region with holes cannot have"};
   }
   if (o.slices < 0) return invalid("slices must be >= 0, got " + std::to_string(o.slices));
-  return Status::Ok();
+  return check_faceting(o.faceting);
+}
+
+std::uint64_t point_count(const std::vector<std::vector<Vec2>>& loops) {
+  std::uint64_t n = 0;
+  for (const auto& l : loops) n += l.size();
+  return n;
+}
+
+// The profile's points once per slice boundary, checked before anything is made.
+Status check_extrude_size(const Profile& p, const LinearExtrudeOptions& o, int slices) {
+  return check_vertex_count(point_count(p.loops) * (static_cast<std::uint64_t>(slices) + 1),
+                            o.faceting.max_vertices,
+                            "linear_extrude of " + std::to_string(slices) + " slices");
 }
 
 void extrude_attributes(Draft& d, const LinearExtrudeOptions& o, int slices) {
@@ -237,9 +250,15 @@ Result<Revolution> plan_revolution(const std::vector<std::vector<Vec2>>& loops,
     }
   }
   if (min_x == max_x) return invalid("the profile lies on the axis x = 0");
+  if (Status s = check_faceting(o.faceting); !s) return s.error();
   Revolution r;
   r.closed = std::fabs(o.angle) == 360;
   r.sections = arc_fragments(max_x - min_x, o.angle, o.faceting);
+  if (Status s = check_vertex_count(
+          point_count(loops) * (static_cast<std::uint64_t>(r.sections) + 1),
+          o.faceting.max_vertices, "rotate_extrude of " + std::to_string(r.sections) + " sections");
+      !s)
+    return s.error();
   r.start = o.start.value_or(r.closed ? 180.0 : 0.0);
   r.standard = (min_x >= 0) == (o.angle > 0);
   return r;
@@ -342,6 +361,7 @@ Result<Draft> extrude_draft(const Region& region, const LinearExtrudeOptions& o)
   if (Status s = check_extrude(o, region.loops.size() > 1); !s) return s.error();
   const Profile p{region.loops, true};
   const int slices = slices_for(p, o);
+  if (Status s = check_extrude_size(p, o, slices); !s) return s.error();
   Draft d = Draft::solid("linear_extrude");
   extrude_attributes(d, o, slices);
   extrude_into(d, p, o, slices);
@@ -370,6 +390,7 @@ Result<GroupId> linear_extrude(Model& m, const Polyline& profile, const LinearEx
   if (Status s = check_extrude(o, false); !s) return s.error();
   const Profile p{{profile.points}, false};
   const int slices = slices_for(p, o);
+  if (Status s = check_extrude_size(p, o, slices); !s) return s.error();
   Draft d = Draft::sheet("linear_extrude");
   extrude_attributes(d, o, slices);
   extrude_into(d, p, o, slices);
@@ -379,7 +400,9 @@ Result<GroupId> linear_extrude(Model& m, const Polyline& profile, const LinearEx
 Result<GroupId> linear_extrude(Model& m, Vec2 point, const LinearExtrudeOptions& o) {
   if (!std::isfinite(point.x) || !std::isfinite(point.y)) return invalid("point is not finite");
   if (Status s = check_extrude(o, false); !s) return s.error();
-  const int slices = slices_for(Profile{{{point}}, false}, o);
+  const Profile p{{{point}}, false};
+  const int slices = slices_for(p, o);
+  if (Status s = check_extrude_size(p, o, slices); !s) return s.error();
   Draft d = Draft::sheet("linear_extrude");
   extrude_attributes(d, o, slices);
   const double z0 = o.center ? -o.height / 2 : 0, z1 = o.center ? o.height / 2 : o.height;
@@ -413,6 +436,7 @@ Result<GroupId> rotate_extrude(Model& m, const Polyline& profile, const RotateEx
 
 Result<GroupId> rotate_extrude(Model& m, Vec2 point, const RotateExtrudeOptions& o) {
   if (!std::isfinite(point.x) || !std::isfinite(point.y)) return invalid("point is not finite");
+  if (Status s = check_faceting(o.faceting); !s) return s.error();
   Draft d = Draft::sheet("rotate_extrude");
   if (point.x == 0) {  // the sweep of a point on the axis is that point
     d.vertex({0, 0, point.y});

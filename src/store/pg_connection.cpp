@@ -408,6 +408,7 @@ END $$)"};
     if (Status s = begin("BEGIN READ ONLY"); !s) return s.error();
     const long ms = std::max(1L, static_cast<long>(options.timeout * 1000));
     Status s = exec("SET LOCAL statement_timeout = " + std::to_string(ms), {});
+    if (s) s = exec("SET LOCAL bytea_output = 'hex'", {});  // blobs as \x.. on both backends
     if (!s) {
       rollback();
       return s.error();
@@ -428,12 +429,23 @@ END $$)"};
     QueryResult out;
     const int n = PQnfields(r.r);
     for (int c = 0; c < n; ++c) out.columns.emplace_back(PQfname(r.r, c));
+    // The kind of each column from its type (pg_type's OIDs): int2, int4, int8, oid;
+    // float4, float8, numeric; bytea.
+    std::vector<ValueKind> kinds;
+    for (int c = 0; c < n; ++c) {
+      const Oid type = PQftype(r.r, c);
+      kinds.push_back(type == 20 || type == 21 || type == 23 || type == 26 ? ValueKind::kInteger
+                      : type == 700 || type == 701 || type == 1700         ? ValueKind::kReal
+                      : type == 17                                         ? ValueKind::kBlob
+                                                                           : ValueKind::kText);
+    }
     for (int k = 0, rows = PQntuples(r.r); k < rows; ++k) {
       if (options.max_rows && out.rows.size() == options.max_rows) {
         out.truncated = true;
         break;
       }
       auto& row = out.rows.emplace_back();
+      out.kinds.push_back(kinds);
       for (int c = 0; c < n; ++c) {
         if (PQgetisnull(r.r, k, c)) {
           row.emplace_back();

@@ -378,15 +378,31 @@ class SqlStore final : public Store {
   }
 
   Result<std::vector<VolumeInfo>> versions(const std::string& name) override {
+    if (Status s = check_volume_name(name); !s) return s.error();
     return volumes(std::string("SELECT ") + kVolumeColumns + " FROM volumes WHERE name = $1",
                    {name});
   }
 
-  Result<int> remove(const std::string& name) override {
+  Result<int> remove(const std::string& name) override { return remove_where(name, 0); }
+
+  Result<int> remove_version(const std::string& name, int version) override {
+    if (version < 1) {
+      return Error{ErrorCode::kInvalidInput,
+                   "a version is a number from 1, not " + std::to_string(version)};
+    }
+    return remove_where(name, version);
+  }
+
+  // Removes every version of `name` (version 0) or one.
+  Result<int> remove_where(const std::string& name, int version) {
+    if (Status s = check_volume_name(name); !s) return s.error();
     if (Status s = db_->begin_write(name); !s) return s.error();
     std::vector<std::int64_t> ids;
-    Status s = db_->select("SELECT id FROM volumes WHERE name = $1", {name},
-                           [&](const Row& r) { ids.push_back(r.i(0)); });
+    Status s = version > 0 ? db_->select("SELECT id FROM volumes WHERE name = $1 AND version = $2",
+                                         {name, std::int64_t{version}},
+                                         [&](const Row& r) { ids.push_back(r.i(0)); })
+                           : db_->select("SELECT id FROM volumes WHERE name = $1", {name},
+                                         [&](const Row& r) { ids.push_back(r.i(0)); });
     for (std::int64_t id : ids) {
       for (const char* table : kVolumeTables) {
         if (s) s = db_->exec(std::string("DELETE FROM ") + table + " WHERE volume_id = $1", {id});
@@ -398,9 +414,15 @@ class SqlStore final : public Store {
                       {tile_id(id, 0), tile_id(id + 1, 0) - 1});
       }
       if (s) s = db_->exec("DELETE FROM volume_boxes WHERE id = $1", {id});
+      if (s) s = db_->exec("DELETE FROM volumes WHERE id = $1", {id});
     }
-    if (s) s = db_->exec("DELETE FROM volumes WHERE name = $1", {name});
-    if (s) s = db_->exec("DELETE FROM object_volumes WHERE volume_name = $1", {name});
+    // The name leaves its objects when its last version goes.
+    bool left = false;
+    if (s) {
+      s = db_->select("SELECT 1 FROM volumes WHERE name = $1 LIMIT 1", {name},
+                      [&](const Row&) { left = true; });
+    }
+    if (s && !left) s = db_->exec("DELETE FROM object_volumes WHERE volume_name = $1", {name});
     if (!s) {
       db_->rollback();
       return s.error();
@@ -410,6 +432,7 @@ class SqlStore final : public Store {
   }
 
   Result<std::vector<std::string>> get_object(const std::string& name) override {
+    if (Status s = check_volume_name(name); !s) return s.error();
     std::vector<std::string> out;
     bool found = false;
     if (Status s = db_->begin_read(); !s) return s.error();
@@ -648,6 +671,7 @@ class SqlStore final : public Store {
   // Runs `body` on the id of (name, version) inside one read transaction.
   template <class Body>
   Status read(const std::string& name, int version, Body body) {
+    if (Status s = check_volume_name(name); !s) return s;
     if (Status s = db_->begin_read(); !s) return s;
     std::int64_t id = -1;
     Status s = version > 0
@@ -905,9 +929,29 @@ Status check_volume_name(const std::string& name) {
   if (!store::is_utf8(name)) {
     return Error{ErrorCode::kInvalidInput, "a volume name must be valid UTF-8"};
   }
-  for (unsigned char c : name) {
+  for (std::size_t i = 0; i < name.size(); ++i) {
+    const auto c = static_cast<unsigned char>(name[i]);
     if (c < 0x20 || c == 0x7F) {
       return Error{ErrorCode::kInvalidInput, "a volume name must not hold control characters"};
+    }
+    // Valid UTF-8 here: decode the code point of a lead byte.
+    if (c < 0xC0) continue;
+    const std::size_t n = c < 0xE0 ? 2 : c < 0xF0 ? 3 : 4;
+    std::uint32_t cp = c & (0x7F >> n);
+    for (std::size_t k = 1; k < n; ++k)
+      cp = (cp << 6) | (static_cast<unsigned char>(name[i + k]) & 0x3F);
+    char hex[16];
+    std::snprintf(hex, sizeof hex, "U+%04X", static_cast<unsigned>(cp));
+    if (cp >= 0x80 && cp <= 0x9F) {
+      return Error{ErrorCode::kInvalidInput,
+                   std::string("a volume name must not hold control characters (") + hex +
+                       " at byte " + std::to_string(i) + ")"};
+    }
+    if (cp == 0x061C || cp == 0x200E || cp == 0x200F || (cp >= 0x202A && cp <= 0x202E) ||
+        (cp >= 0x2066 && cp <= 0x2069) || cp == 0x2028 || cp == 0x2029) {
+      return Error{ErrorCode::kInvalidInput,
+                   std::string("a volume name must not hold invisible direction or line marks (") +
+                       hex + " at byte " + std::to_string(i) + ")"};
     }
   }
   return Status::Ok();

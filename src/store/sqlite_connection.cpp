@@ -264,13 +264,29 @@ class SqliteConnection final : public Connection {
         break;
       }
       auto& row = out.rows.emplace_back();
+      auto& kinds = out.kinds.emplace_back();
       for (int c = 0; c < n; ++c) {
-        if (sqlite3_column_type(st, c) == SQLITE_NULL) {
+        const int type = sqlite3_column_type(st, c);
+        kinds.push_back(type == SQLITE_INTEGER ? ValueKind::kInteger
+                        : type == SQLITE_FLOAT ? ValueKind::kReal
+                        : type == SQLITE_BLOB  ? ValueKind::kBlob
+                                               : ValueKind::kText);
+        if (type == SQLITE_NULL) {
           row.emplace_back();
-        } else if (sqlite3_column_type(st, c) == SQLITE_FLOAT) {
+        } else if (type == SQLITE_FLOAT) {
           char buf[32];
           std::snprintf(buf, sizeof buf, "%.17g", sqlite3_column_double(st, c));
           row.emplace_back(buf);
+        } else if (type == SQLITE_BLOB) {
+          const auto* p = static_cast<const unsigned char*>(sqlite3_column_blob(st, c));
+          const auto bytes = static_cast<std::size_t>(sqlite3_column_bytes(st, c));
+          static constexpr char kHex[] = "0123456789abcdef";
+          std::string hex = "\\x";
+          for (std::size_t k = 0; k < bytes; ++k) {
+            hex += kHex[p[k] >> 4];
+            hex += kHex[p[k] & 15];
+          }
+          row.emplace_back(std::move(hex));
         } else {
           const auto* p = reinterpret_cast<const char*>(sqlite3_column_text(st, c));
           row.emplace_back(std::string(p, static_cast<std::size_t>(sqlite3_column_bytes(st, c))));

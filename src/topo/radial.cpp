@@ -6,6 +6,9 @@
 // the edge axis T = end - start, right-handed, starting from the first use. All of
 // it is exact (geom/predicates.h): N, t and d are expansions of the input doubles.
 #include <algorithm>
+#include <cstdint>
+#include <functional>
+#include <unordered_map>
 
 #include "cellforge/geom/predicates.h"
 #include "topo/model_editor.h"
@@ -52,10 +55,14 @@ class RadialOrder {
 
   bool less(const Entry& a, const Entry& b) const {
     if (a.degenerate || b.degenerate) return a.degenerate && !b.degenerate;
-    if (radial_less(axis_, d0_, a.dir, b.dir)) return true;
-    if (radial_less(axis_, d0_, b.dir, a.dir)) return false;
+    if (angle_less(a.dir, b.dir)) return true;
+    if (angle_less(b.dir, a.dir)) return false;
     return !m_.is_reversed(a.use) && m_.is_reversed(b.use);
   }
+  bool angle_less(const ExactVec3& a, const ExactVec3& b) const {
+    return radial_less(axis_, d0_, a, b);
+  }
+  bool reversed(const Entry& a) const { return m_.is_reversed(a.use); }
 
   std::vector<Entry>& entries() { return entries_; }
   bool has_reference() const { return has_ref_; }
@@ -68,14 +75,87 @@ class RadialOrder {
   std::vector<Entry> entries_;
 };
 
+bool same_components(const Expansion& a, const Expansion& b) {
+  const auto x = a.components(), y = b.components();
+  return std::equal(x.begin(), x.end(), y.begin(), y.end());
+}
+
+bool same_direction(const ExactVec3& a, const ExactVec3& b) {
+  return same_components(a.x, b.x) && same_components(a.y, b.y) && same_components(a.z, b.z);
+}
+
+std::size_t direction_hash(const ExactVec3& d) {
+  std::size_t h = 0;
+  for (const Expansion* c : {&d.x, &d.y, &d.z}) {
+    for (double v : c->components()) h = h * 1000003u ^ std::hash<double>{}(v);
+    h = h * 31u + 7u;
+  }
+  return h;
+}
+
+// The order of `less`, reached through the distinct directions: uses whose faces
+// leave the edge in the same exact direction (copies of one face; 200,000 of them
+// in one file) are ranked once instead of compared pairwise in exact arithmetic.
+// Equal directions are found by equal components (the same computation on the same
+// doubles); equal angles of different directions still tie through the ranks.
+void sort_by_direction(const RadialOrder& order, std::vector<Entry>& entries) {
+  std::vector<std::size_t> group(entries.size(), 0), reps;  // reps: an entry per direction
+  std::unordered_map<std::size_t, std::vector<std::size_t>> by_hash;
+  for (std::size_t i = 0; i < entries.size(); ++i) {
+    if (entries[i].degenerate) continue;
+    auto& bucket = by_hash[direction_hash(entries[i].dir)];
+    std::size_t g = reps.size();
+    for (std::size_t r : bucket) {
+      if (same_direction(entries[reps[r]].dir, entries[i].dir)) {
+        g = r;
+        break;
+      }
+    }
+    if (g == reps.size()) {
+      bucket.push_back(g);
+      reps.push_back(i);
+    }
+    group[i] = g;
+  }
+  std::vector<std::size_t> sorted(reps.size());
+  for (std::size_t g = 0; g < sorted.size(); ++g) sorted[g] = g;
+  std::stable_sort(sorted.begin(), sorted.end(), [&](std::size_t a, std::size_t b) {
+    return order.angle_less(entries[reps[a]].dir, entries[reps[b]].dir);
+  });
+  std::vector<std::int64_t> rank(reps.size());
+  std::int64_t r = 0;
+  for (std::size_t k = 0; k < sorted.size(); ++k) {
+    if (k > 0 && order.angle_less(entries[reps[sorted[k - 1]]].dir, entries[reps[sorted[k]]].dir))
+      ++r;
+    rank[sorted[k]] = r;
+  }
+  // Degenerate uses first (as `less` has them), then by angle, then the use running
+  // along the axis first; stable otherwise.
+  std::vector<std::pair<std::int64_t, std::size_t>> keyed(entries.size());
+  for (std::size_t i = 0; i < entries.size(); ++i) {
+    keyed[i] = {
+        entries[i].degenerate ? -1 : 2 * rank[group[i]] + (order.reversed(entries[i]) ? 1 : 0), i};
+  }
+  std::stable_sort(keyed.begin(), keyed.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::vector<Entry> out;
+  out.reserve(entries.size());
+  for (const auto& [key, i] : keyed) out.push_back(std::move(entries[i]));
+  entries = std::move(out);
+}
+
 }  // namespace
 
 std::vector<EdgeUseId> sort_radially(const Model& m, EdgeId e, std::vector<EdgeUseId> uses) {
   RadialOrder order(m, e, uses);
   if (!order.has_reference()) return uses;
   auto& entries = order.entries();
-  std::stable_sort(entries.begin(), entries.end(),
-                   [&](const Entry& a, const Entry& b) { return order.less(a, b); });
+  if (entries.size() > 16) {
+    sort_by_direction(order, entries);
+  } else {
+    std::stable_sort(entries.begin(), entries.end(),
+                     [&](const Entry& a, const Entry& b) { return order.less(a, b); });
+  }
   for (std::size_t i = 0; i < entries.size(); ++i) uses[i] = entries[i].use;
   return uses;
 }

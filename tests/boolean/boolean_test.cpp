@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cstring>
+
 #include <cmath>
 #include <numbers>
 
@@ -342,6 +344,48 @@ TEST(Boolean, SameInputSameOutput) {
   for (FaceId f : x.result.model.faces())
     EXPECT_EQ(x.result.model.loop_vertices(x.result.model.outer_loop(f)),
               y.result.model.loop_vertices(y.result.model.outer_loop(f)));
+}
+
+// The stages on threads give the result one thread gives, bit for bit, and the same
+// report counts.
+TEST(Boolean, SameOutputAtAnyThreadCount) {
+  std::vector<Model> spheres, plate;
+  spheres.push_back(sphere_model(10, 48));
+  spheres.push_back(sphere_model(10, 48, {5, 3, 2}));
+  plate.push_back(box_model({0, 0, 0}, {20, 20, 5}));
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) plate.push_back(cylinder_model(1.5, 7, 24, {5.0 * i + 2.5, 5.0 * j + 2.5, -1}));
+  for (const std::vector<Model>* ops : {&spheres, &plate}) {
+    std::vector<const Model*> p;
+    for (const Model& m : *ops) p.push_back(&m);
+    const auto one = boolean::apply(Op::kDifference, p, {.threads = 1});
+    ASSERT_TRUE(one.ok());
+    for (int threads : {2, 3, 0}) {
+      const auto many = boolean::apply(Op::kDifference, p, {.threads = threads});
+      ASSERT_TRUE(many.ok());
+      const Model &x = one->model, &y = many->model;
+      ASSERT_EQ(x.num_vertices(), y.num_vertices()) << threads << " threads";
+      ASSERT_EQ(x.num_faces(), y.num_faces());
+      for (VertexId v : x.vertices()) {
+        const Vec3 a = x.position(v), b = y.position(v);
+        EXPECT_EQ(std::memcmp(&a, &b, sizeof a), 0) << "vertex " << v.value;
+      }
+      for (FaceId f : x.faces()) {
+        std::vector<std::vector<VertexId>> lx, ly;
+        for (LoopId l : x.loops_of(f)) lx.push_back(x.loop_vertices(l));
+        for (LoopId l : y.loops_of(f)) ly.push_back(y.loop_vertices(l));
+        EXPECT_EQ(lx, ly) << "face " << f.value;
+        EXPECT_EQ(one->sources[f.value].face, many->sources[f.value].face);
+      }
+      const boolean::Report &rx = one->report, &ry = many->report;
+      EXPECT_EQ(rx.candidate_pairs, ry.candidate_pairs);
+      EXPECT_EQ(rx.pieces, ry.pieces);
+      EXPECT_EQ(rx.rays, ry.rays);
+      EXPECT_EQ(rx.implicit_points, ry.implicit_points);
+      EXPECT_EQ(rx.exact_fallbacks, ry.exact_fallbacks);
+      EXPECT_EQ(rx.rounding_self_intersections, ry.rounding_self_intersections);
+    }
+  }
 }
 
 TEST(Boolean, RefusesAnOperandWithoutASolid) {

@@ -63,7 +63,9 @@ TEST(MakeCli, ErrorsListValidChoices) {
       << r.out;
   r = run("make sphere q=1 -o x.stl");
   EXPECT_EQ(r.status, 2);
-  EXPECT_NE(r.out.find("unknown key 'q' (valid: r, d, fn, fa, fs)"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("unknown key 'q' (valid: r, d, fn, fa, fs, max_vertices)"),
+            std::string::npos)
+      << r.out;
   r = run("make sphere r=-1 -o x.stl");
   EXPECT_EQ(r.status, 1);
   EXPECT_NE(r.out.find("r must be positive"), std::string::npos) << r.out;
@@ -72,7 +74,33 @@ TEST(MakeCli, ErrorsListValidChoices) {
   EXPECT_NE(r.out.find("size=a"), std::string::npos) << r.out;
   r = run("make cube");
   EXPECT_EQ(r.status, 2);
-  EXPECT_NE(r.out.find("missing -o"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("-o is required"), std::string::npos) << r.out;
+}
+
+TEST(MakeCli, ParametersAreFiniteAndWithinTheLimits) {
+  const std::string out = temp_path("limits.stl");
+  const struct {
+    const char* args;
+    int status;
+    const char* message;
+  } cases[] = {
+      {"cube size=1e200", 1, "beyond the coordinate limit"},
+      {"sphere r=1e300", 1, "beyond the coordinate limit"},
+      {"sphere fn=nan", 1, "fn must be finite and >= 0, got nan"},
+      {"cylinder fa=inf", 1, "fa must be finite and >= 0"},
+      {"cylinder fs=-1", 1, "fs must be finite and >= 0"},
+      {"sphere fn=100000", 1, "would make 5000000000 vertices, more than the limit of 10000000"},
+      {"prism n=1e9", 1, "would make 2000000000 vertices"},
+      {"prism n=1e20", 1, "n=1e20: expected a whole number of at most 2147483647"},
+      {"sphere fn=100 max_vertices=4999", 1, "more than the limit of 4999"},
+      {"sphere fn=100 max_vertices=x", 1, "max_vertices=x: expected a count"},
+  };
+  for (const auto& c : cases) {
+    const CliRun r = run(std::string("make ") + c.args + " -o " + out);
+    EXPECT_EQ(r.status, c.status) << c.args << ": " << r.out;
+    EXPECT_NE(r.out.find(c.message), std::string::npos) << c.args << ": " << r.out;
+  }
+  EXPECT_EQ(run("make sphere fn=100 max_vertices=5000 -o " + out).status, 0);
 }
 
 }  // namespace

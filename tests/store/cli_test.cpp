@@ -1,10 +1,12 @@
 // `cellforge db` end to end on both backends.
+#include <fcntl.h>
 #include <gtest/gtest.h>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <cstdio>
+#include <fstream>
 
 #include "store/store_fixture.h"
 
@@ -44,6 +46,54 @@ CliRun cli(std::vector<std::string> args) {
     r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   }
   return r;
+}
+
+// cli() with standard output sent to `path` (stderr captured instead), and standard
+// input read from `input` when given.
+CliRun cli_to(std::vector<std::string> args, const std::string& path,
+              const std::string& input = "") {
+  args.insert(args.begin(), CELLFORGE_BIN);
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  int fds[2];
+  CliRun r;
+  if (pipe(fds) != 0) return r;
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 1, path.c_str(), O_WRONLY, 0);
+  if (!input.empty()) posix_spawn_file_actions_addopen(&actions, 0, input.c_str(), O_RDONLY, 0);
+  posix_spawn_file_actions_adddup2(&actions, fds[1], 2);
+  posix_spawn_file_actions_addclose(&actions, fds[0]);
+  pid_t pid;
+  const int rc = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  close(fds[1]);
+  char buf[4096];
+  for (ssize_t n; (n = read(fds[0], buf, sizeof buf)) > 0;)
+    r.out.append(buf, static_cast<std::size_t>(n));
+  close(fds[0]);
+  if (rc == 0) {
+    int status = 0;
+    waitpid(pid, &status, 0);
+    r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  }
+  return r;
+}
+
+// The names in `db list` output, space-separated in order.
+std::string names_in(const std::string& list) {
+  std::string out;
+  std::size_t at = 0;
+  while (at < list.size()) {
+    const std::size_t end = list.find('\n', at);
+    const std::string line = list.substr(at, end - at);
+    const std::size_t cut = line.find("  version ");
+    if (cut != std::string::npos) out += (out.empty() ? "" : " ") + line.substr(0, cut);
+    if (end == std::string::npos) break;
+    at = end + 1;
+  }
+  return out;
 }
 
 using Cli = StoreTest;
@@ -115,6 +165,124 @@ TEST_P(Cli, SaveListInfoSqlLoadRemove) {
   EXPECT_EQ(r.status, 1);
   r = cli({"db", "list", "--db", db_});
   EXPECT_EQ(r.out, "");
+}
+
+// Issue 18's command line: a real parser for every db command.
+TEST_P(Cli, ArgumentsHaveOneSetOfRules) {
+  ASSERT_EQ(cli({"db", "save", "example:box", "--name", "part", "--db", db_}).status, 0);
+  ASSERT_EQ(cli({"db", "save", "example:box_with_hole", "--name", "part", "--db", db_}).status, 0);
+  // --version takes a whole number: 1.5, 1e3 and 1abc used to load version 1.
+  for (const char* v : {"1.5", "1e3", "1abc", "0", "-1", ""}) {
+    const CliRun r = cli({"db", "info", "part", "--version", v, "--db", db_});
+    EXPECT_EQ(r.status, 2) << v << ": " << r.out;
+  }
+  EXPECT_EQ(cli({"db", "info", "part", "--version", "2", "--db", db_}).status, 0);
+  // Unknown options are errors everywhere (db info used to ignore them), and rm
+  // does not take -o, so that `db rm -o --db x.db` cannot read --db as the name.
+  EXPECT_EQ(cli({"db", "info", "part", "--bogus", "--db", db_}).status, 2);
+  const CliRun rm_o = cli({"db", "rm", "-o", "--db", db_});
+  EXPECT_EQ(rm_o.status, 2) << rm_o.out;
+  EXPECT_EQ(names_in(cli({"db", "list", "--db", db_}).out), "part");
+  // A name beginning with '-' is saved, loaded and removed after --.
+  ASSERT_EQ(cli({"db", "save", "example:box", "--db", db_, "--name", "-odd"}).status, 0);
+  const CliRun loaded = cli({"db", "load", "-o", "-", "--db", db_, "--", "-odd"});
+  EXPECT_EQ(loaded.status, 0) << loaded.out;
+  EXPECT_NE(loaded.out.find("group=box"), std::string::npos) << loaded.out;  // the dump
+  EXPECT_EQ(cli({"db", "info", "--db", db_, "--", "-odd"}).status, 0);
+  EXPECT_EQ(cli({"db", "rm", "--db", db_, "--", "-odd"}).status, 0);
+  EXPECT_EQ(names_in(cli({"db", "list", "--db", db_}).out), "part");
+  // --help for the command and each subcommand, exit 0.
+  for (std::vector<std::string> help :
+       {std::vector<std::string>{"db", "--help"}, {"db", "save", "--help"}, {"db", "sql", "-h"}}) {
+    const CliRun r = cli(help);
+    EXPECT_EQ(r.status, 0) << r.out;
+    EXPECT_NE(r.out.find("Usage: cellforge db"), std::string::npos) << r.out;
+  }
+}
+
+TEST_P(Cli, IssueNineteenHabits) {
+  // db save names the volume after the file's stem.
+  const std::string stl = std::string(CELLFORGE_TEST_DATA) + "/cube_binary.stl";
+  CliRun r = cli({"db", "save", stl, "--db", db_});
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("saved cube_binary version 1"), std::string::npos) << r.out;
+  ASSERT_EQ(cli({"db", "save", "example:box", "--db", db_}).status, 0);
+  EXPECT_EQ(names_in(cli({"db", "list", "--db", db_}).out), "box cube_binary");
+  // db rm --version N removes one version.
+  ASSERT_EQ(cli({"db", "save", "example:box_with_hole", "--name", "box", "--db", db_}).status, 0);
+  r = cli({"db", "rm", "box", "--version", "1", "--db", db_});
+  EXPECT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("removed box version 1"), std::string::npos) << r.out;
+  EXPECT_EQ(cli({"db", "info", "box", "--version", "1", "--db", db_}).status, 1);
+  EXPECT_EQ(cli({"db", "info", "box", "--version", "2", "--db", db_}).status, 0);
+  EXPECT_EQ(cli({"db", "rm", "box", "--version", "1", "--db", db_}).status, 1);
+  // db save - reads standard input, with the format and the name given.
+  r = cli({"db", "save", "-", "--db", db_});
+  EXPECT_EQ(r.status, 2) << r.out;  // needs --name
+  const std::string off = std::string(CELLFORGE_TEST_DATA) + "/cube.off";
+  r = cli_to({"db", "save", "-", "--name", "piped", "--format", "off", "--db", db_}, "/dev/null",
+             off);
+  EXPECT_EQ(r.status, 0) << r.out;
+  r = cli({"db", "info", "piped", "--db", db_});
+  EXPECT_NE(r.out.find("faces: 6"), std::string::npos) << r.out;
+  // db load -o - --format F writes that format to standard output.
+  r = cli({"db", "load", "piped", "-o", "-", "--format", "obj", "--db", db_});
+  EXPECT_EQ(r.status, 0);
+  EXPECT_EQ(r.out.rfind("# ", 0) == 0 || r.out.find("\nv ") != std::string::npos ||
+                r.out.rfind("v ", 0) == 0,
+            true)
+      << r.out;
+}
+
+TEST_P(Cli, SqlJsonIsJson) {
+  // Blobs, non-finite reals and repeated column names: each used to give invalid or
+  // ambiguous JSON.
+  const std::string blob = GetParam() == "sqlite" ? "x'00ff22'" : "'\\x00ff22'::bytea";
+  const std::string inf = GetParam() == "sqlite" ? "9e999" : "'Infinity'::float8";
+  const std::string nan = GetParam() == "sqlite" ? "NULL" : "'NaN'::float8";
+  const CliRun r = cli({"db", "sql",
+                        "SELECT 1 AS a, 2 AS a, " + blob + " AS b, " + inf + " AS big, " + nan +
+                            " AS n, '12' AS t, 2.5 AS a_2",
+                        "--json", "--db", db_});
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_EQ(r.out,
+            "[\n {\"a\": 1, \"a_3\": 2, \"b\": \"\\\\x00ff22\", \"big\": null, \"n\": null, "
+            "\"t\": \"12\", \"a_2\": 2.5}\n]\n");
+}
+
+TEST_P(Cli, ACommandOnAMissingDatabaseSaysSo) {
+  if (GetParam() != "sqlite") {
+    // PostgreSQL: a database is a server's, never created by a command.
+    EXPECT_EQ(cli({"db", "list", "--db", db_}).status, 0);
+    return;
+  }
+  const std::string missing = db_ + ".missing.db";
+  for (std::vector<std::string> args : {std::vector<std::string>{"db", "list"},
+                                        {"db", "info", "x"},
+                                        {"db", "sql", "SELECT 1"},
+                                        {"db", "rm", "x"},
+                                        {"db", "load", "x", "-o", "-"}}) {
+    args.push_back("--db");
+    args.push_back(missing);
+    const CliRun r = cli_to(args, "/dev/null");  // standard error is what is read
+    EXPECT_EQ(r.status, 1) << args[1] << ": " << r.out;
+    EXPECT_NE(r.out.find("no database " + missing), std::string::npos) << r.out;
+    EXPECT_FALSE(std::ifstream(missing).good()) << args[1] << " created " << missing;
+  }
+}
+
+TEST_P(Cli, WritingToAFullDeviceFails) {
+  ASSERT_EQ(cli({"db", "save", "example:box", "--name", "part", "--db", db_}).status, 0);
+  for (std::vector<std::string> args : {std::vector<std::string>{"db", "list"},
+                                        {"db", "load", "part", "-o", "-"},
+                                        {"db", "sql", "SELECT * FROM vertices"},
+                                        {"db", "info", "part"}}) {
+    args.push_back("--db");
+    args.push_back(db_);
+    const CliRun r = cli_to(args, "/dev/full");
+    EXPECT_EQ(r.status, 1) << args[1] << ": " << r.out;
+    EXPECT_NE(r.out.find("cannot write standard output"), std::string::npos) << r.out;
+  }
 }
 
 CELLFORGE_BACKENDS(Cli);

@@ -81,6 +81,44 @@ TEST_P(StoreOps, VersionsListInfoRemove) {
   EXPECT_EQ(again.value(), 0);
 }
 
+TEST_P(StoreOps, RemoveOneVersion) {
+  const Model cube = build(unit_cube()), holed = build(cube_with_through_hole());
+  ASSERT_OK(store_->put("part", cube));
+  ASSERT_OK(store_->put("part", holed));
+  ASSERT_OK(store_->put("part", cube));
+  PutOptions in_scene;
+  in_scene.object = "scene";
+  ASSERT_OK(store_->put("part", holed, in_scene));
+  auto one = store_->remove_version("part", 2);
+  ASSERT_OK(one);
+  EXPECT_EQ(one.value(), 1);
+  // The others keep their numbers and their rows; the latest is still 4.
+  EXPECT_EQ(names(*store_), (std::vector<std::string>{"part@4"}));
+  EXPECT_FALSE(store_->get("part", 2).ok());
+  auto v1 = store_->get("part", 1);
+  ASSERT_OK(v1);
+  expect_same_model(cube, v1.value());
+  auto v4 = store_->get("part", 4);
+  ASSERT_OK(v4);
+  expect_same_model(holed, v4.value());
+  auto holed_info = store_->info("part", 4);
+  ASSERT_OK(holed_info);
+  EXPECT_EQ(scalar(*store_, "SELECT COUNT(*) FROM faces"),
+            std::to_string(6 + 6 + holed_info->faces));
+  auto none = store_->remove_version("part", 2);
+  ASSERT_OK(none);
+  EXPECT_EQ(none.value(), 0);
+  EXPECT_FALSE(store_->remove_version("part", 0).ok());
+  // The object keeps the name while a version is left.
+  auto scene = store_->get_object("scene");
+  ASSERT_OK(scene);
+  EXPECT_EQ(scene->size(), 1u);
+  for (int v : {1, 3, 4}) ASSERT_OK(store_->remove_version("part", v));
+  EXPECT_TRUE(names(*store_).empty());
+  EXPECT_EQ(scalar(*store_, "SELECT COUNT(*) FROM faces"), "0");
+  EXPECT_EQ(scalar(*store_, "SELECT COUNT(*) FROM object_volumes"), "0");
+}
+
 TEST_P(StoreOps, TypesOfVolumes) {
   const std::pair<const char*, MeshInput> cases[] = {
       {"solid", two_cubes_sharing_face()},
@@ -243,7 +281,13 @@ TEST_P(StoreOps, HostileNamesAreDataOrRefused) {
   const std::vector<std::string> before = names(*store_);
   EXPECT_EQ(before.size(), std::size(stored));
   const std::string refused[] = {
-      "", std::string(1025, 'n'), "bad\xff\xfe", std::string("a\0b", 3), "line\nbreak", "\xc0\xaf"};
+      "", std::string(1025, 'n'), "bad\xff\xfe", std::string("a\0b", 3), "line\nbreak", "\xc0\xaf",
+      // C1 controls (U+0085 next line, U+009B) and the bidi marks that make a name
+      // read otherwise than it is stored (U+202E right-to-left override, U+2066).
+      "a\xc2\x85"
+      "b",
+      "c\xc2\x9b", "evil\xe2\x80\xaegpj.stl", "iso\xe2\x81\xa6x", "\xe2\x80\x8f",
+      "para\xe2\x80\xa9"};
   for (const std::string& name : refused) {
     auto put = store_->put(name, cube);
     ASSERT_FALSE(put.ok()) << name;
@@ -252,6 +296,24 @@ TEST_P(StoreOps, HostileNamesAreDataOrRefused) {
   }
   EXPECT_EQ(names(*store_), before);
   EXPECT_EQ(scalar(*store_, "SELECT COUNT(*) FROM faces"), std::to_string(6 * std::size(stored)));
+  // Every call that takes a name says what is wrong with one it refuses, on both
+  // backends (PostgreSQL used to print the server's encoding error and the SQL).
+  for (const std::string& name : {std::string("bad\xff\xfe"), std::string("r\xe2\x80\xaeo")}) {
+    const std::string why = name[0] == 'b' ? "a volume name must be valid UTF-8"
+                                           : "a volume name must not hold invisible direction";
+    for (const auto& error :
+         {store_->get(name).ok() ? std::string() : store_->get(name).error().message,
+          store_->info(name).ok() ? std::string() : store_->info(name).error().message,
+          store_->remove(name).ok() ? std::string() : store_->remove(name).error().message,
+          store_->remove_version(name, 1).ok() ? std::string()
+                                               : store_->remove_version(name, 1).error().message,
+          store_->versions(name).ok() ? std::string() : store_->versions(name).error().message,
+          store_->get_faces_where(name, "1 = 1").ok()
+              ? std::string()
+              : store_->get_faces_where(name, "1 = 1").error().message}) {
+      EXPECT_EQ(error.rfind(why, 0), 0u) << "got: " << error;
+    }
+  }
   // Lookups with hostile names find nothing and change nothing.
   EXPECT_FALSE(store_->get("x' OR '1'='1").ok());
   auto rm = store_->remove("x' OR '1'='1");

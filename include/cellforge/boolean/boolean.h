@@ -48,7 +48,10 @@ struct Expr {
 };
 
 struct Options {
-  int threads = 1;  // reserved: the stages run on one thread today
+  // Threads for the stages that run on threads: the triangulation of the operands'
+  // faces, the pair tests, the classification rays and the rounding check (0: every
+  // hardware thread). The result is the same at any count, bit for bit.
+  int threads = 1;
 };
 
 // Where a result face came from.

@@ -14,6 +14,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -79,14 +80,29 @@ struct ImportReport {
   std::size_t closed_shells = 0;  // cells made by VolumeMode::kAuto
 };
 
+// Size limits of a read (docs/io.md, "Limits"). A file, or a stream without an end
+// such as /dev/zero, is read up to max_bytes and refused past it; a 3MF archive
+// whose entries declare more than max_3mf_bytes unpacked is refused before anything
+// is unpacked. 0 means no limit.
+inline constexpr std::uint64_t kDefaultMaxBytes = 1ull << 30;       // 1 GiB
+inline constexpr std::uint64_t kDefaultMax3mfBytes = 256ull << 20;  // 256 MiB
+
 struct ReadOptions {
   ImportOptions import;
+  // The format, when the path does not say it: required for "-" (standard input),
+  // and it overrides the extension otherwise.
+  std::optional<Format> format = {};
+  std::uint64_t max_bytes = kDefaultMaxBytes;
+  std::uint64_t max_3mf_bytes = kDefaultMax3mfBytes;
 };
 
 // Sets one import option by name, as the command line and scripts give them:
 // weld_tolerance=<number>, merge_coplanar=true|false, repair_orientation=true|false,
 // volumes=auto|none, group_name=<text>. An error names the key or the bad value.
 Status set_option(ImportOptions& options, std::string_view key, std::string_view value);
+// The same, and the limits: max_bytes=N and max_3mf_bytes=N (a count of bytes, with
+// an optional K, M or G suffix for KiB, MiB, GiB; 0 for no limit).
+Status set_option(ReadOptions& options, std::string_view key, std::string_view value);
 
 struct ReadResult {
   GroupId group;  // the first group read (formats other than JSON make one)
@@ -94,7 +110,8 @@ struct ReadResult {
 };
 
 // Parses the bytes of a mesh format (not kJson) into a soup.
-Result<PolygonSoup> parse_mesh(std::span<const std::uint8_t> bytes, Format format);
+Result<PolygonSoup> parse_mesh(std::span<const std::uint8_t> bytes, Format format,
+                               std::uint64_t max_3mf_bytes = kDefaultMax3mfBytes);
 // Welds the soup and builds it into a new group of m. On error m is unchanged.
 Result<ReadResult> import_soup(Model& m, const PolygonSoup& soup, const ImportOptions& options);
 
@@ -102,10 +119,14 @@ Result<ReadResult> import_soup(Model& m, const PolygonSoup& soup, const ImportOp
 Result<ReadResult> read_model(Model& m, std::span<const std::uint8_t> bytes, Format format,
                               const ReadOptions& options = {});
 // Reads a file; the format comes from the extension, the group name (for mesh
-// formats) from the file's stem unless options name one.
+// formats) from the file's stem unless options name one (bytes of the stem that are
+// not UTF-8 become U+FFFD, so that every format can write the name).
 Result<ReadResult> read_file(Model& m, const std::string& path, const ReadOptions& options = {});
 
 struct WriteOptions {
+  // The format, when the path does not say it: required for "-" (standard output),
+  // and it overrides the extension otherwise.
+  std::optional<Format> format = {};
   bool stl_binary = true;  // false: ASCII STL
   // OBJ and OFF keep polygons without holes as polygons; with `triangulate` every
   // face is written as triangles (faces with holes always are).
@@ -116,9 +137,22 @@ struct WriteOptions {
 // every group into one mesh (3MF: one object per group); OBJ also writes wire
 // edges (`l`) and isolated vertices (`p`).
 Result<std::string> write_model(const Model& m, Format format, const WriteOptions& options = {});
+// Writes a file ("-": standard output, flushed); an error when any byte could not be
+// written (a full disk, /dev/full) names the path.
 Status write_file(const Model& m, const std::string& path, const WriteOptions& options = {});
 
-// Reads a whole file into memory; errors name the path.
-Result<std::vector<std::uint8_t>> read_bytes(const std::string& path);
+// The format named "stl", "obj", "off", "3mf" or "json" (case-insensitive).
+Result<Format> format_from_name(std::string_view name);
+
+// What writing m in `format` leaves out, one sentence per kind of entity, with
+// counts ("3 wire edges and 1 isolated point: STL holds only triangles"); empty
+// when the format keeps everything its reader rebuilds.
+std::vector<std::string> format_losses(const Model& m, Format format);
+
+// Reads a whole file into memory, at most max_bytes of it (0: no limit); "-" reads
+// standard input. Errors name the path and what was wrong (missing, a directory,
+// larger than the limit).
+Result<std::vector<std::uint8_t>> read_bytes(const std::string& path,
+                                             std::uint64_t max_bytes = kDefaultMaxBytes);
 
 }  // namespace cellforge::io

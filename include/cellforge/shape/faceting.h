@@ -10,7 +10,10 @@
 // with fa and fs clamped below at 0.01 and a negative fn read as 0, as OpenSCAD does.
 #pragma once
 
+#include <cstdint>
 #include <string>
+
+#include "cellforge/result.h"
 
 namespace cellforge::shape {
 
@@ -19,14 +22,36 @@ inline constexpr double kGridFine = 0.00000095367431640625;
 // OpenSCAD clamps $fa and $fs to at least this.
 inline constexpr double kMinimumFaFs = 0.01;
 
+// The most vertices a primitive or sweep may make (docs/shape.md, "Limits"): the
+// count follows from the parameters and is checked before anything is allocated,
+// so that fn=100000 on a sphere (5e9 vertices) or a prism of 1e9 sides is an error,
+// not an attempt to allocate it. Options carry it as max_vertices, to raise it.
+inline constexpr std::uint64_t kDefaultMaxVertices = 10'000'000;
+// The largest coordinate magnitude a primitive or sweep may produce: 2^120
+// (~1.3e36), the range in which geom's predicates (up to the radial order's degree 8)
+// stay exact (geom/predicates.h). Beyond it volumes and areas overflow too.
+inline constexpr double kMaxCoordinate = 0x1p120;
+
 // OpenSCAD's special variables. Defaults are OpenSCAD's ($fn = 0, $fa = 12, $fs = 2).
 struct Faceting {
   double fn = 0;
   double fa = 12;
   double fs = 2;
+  std::uint64_t max_vertices = kDefaultMaxVertices;
 };
 
-// Number of segments of a full circle of radius r.
+// fn, fa and fs finite and not negative (OpenSCAD reads a negative fn as 0 and
+// NaN as 3 fragments; here they are errors naming the value).
+Status check_faceting(const Faceting& f);
+// An error when `vertices` (what `what` would make) exceeds `max_vertices`.
+Status check_vertex_count(std::uint64_t vertices, std::uint64_t max_vertices,
+                          const std::string& what);
+// x rounded toward zero to an int, saturating at INT_MAX (and at 0 below), so
+// that counts computed from huge parameters stay defined and are refused by
+// check_vertex_count.
+int saturated_count(double x);
+
+// Number of segments of a full circle of radius r (at most INT_MAX).
 int fragments(double r, const Faceting& f);
 
 // Segments of an arc of `angle_degrees` (rotate_extrude): max(1, ceil(fragments(r) *

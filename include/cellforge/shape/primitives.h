@@ -9,7 +9,9 @@
 // so the edges between those facets are smooth (Model::is_smooth).
 //
 // Errors (ErrorCode::kInvalidInput) name the parameter at fault; on error the model is
-// unchanged.
+// unchanged. Parameters must be finite (fn, fa, fs also >= 0); a primitive that would
+// make more than max_vertices vertices (faceting.h, checked before allocating) or a
+// coordinate beyond kMaxCoordinate is refused.
 #pragma once
 
 #include <cstdint>
@@ -64,6 +66,7 @@ struct RegularPrismOptions {
   double r = 1;
   double h = 1;
   bool center = false;
+  std::uint64_t max_vertices = kDefaultMaxVertices;
 };
 Result<GroupId> make_regular_prism(Model& m, const RegularPrismOptions& options = {});
 
@@ -76,6 +79,7 @@ struct PyramidOptions {
   double r = 1;
   double h = 1;
   bool center = false;
+  std::uint64_t max_vertices = kDefaultMaxVertices;
 };
 Result<GroupId> make_pyramid(Model& m, const PyramidOptions& options = {});
 
@@ -86,6 +90,7 @@ struct FrustumOptions {
   double r2 = 0.5;
   double h = 1;
   bool center = false;
+  std::uint64_t max_vertices = kDefaultMaxVertices;
 };
 Result<GroupId> make_frustum(Model& m, const FrustumOptions& options = {});
 

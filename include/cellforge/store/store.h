@@ -83,10 +83,17 @@ struct QueryOptions {
   std::size_t max_rows = 0;   // when not 0, at most this many rows are read
 };
 
-// The answer of a read-only SQL query, values as text (nullopt for NULL).
+// What a value of a query's answer was in the database.
+enum class ValueKind : std::uint8_t { kText, kInteger, kReal, kBlob };
+
+// The answer of a read-only SQL query, values as text (nullopt for NULL): numbers
+// as the database prints them (reals with 17 significant digits on SQLite; "inf",
+// "Infinity", "NaN" for the non-finite ones), blobs as "\x" and two hex digits a
+// byte on both backends (PostgreSQL's bytea form). `kinds` has the shape of `rows`.
 struct QueryResult {
   std::vector<std::string> columns;
   std::vector<std::vector<std::optional<std::string>>> rows;
+  std::vector<std::vector<ValueKind>> kinds;
   bool truncated = false;  // the query had more rows than max_rows
 };
 
@@ -98,8 +105,11 @@ class Store {
   virtual std::string backend() const = 0;
 
   // Saves m under `name` as a new version (1 for a new name). Names must be 1 to
-  // 1024 bytes of valid UTF-8 without control characters; other names are refused
-  // with kInvalidInput and nothing is written.
+  // 1024 bytes of valid UTF-8 without control characters (C0, DEL, C1) or the
+  // invisible direction marks and overrides (U+061C, U+200E, U+200F, U+202A-U+202E,
+  // U+2066-U+2069) and line or paragraph separators (U+2028, U+2029); other names
+  // are refused with kInvalidInput and nothing is written. Every call that takes a
+  // name refuses such a name the same way, on both backends.
   virtual Result<VolumeInfo> put(const std::string& name, const Model& m,
                                  const PutOptions& options = {}) = 0;
   // Loads a version (0: the latest).
@@ -132,6 +142,9 @@ class Store {
   virtual Result<std::vector<VolumeInfo>> versions(const std::string& name) = 0;
   // Removes every version of `name`; returns how many there were (0: none).
   virtual Result<int> remove(const std::string& name) = 0;
+  // Removes one version of `name`; returns 1, or 0 when there is no such version.
+  // The other versions keep their numbers.
+  virtual Result<int> remove_version(const std::string& name, int version) = 0;
   // The volume names listed in an object (scene), in the order they were added.
   virtual Result<std::vector<std::string>> get_object(const std::string& name) = 0;
 

@@ -1,0 +1,49 @@
+// Ranges of work on threads, with results that do not depend on the thread count.
+//
+//   std::vector<Out> parts = parallel_ranges<Out>(n, threads, [&](lo, hi, Out& out) {...});
+//
+// [0, n) is cut into contiguous ranges, one per thread (the calling thread takes the
+// first); each range fills its own Out, and the caller reads the parts in order, so
+// that concatenating them gives what one thread would have made. The body must only
+// read shared state. The exact evaluations made on other threads are counted on
+// this one (filtered.h), so that the report does not depend on the thread count.
+#pragma once
+#include <algorithm>
+#include <atomic>
+#include <cstddef>
+#include <thread>
+#include <vector>
+
+#include "boolean/filtered.h"
+
+namespace cellforge::boolean {
+
+// The number of threads `requested` stands for: 0 is every hardware thread.
+inline int thread_count(int requested) {
+  if (requested > 0) return requested;
+  return static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+}
+
+template <class Out, class Body>
+std::vector<Out> parallel_ranges(std::size_t n, int threads, Body&& body) {
+  // Ranges too small to pay for a thread stay on this one.
+  constexpr std::size_t kMinRange = 256;
+  const std::size_t parts =
+      std::max<std::size_t>(1, std::min<std::size_t>(static_cast<std::size_t>(thread_count(threads)),
+                                                     n / kMinRange));
+  std::vector<Out> out(parts);
+  std::vector<std::thread> workers;
+  std::atomic<std::size_t> exact{0};
+  for (std::size_t k = 1; k < parts; ++k)
+    workers.emplace_back([&, k] {
+      const std::size_t before = exact_evaluations();
+      body(n * k / parts, n * (k + 1) / parts, out[k]);
+      exact += exact_evaluations() - before;
+    });
+  body(0, n / parts, out[0]);
+  for (std::thread& w : workers) w.join();
+  exact_evaluations() += exact;
+  return out;
+}
+
+}  // namespace cellforge::boolean

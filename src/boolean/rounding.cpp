@@ -1,0 +1,191 @@
+// Rounding with a check (stages.h): the result's implicit points rounded to doubles,
+// then, where two faces' triangles have come to cross, the rounded vertices of the
+// crossing triangles moved to a neighbouring double (one unit in the last place in
+// any coordinate, else two) where that removes crossings.
+//
+// Rounding to nearest moves a point by half a unit; near-degenerate arrangements (a
+// face corner a hair off the line of its neighbours, two faces meeting at a very
+// small angle) turn over by less. Every candidate is a double within 2.5 units of the
+// exact point, so the result still rounds the exact one; only the choice among the
+// doubles around it changes. Faces are triangulated as io::triangulate_face does it
+// (the exporters' triangles), the test is exact (geom::triangles_meet), and the
+// rounding check after building (boolean.cpp) counts what remains.
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <unordered_map>
+
+#include "boolean/bvh.h"
+#include "boolean/parallel.h"
+#include "boolean/stages.h"
+#include "cellforge/geom/intersect.h"
+#include "cellforge/geom/polygon.h"
+#include "cellforge/io/triangulate.h"
+
+namespace cellforge::boolean {
+
+namespace {
+
+using Tri3 = std::array<std::uint32_t, 3>;  // indices into MeshInput::positions
+
+std::vector<Tri3> tile(const MeshInput& in, const MeshFace& f) {
+  std::vector<std::vector<Vec3>> loops;
+  std::vector<std::uint32_t> ids;
+  for (const auto& loop : f.loops) {
+    std::vector<Vec3> pts;
+    for (std::uint32_t i : loop) {
+      pts.push_back(in.positions[i]);
+      ids.push_back(i);
+    }
+    loops.push_back(std::move(pts));
+  }
+  std::vector<Tri3> out;
+  for (const auto& t : io::triangulate_polygon(loops, newell_normal(loops[0])))
+    out.push_back({ids[t[0]], ids[t[1]], ids[t[2]]});
+  return out;
+}
+
+Box box_of(const MeshInput& in, const Tri3& t) {
+  Box b;
+  for (std::uint32_t i : t) b.add(in.positions[i]);
+  return b;
+}
+
+bool share_vertex(const Tri3& a, const Tri3& b) {
+  for (std::uint32_t u : a)
+    for (std::uint32_t v : b)
+      if (u == v) return true;
+  return false;
+}
+
+bool meet(const MeshInput& in, const Tri3& x, const Tri3& y) {
+  const Vec3 a[3] = {in.positions[x[0]], in.positions[x[1]], in.positions[x[2]]};
+  const Vec3 b[3] = {in.positions[y[0]], in.positions[y[1]], in.positions[y[2]]};
+  return triangles_meet(a, b);
+}
+
+// Boxes grown by a few units in the last place, so that the tree built before a
+// vertex moves still finds what the moved triangles meet.
+Box grown(Box b) {
+  const auto margin = [](double lo, double hi) {
+    return 8 * std::ldexp(1.0, std::ilogb(std::max({std::abs(lo), std::abs(hi), 1e-300})) - 52);
+  };
+  const Vec3 m{margin(b.lo.x, b.hi.x), margin(b.lo.y, b.hi.y), margin(b.lo.z, b.hi.z)};
+  b.lo = b.lo - m;
+  b.hi = b.hi + m;
+  return b;
+}
+
+}  // namespace
+
+void nudge_rounding(MeshInput& in, const std::vector<char>& inexact,
+                    const std::function<bool(std::uint32_t, int)>& exact, int threads) {
+  constexpr int kRounds = 4;
+  for (int round = 0; round < kRounds; ++round) {
+    // Every face's triangles, and the crossing pairs among them.
+    std::vector<std::vector<Tri3>> tiles(in.faces.size());
+    {
+      auto parts = parallel_ranges<std::vector<std::vector<Tri3>>>(
+          in.faces.size(), threads, [&](std::size_t lo, std::size_t hi, auto& out) {
+            for (std::size_t f = lo; f < hi; ++f) out.push_back(tile(in, in.faces[f]));
+          });
+      std::size_t f = 0;
+      for (auto& p : parts)
+        for (auto& t : p) tiles[f++] = std::move(t);
+    }
+    std::vector<Tri3> tris;
+    std::vector<std::uint32_t> face;
+    for (std::uint32_t f = 0; f < tiles.size(); ++f)
+      for (const Tri3& t : tiles[f]) {
+        tris.push_back(t);
+        face.push_back(f);
+      }
+    std::vector<Box> boxes(tris.size());
+    std::vector<char> moved(tris.size(), 0);
+    for (std::size_t i = 0; i < tris.size(); ++i) {
+      boxes[i] = grown(box_of(in, tris[i]));
+      for (std::uint32_t v : tris[i]) moved[i] |= inexact[v];
+    }
+    const Bvh bvh(boxes);
+    // The inexact vertices of crossing pairs.
+    auto found = parallel_ranges<std::vector<std::uint32_t>>(
+        tris.size(), threads, [&](std::size_t lo, std::size_t hi, std::vector<std::uint32_t>& out) {
+          for (std::size_t i = lo; i < hi; ++i) {
+            if (!moved[i]) continue;
+            const Box& bi = boxes[i];
+            bvh.query([&](const Box& b) { return b.overlaps(bi); }, [&](std::uint32_t j) {
+              if (j == i || (moved[j] && j < i) || face[i] == face[j] || share_vertex(tris[i], tris[j])) return;
+              if (!meet(in, tris[i], tris[j])) return;
+              for (std::uint32_t v : tris[i]) if (inexact[v]) out.push_back(v);
+              for (std::uint32_t v : tris[j]) if (inexact[v]) out.push_back(v);
+            });
+          }
+        });
+    std::vector<std::uint32_t> suspects;
+    for (auto& p : found) suspects.insert(suspects.end(), p.begin(), p.end());
+    std::sort(suspects.begin(), suspects.end());
+    suspects.erase(std::unique(suspects.begin(), suspects.end()), suspects.end());
+    if (suspects.empty()) return;
+
+    std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> faces_at;  // suspect -> faces
+    for (std::uint32_t f = 0; f < in.faces.size(); ++f)
+      for (const auto& loop : in.faces[f].loops)
+        for (std::uint32_t v : loop)
+          if (std::binary_search(suspects.begin(), suspects.end(), v)) {
+            auto& list = faces_at[v];
+            if (list.empty() || list.back() != f) list.push_back(f);
+          }
+    bool changed = false;
+    for (std::uint32_t v : suspects) {
+      std::vector<std::uint32_t>& fs = faces_at[v];
+      std::sort(fs.begin(), fs.end());
+      fs.erase(std::unique(fs.begin(), fs.end()), fs.end());
+      // Crossings of the faces at v, triangulated with v where it is now.
+      auto local = [&] {
+        std::vector<std::pair<std::uint32_t, Tri3>> near;  // face, triangle
+        for (std::uint32_t f : fs)
+          for (const Tri3& t : tile(in, in.faces[f])) near.push_back({f, t});
+        std::size_t n = 0;
+        for (std::size_t a = 0; a < near.size(); ++a) {
+          const Box ba = grown(box_of(in, near[a].second));
+          bvh.query([&](const Box& b) { return b.overlaps(ba); }, [&](std::uint32_t j) {
+            if (std::binary_search(fs.begin(), fs.end(), face[j]) || share_vertex(near[a].second, tris[j])) return;
+            n += meet(in, near[a].second, tris[j]);
+          });
+          for (std::size_t b = a + 1; b < near.size(); ++b)
+            if (near[a].first != near[b].first && !share_vertex(near[a].second, near[b].second))
+              n += meet(in, near[a].second, near[b].second);
+        }
+        return n;
+      };
+      const Vec3 start = in.positions[v];
+      Vec3 best = start;
+      std::size_t best_count = local();
+      const bool keep[3] = {exact(v, 0), exact(v, 1), exact(v, 2)};
+      // One unit in the last place first, then two.
+      for (int r = 1; r <= 2 && best_count > 0; ++r)
+      for (int dx = -r; dx <= r && best_count > 0; ++dx)
+        for (int dy = -r; dy <= r && best_count > 0; ++dy)
+          for (int dz = -r; dz <= r && best_count > 0; ++dz) {
+            if (std::max({std::abs(dx), std::abs(dy), std::abs(dz)}) != r) continue;
+            if ((keep[0] && dx != 0) || (keep[1] && dy != 0) || (keep[2] && dz != 0)) continue;
+            const auto step = [](double x, int d) {
+              for (; d > 0; --d) x = std::nextafter(x, INFINITY);
+              for (; d < 0; ++d) x = std::nextafter(x, -INFINITY);
+              return x;
+            };
+            in.positions[v] = {step(start.x, dx), step(start.y, dy), step(start.z, dz)};
+            const std::size_t n = local();
+            if (n < best_count) {
+              best_count = n;
+              best = in.positions[v];
+            }
+          }
+      in.positions[v] = best;
+      changed |= !(best == start);
+    }
+    if (!changed) return;
+  }
+}
+
+}  // namespace cellforge::boolean
