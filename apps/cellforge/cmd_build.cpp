@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <sstream>
 
 #include "cellforge/csg/evaluator.h"
@@ -48,51 +49,44 @@ struct BuildArgs {
   bool ascii = false;
 };
 
-// The one place that reads the command line; returns an error text for a usage error.
-std::string parse_args(const std::vector<std::string>& args, BuildArgs& out) {
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    const std::string& a = args[i];
-    auto value = [&](std::string& into) {
-      if (i + 1 >= args.size()) return false;
-      into = args[++i];
-      return true;
-    };
-    std::string v;
-    if (a == "-o") {
-      if (!value(v)) return "-o needs a file";
-      out.outputs.push_back(v);
-    } else if (a == "-D" || (a.size() > 2 && a.rfind("-D", 0) == 0)) {
-      if (a == "-D") {
-        if (!value(v)) return "-D needs NAME=VALUE";
-      } else {
-        v = a.substr(2);
-      }
-      std::string key, val;
-      if (!split_key_value(v, key, val)) return "-D takes NAME=VALUE, not '" + v + "'";
-      out.defines.emplace_back(key, val);
-    } else if (a == "--save") {
-      if (!value(out.save)) return "--save needs a name";
-    } else if (a == "--db") {
-      if (!value(out.db)) return "--db needs a database";
-    } else if (a == "--tree") {
-      if (!value(out.tree)) return "--tree needs a file";
-    } else if (a == "--report") {
-      if (!value(v) || v != "json") return "--report takes 'json'";
-      out.json_report = true;
-    } else if (a == "--cache") {
-      if (!value(out.cache)) return "--cache needs a folder";
-    } else if (a == "--no-cache") {
-      out.no_cache = true;
-    } else if (a == "--ascii") {
-      out.ascii = true;
-    } else if (!a.empty() && a[0] != '-' && out.input.empty()) {
-      out.input = a;
-    } else {
-      return "unexpected argument '" + a + "'";
-    }
+// The one place that reads the command line: fills `out`, or returns the exit code
+// (0 after --help, 2 for a usage error, with the message printed).
+std::optional<int> parse_args(const std::vector<std::string>& args, BuildArgs& out) {
+  CLI::App app{"evaluate an OpenSCAD script (or CSG JSON) and build it exactly", "cellforge build"};
+  std::string report;
+  std::vector<std::string> defines;
+  app.add_option("IN", out.input, "an OpenSCAD script, or a CSG tree as JSON (docs/csg.md)")
+      ->required();
+  app.add_option("-o", out.outputs, "a result file: .stl .obj .off .3mf .json (repeatable)")
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  app.add_option("-D", defines, "NAME=VALUE: set a top-level variable, as openscad -D")
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  app.add_option("--save", out.save, "store the result and its script under NAME");
+  app.add_option("--db", out.db, "the model database (default cellforge.db)");
+  app.add_option("--report", report, "json: counts, validity, mass properties, seconds");
+  app.add_option("--tree", out.tree, "write the evaluated CSG tree as JSON");
+  app.add_option("--cache", out.cache, "the cache folder of built parts");
+  app.add_flag("--no-cache", out.no_cache, "build every part");
+  app.add_flag("--ascii", out.ascii, "write ASCII STL (default binary)");
+  app.footer(kUsage);
+  if (auto code = parse(app, args)) return code;
+  auto usage_error = [](const std::string& message) {
+    std::cerr << "cellforge build: " << message << "\nRun with --help for more information.\n";
+    return 2;
+  };
+  if (!report.empty() && report != "json") return usage_error("--report takes 'json'");
+  out.json_report = report == "json";
+  for (const std::string& d : defines) {
+    std::string key, val;
+    if (!split_key_value(d, key, val)) return usage_error("-D takes NAME=VALUE, not '" + d + "'");
+    out.defines.emplace_back(key, val);
   }
-  if (out.input.empty()) return "no input file";
-  if (out.no_cache && !out.cache.empty()) return "--cache and --no-cache together";
+  for (const std::string& o : out.outputs) {
+    if (auto f = io::format_from_path(o); !f) return usage_error(f.error().message);
+  }
+  if (out.no_cache && !out.cache.empty()) return usage_error("--cache and --no-cache together");
   if (!out.no_cache && out.cache.empty()) {
     const char* xdg = std::getenv("XDG_CACHE_HOME");
     const char* home = std::getenv("HOME");
@@ -102,10 +96,7 @@ std::string parse_args(const std::vector<std::string>& args, BuildArgs& out) {
       out.cache = std::string(home) + "/.cache/cellforge";
     }
   }
-  for (const std::string& o : out.outputs) {
-    if (auto f = io::format_from_path(o); !f) return f.error().message;
-  }
-  return {};
+  return std::nullopt;
 }
 
 std::string num(double x) { return shape::format_number(x); }
@@ -122,10 +113,7 @@ int run(const std::vector<std::string>& argv) {
     return std::chrono::duration<double>(Clock::now() - t).count();
   };
   BuildArgs a;
-  if (std::string err = parse_args(argv, a); !err.empty()) {
-    std::cerr << "cellforge build: " << err << "\n" << kUsage << '\n';
-    return 2;
-  }
+  if (auto code = parse_args(argv, a)) return *code;
   const auto t0 = Clock::now();
   csg::NodePtr root;
   std::shared_ptr<csg::Sources> sources;
@@ -184,8 +172,8 @@ int run(const std::vector<std::string>& argv) {
     bo.progress = [](std::size_t done, std::size_t total) {
       if (total < 2) return;
       const std::size_t width = 30, filled = width * done / total;
-      std::cerr << "\r[" << std::string(filled, '#') << std::string(width - filled, ' ') << "] " << done
-                << "/" << total << " parts" << (done == total ? "\n" : "") << std::flush;
+      std::cerr << "\r[" << std::string(filled, '#') << std::string(width - filled, ' ') << "] "
+                << done << "/" << total << " parts" << (done == total ? "\n" : "") << std::flush;
     };
   }
   auto built = csg::build(*root, bo);
@@ -255,7 +243,7 @@ int run(const std::vector<std::string>& argv) {
 }
 
 const CommandRegistration kBuild{Command{
-    "build", "evaluate an OpenSCAD script (or CSG JSON) and build it exactly", kUsage, run}};
+    "build", "evaluate an OpenSCAD script (or CSG JSON) and build it exactly", kUsage, run, true}};
 
 }  // namespace
 }  // namespace cellforge::cli
