@@ -1,12 +1,12 @@
 #!/usr/bin/env bash
-# Builds the libFuzzer targets of io/ (tests/fuzz/fuzz_read.cpp, one binary per
-# format, linked to the io layer target) with clang, AddressSanitizer and
-# UndefinedBehaviorSanitizer, and runs
-# each for FUZZ_SECONDS (default 30) on a copy of the seed corpus in tests/data/.
+# Builds the libFuzzer targets (tests/fuzz/fuzz_read.cpp, one binary per file format
+# of io/; tests/fuzz/fuzz_scad.cpp for the OpenSCAD language of csg/) with clang,
+# AddressSanitizer and UndefinedBehaviorSanitizer, and runs each for FUZZ_SECONDS
+# (default 30) on a copy of its seed corpus (tests/data/*.FORMAT; tests/scad/ for scad).
 # A crash, a sanitizer report, a leak or a timeout fails the script; the input
 # that caused it is kept in $FUZZ_BUILD/crashes/<format>/.
 #
-#   FUZZ_SECONDS=30  seconds per target      FUZZ_FORMATS="stl obj off 3mf json"
+#   FUZZ_SECONDS=30  seconds per target      FUZZ_FORMATS="stl obj off 3mf json scad"
 #   FUZZ_BUILD=build-fuzz                    FUZZ_CXX=clang++
 set -euo pipefail
 
@@ -14,14 +14,15 @@ ROOT=$(cd "$(dirname "$0")/.." && pwd)
 SECONDS_EACH=${FUZZ_SECONDS:-30}
 OUT=${FUZZ_BUILD:-$ROOT/build-fuzz}
 CXX=${FUZZ_CXX:-clang++}
-FORMATS=${FUZZ_FORMATS:-stl obj off 3mf json}
+FORMATS=${FUZZ_FORMATS:-stl obj off 3mf json scad}
 JOBS=$(nproc 2>/dev/null || echo 2)
 
 command -v "$CXX" > /dev/null || { echo "fuzz.sh: $CXX not found (apt-get install clang)"; exit 1; }
 
 # The fuzzers link the io layer target (and so the layers io/ stands on: geom, topo,
-# shape; no database code, which needs server libraries), built with clang, -O1 and
-# the sanitizers by the CELLFORGE_FUZZ configuration of CMakeLists.txt.
+# shape) or the csg layer (and boolean below it); no database code, which needs
+# server libraries. Built with clang, -O1 and the sanitizers by the CELLFORGE_FUZZ
+# configuration of CMakeLists.txt.
 generator=()
 command -v ninja > /dev/null && generator=(-G Ninja)
 if [ ! -f "$OUT/CMakeCache.txt" ] || ! grep -q "CELLFORGE_FUZZ:BOOL=ON" "$OUT/CMakeCache.txt"; then
@@ -31,7 +32,7 @@ fi
 targets=()
 for fmt in $FORMATS; do
   case $fmt in
-    stl | obj | off | 3mf | json) targets+=("fuzz_$fmt") ;;
+    stl | obj | off | 3mf | json | scad) targets+=("fuzz_$fmt") ;;
     *) echo "fuzz.sh: unknown format $fmt"; exit 2 ;;
   esac
 done
@@ -44,6 +45,7 @@ for fmt in $FORMATS; do
   crashes=$OUT/crashes/$fmt
   mkdir -p "$corpus" "$crashes"
   cp "$ROOT"/tests/data/*."$fmt" "$corpus"/ 2>/dev/null || true
+  [ "$fmt" = scad ] && cp "$ROOT"/tests/scad/*.scad "$ROOT"/tests/scad/lib/*.scad "$corpus"/
   echo "fuzz.sh: $fmt for ${SECONDS_EACH}s on $(ls "$corpus" | wc -l) inputs"
   if ! ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 \
        "$bin" -max_total_time="$SECONDS_EACH" -max_len=65536 -timeout=10 -rss_limit_mb=2048 \

@@ -245,7 +245,7 @@ Shape2D read_plane(const Model& m) {
       ends.pop_back();
       if (w != start) {
         if (auto it = at.find(w); it != at.end()) {  // a simple loop closes at w
-          const std::size_t from = it->second;
+          const std::size_t from = it->second;  // before the erase below frees *it
           std::vector<std::uint32_t> cut(chain.begin() + static_cast<std::ptrdiff_t>(from),
                                          chain.end());
           for (std::uint32_t c : cut) at.erase(c);

@@ -1,0 +1,857 @@
+// build(): the CSG tree to a Model. Each run of set operations, with the transforms
+// and colors in it pushed down to its leaves, is one n-ary boolean::evaluate. Leaves
+// are primitives, imports, sweeps and resize (a sweep or resize builds its own
+// subtree first). 2D subtrees are kept as expressions over regions: a straight
+// linear_extrude (no twist, equal x and y scale) of a 2D union, difference or
+// intersection is that set operation of the extruded regions, exactly, and the
+// same holds for rotate_extrude of a union when every region is turned with the same
+// segments; other uses of 2D set operations need 2D Booleans and are refused.
+#include "cellforge/csg/tree.h"
+
+#include <chrono>
+#include <cmath>
+#include <functional>
+
+#include "cache.h"
+#include "cellforge/boolean/boolean.h"
+#include "cellforge/boolean/minkowski.h"
+#include "cellforge/boolean/ops2d.h"
+#include "cellforge/csg/tree_json.h"
+#include "cellforge/io/mesh_io.h"
+#include "cellforge/shape/hull.h"
+#include "cellforge/shape/mass.h"
+#include "cellforge/shape/primitives.h"
+#include "cellforge/shape/region.h"
+#include "cellforge/shape/resize.h"
+#include "cellforge/shape/shape2d.h"
+#include "cellforge/topo/builder.h"
+#include "tree_private.h"
+
+namespace cellforge::csg {
+
+namespace {
+
+constexpr const char* kNames[] = {
+    "group",      "union",      "difference", "intersection",   "cube",           "sphere",
+    "cylinder",   "polyhedron", "import",     "square",         "circle",         "polygon",
+    "multmatrix", "resize",     "color",      "linear_extrude", "rotate_extrude", "hull",
+    "minkowski",  "offset",     "projection"};
+
+}  // namespace
+
+const char* node_name(NodeKind k) { return kNames[static_cast<int>(k)]; }
+
+std::optional<NodeKind> node_kind(const std::string& name) {
+  for (int i = 0; i < static_cast<int>(std::size(kNames)); ++i) {
+    if (name == kNames[i]) return static_cast<NodeKind>(i);
+  }
+  return std::nullopt;
+}
+
+Model copy_transformed(const Model& src, const shape::Transform& t) {
+  Model out;
+  copy_into(out, src, t);
+  return out;
+}
+
+std::vector<FaceId> copy_into(Model& out, const Model& src, const shape::Transform& t) {
+  std::vector<FaceId> faces(src.face_slots());
+  const bool flip = t.determinant() < 0;
+  for (GroupId g : src.groups()) {
+    MeshInput mesh;
+    std::vector<FaceId> face_ids;
+    mesh.group_name = src.name(g);
+    std::unordered_map<std::uint32_t, std::uint32_t> vertex, volume;
+    for (VertexId v : src.vertices()) {
+      if (src.group_of(v) != g) continue;
+      vertex[v.value] = static_cast<std::uint32_t>(mesh.positions.size());
+      mesh.positions.push_back(t.apply(src.position(v)));
+    }
+    for (VolumeId c : src.volumes()) {
+      if (src.group_of(c) == g) volume[c.value] = static_cast<std::uint32_t>(mesh.volumes++);
+    }
+    for (FaceId f : src.faces()) {
+      if (src.group_of(f) != g) continue;
+      MeshFace face;
+      for (LoopId l : src.loops_of(f)) {
+        if (src.is_point_loop(l)) continue;
+        face.loops.emplace_back();
+        for (VertexId v : src.loop_vertices(l)) face.loops.back().push_back(vertex.at(v.value));
+        if (flip) std::reverse(face.loops.back().begin(), face.loops.back().end());
+      }
+      if (src.front_volume(f).is_valid())
+        face.front = static_cast<int>(volume.at(src.front_volume(f).value));
+      if (src.back_volume(f).is_valid())
+        face.back = static_cast<int>(volume.at(src.back_volume(f).value));
+      mesh.faces.push_back(std::move(face));
+      face_ids.push_back(f);
+    }
+    for (EdgeId e : src.edges()) {
+      if (src.group_of(e) == g && src.is_wire(e)) {
+        mesh.wires.push_back({vertex.at(src.start_of(e).value), vertex.at(src.end_of(e).value)});
+      }
+    }
+    auto built = build_mesh(out, mesh);
+    if (!built) continue;  // the source was built by build_mesh too; this cannot fail
+    for (const auto& a : src.attributes(g)) out.set_attribute(built->group, a.key, a.value);
+    for (std::size_t i = 0; i < face_ids.size(); ++i) faces[face_ids[i].value] = built->faces[i];
+  }
+  return faces;
+}
+
+bool is_identity(const shape::Transform& t) {
+  const shape::Transform i = shape::Transform::identity();
+  return t.m == i.m;
+}
+
+namespace {
+
+bool is_2d_file(const std::string& path) {
+  std::string ext = path.substr(
+      path.find_last_of('.') == std::string::npos ? path.size() : path.find_last_of('.'));
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext == ".dxf" || ext == ".svg";
+}
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
+
+struct BuildError {
+  SourcePos pos;
+  std::string message;
+};
+
+using Color = std::optional<std::array<double, 4>>;
+
+struct Leaf {
+  Model model;
+  Color color;
+};
+
+// A 2D subtree: regions (already transformed into the plane) combined by set operations.
+struct Shape2 {
+  boolean::Expr expr;
+  std::vector<shape::Region> regions;
+};
+
+class Builder {
+ public:
+  explicit Builder(const BuildOptions& o) : options_(o), cache_(o.cache_dir) {}
+
+  BuildOutput run(const Node& root) {
+    BuildOutput out;
+    const int d = dimension(root);
+    if (d == 2) {
+      auto s = collect2(root, shape::Transform::identity());
+      out.dimension = s ? 2 : 0;
+      if (s) {
+        // Messages about the whole result name its first object.
+        const auto first = active_children(root);
+        const shape::Shape2D flat =
+            to_shape(*s, root.pos.line == 0 && !first.empty() ? *first[0] : root);
+        for (const shape::Region& r : flat.regions) {
+          auto g = shape::make_region_face(out.model, r);
+          if (!g) fail(root.pos, g.error().message);
+        }
+        if (flat.empty()) out.dimension = 0;
+      }
+      out.stats = stats_;
+      return out;
+    }
+    if (root.kind == NodeKind::kGroup) {
+      run_parts(root, out);
+      out.stats = stats_;
+      return out;
+    }
+    std::vector<Leaf> leaves;
+    auto expr = collect3(root, shape::Transform::identity(), std::nullopt, leaves);
+    if (!expr) {
+      out.dimension = 0;
+      out.stats = stats_;
+      return out;
+    }
+    out.model = combine(*expr, leaves, root.pos, &out.face_colors);
+    out.stats = stats_;
+    return out;
+  }
+
+  // The top-level parts (the root's children, and the children of unions among them)
+  // are built one by one — found in the cache by their content key when there is one,
+  // so that an edit rebuilds only the parts it touched — then parts whose boxes are
+  // apart are put side by side (their union, exactly, without a Boolean) and others
+  // united by one more Boolean. Separate parts are the common case of a file with
+  // many parts, and one arrangement per part is faster than one for all of them.
+  void run_parts(const Node& root, BuildOutput& out) {
+    struct Part {
+      Model model;
+      std::vector<Color> colors;
+      Vec3 lo, hi;
+    };
+    std::vector<Part> parts;
+    std::vector<const Node*> pieces;
+    std::function<void(const Node&)> split = [&](const Node& n) {
+      for (const Node* c : active_children(n)) {
+        if (c->kind == NodeKind::kGroup || c->kind == NodeKind::kUnion) {
+          split(*c);
+        } else {
+          pieces.push_back(c);
+        }
+      }
+    };
+    split(root);
+    for (std::size_t i = 0; i < pieces.size(); ++i) {
+      const Node* c = pieces[i];
+      if (options_.progress) options_.progress(i, pieces.size());
+      Part p;
+      const std::string key = content_key(*c);
+      if (cache_.load(key, p.model, p.colors)) {
+        ++stats_.cache_hits;
+      } else {
+        ++stats_.cache_misses;
+        std::vector<Leaf> leaves;
+        auto expr = collect3(*c, shape::Transform::identity(), std::nullopt, leaves);
+        if (expr) p.model = combine(*expr, leaves, c->pos, &p.colors);
+        cache_.store(key, p.model, p.colors);
+      }
+      if (p.model.num_faces() == 0) continue;
+      const shape::MassProperties mp = shape::mass_properties(p.model);
+      p.lo = mp.bbox_min;
+      p.hi = mp.bbox_max;
+      parts.push_back(std::move(p));
+    }
+    if (options_.progress) options_.progress(pieces.size(), pieces.size());
+    if (parts.empty()) {
+      out.dimension = 0;
+      return;
+    }
+    bool apart = true;
+    for (std::size_t i = 0; i < parts.size() && apart; ++i) {
+      for (std::size_t j = i + 1; j < parts.size() && apart; ++j) {
+        bool separated = false;
+        for (int k = 0; k < 3; ++k) {
+          separated |= parts[i].hi[k] < parts[j].lo[k] || parts[j].hi[k] < parts[i].lo[k];
+        }
+        apart = separated;
+      }
+    }
+    if (parts.size() == 1) {
+      out.model = std::move(parts[0].model);
+      out.face_colors = std::move(parts[0].colors);
+      return;
+    }
+    if (apart) {
+      for (Part& p : parts) {
+        const std::vector<FaceId> ids = copy_into(out.model, p.model, shape::Transform::identity());
+        out.face_colors.resize(out.model.face_slots());
+        for (FaceId f : p.model.faces()) {
+          if (ids[f.value].is_valid() && f.value < p.colors.size())
+            out.face_colors[ids[f.value].value] = p.colors[f.value];
+        }
+      }
+      return;
+    }
+    std::vector<const Model*> operands;
+    for (const Part& p : parts) operands.push_back(&p.model);
+    const auto start = Clock::now();
+    auto r = boolean::apply(boolean::Op::kUnion, operands);
+    stats_.boolean_seconds += seconds_since(start);
+    ++stats_.booleans;
+    stats_.boolean_operands += operands.size();
+    if (!r) fail(root.pos, "the Boolean operation failed: " + r.error().message);
+    out.face_colors.assign(r->model.face_slots(), std::nullopt);
+    for (std::size_t f = 0; f < r->sources.size() && f < out.face_colors.size(); ++f) {
+      const auto& src = r->sources[f];
+      if (src.operand < 0) continue;
+      const Part& p = parts[static_cast<std::size_t>(src.operand)];
+      if (src.face < p.colors.size()) out.face_colors[f] = p.colors[src.face];
+    }
+    out.model = std::move(r->model);
+  }
+
+  [[noreturn]] void fail(SourcePos pos, const std::string& message) const {
+    throw BuildError{pos, message};
+  }
+
+  // 3: solids, 2: planar shapes, 0: nothing (or only background).
+  int dimension(const Node& n) const {
+    switch (n.kind) {
+      case NodeKind::kCube:
+      case NodeKind::kSphere:
+      case NodeKind::kCylinder:
+      case NodeKind::kPolyhedron:
+      case NodeKind::kLinearExtrude:
+      case NodeKind::kRotateExtrude:
+        return 3;
+      case NodeKind::kSquare:
+      case NodeKind::kCircle:
+      case NodeKind::kPolygon:
+      case NodeKind::kProjection:
+      case NodeKind::kOffset:
+        return 2;
+      case NodeKind::kImport:
+        return is_2d_file(n.path) ? 2 : 3;
+      default: {
+        int d = 0;
+        for (const NodePtr& c : n.children) {
+          if (c->background) continue;
+          const int cd = dimension(*c);
+          if (cd == 0) continue;
+          if (d != 0 && cd != d) {
+            fail(c->pos, std::string("a ") + (cd == 2 ? "2D" : "3D") + " object among " +
+                             (d == 2 ? "2D" : "3D") + " ones in " + node_name(n.kind) +
+                             "() (OpenSCAD ignores it; mixing dimensions is refused here)");
+          }
+          d = cd;
+        }
+        return d;
+      }
+    }
+  }
+
+  std::vector<const Node*> active_children(const Node& n) const {
+    std::vector<const Node*> out;
+    for (const NodePtr& c : n.children) {
+      if (!c->background) out.push_back(c.get());
+    }
+    return out;
+  }
+
+  // ---- 3D: the set-operation expression over leaves
+  std::optional<boolean::Expr> collect3(const Node& n, const shape::Transform& t,
+                                        const Color& color, std::vector<Leaf>& leaves) {
+    switch (n.kind) {
+      case NodeKind::kGroup:
+      case NodeKind::kUnion:
+      case NodeKind::kDifference:
+      case NodeKind::kIntersection: {
+        std::vector<std::optional<boolean::Expr>> parts;
+        for (const Node* c : active_children(n)) parts.push_back(collect3(*c, t, color, leaves));
+        return set_op(n.kind, std::move(parts));
+      }
+      case NodeKind::kMultmatrix: {
+        const shape::Transform inner = t * n.matrix;
+        std::vector<std::optional<boolean::Expr>> parts;
+        for (const Node* c : active_children(n))
+          parts.push_back(collect3(*c, inner, color, leaves));
+        return set_op(NodeKind::kGroup, std::move(parts));
+      }
+      case NodeKind::kColor: {
+        std::vector<std::optional<boolean::Expr>> parts;
+        for (const Node* c : active_children(n)) parts.push_back(collect3(*c, t, n.color, leaves));
+        return set_op(NodeKind::kGroup, std::move(parts));
+      }
+      default:
+        break;
+    }
+    const auto start = Clock::now();
+    Model m = leaf3(n);
+    stats_.leaf_seconds += seconds_since(start);
+    ++stats_.leaves;
+    if (m.num_faces() == 0) return std::nullopt;
+    if (m.num_volumes() == 0) fail(n.pos, std::string(node_name(n.kind)) + "() made no solid");
+    if (!is_identity(t)) {
+      if (t.determinant() == 0) return std::nullopt;  // flattened to nothing, as OpenSCAD
+      m = copy_transformed(m, t);
+    }
+    leaves.push_back(Leaf{std::move(m), color});
+    return boolean::Expr::of(static_cast<int>(leaves.size() - 1));
+  }
+
+  // Empty parts dropped: a union of nothing is nothing, an intersection with nothing is
+  // nothing, a difference from nothing is nothing.
+  static std::optional<boolean::Expr> set_op(NodeKind k,
+                                             std::vector<std::optional<boolean::Expr>> parts) {
+    std::vector<boolean::Expr> kept;
+    if (k == NodeKind::kIntersection) {
+      for (auto& p : parts) {
+        if (!p) return std::nullopt;
+        kept.push_back(std::move(*p));
+      }
+    } else if (k == NodeKind::kDifference) {
+      if (parts.empty() || !parts[0]) return std::nullopt;
+      for (auto& p : parts) {
+        if (p) kept.push_back(std::move(*p));
+      }
+    } else {
+      for (auto& p : parts) {
+        if (p) kept.push_back(std::move(*p));
+      }
+    }
+    if (kept.empty()) return std::nullopt;
+    if (kept.size() == 1) return std::move(kept[0]);
+    const boolean::Op op = k == NodeKind::kIntersection ? boolean::Op::kIntersection
+                           : k == NodeKind::kDifference ? boolean::Op::kDifference
+                                                        : boolean::Op::kUnion;
+    // Nested runs of the same associative operation become one node.
+    std::vector<boolean::Expr> flat;
+    const auto kind = op == boolean::Op::kUnion ? boolean::Expr::Kind::kUnion
+                                                : boolean::Expr::Kind::kIntersection;
+    for (auto& e : kept) {
+      if (op != boolean::Op::kDifference && e.kind == kind) {
+        for (auto& c : e.children) flat.push_back(std::move(c));
+      } else {
+        flat.push_back(std::move(e));
+      }
+    }
+    return boolean::Expr::op(op, std::move(flat));
+  }
+
+  Model combine(const boolean::Expr& expr, std::vector<Leaf>& leaves, SourcePos pos,
+                std::vector<Color>* face_colors) {
+    if (expr.kind == boolean::Expr::Kind::kOperand) {
+      Leaf& l = leaves[static_cast<std::size_t>(expr.operand)];
+      if (face_colors) face_colors->assign(l.model.face_slots(), l.color);
+      return std::move(l.model);
+    }
+    std::vector<const Model*> operands;
+    for (const Leaf& l : leaves) operands.push_back(&l.model);
+    const auto start = Clock::now();
+    auto r = boolean::evaluate(operands, expr);
+    stats_.boolean_seconds += seconds_since(start);
+    ++stats_.booleans;
+    stats_.boolean_operands += operands.size();
+    if (!r) fail(pos, "the Boolean operation failed: " + r.error().message);
+    if (face_colors) {
+      face_colors->assign(r->model.face_slots(), std::nullopt);
+      for (std::size_t f = 0; f < r->sources.size() && f < face_colors->size(); ++f) {
+        const int op = r->sources[f].operand;
+        if (op >= 0 && static_cast<std::size_t>(op) < leaves.size())
+          (*face_colors)[f] = leaves[static_cast<std::size_t>(op)].color;
+      }
+    }
+    return std::move(r->model);
+  }
+
+  template <class T>
+  void check(const Result<T>& r, const Node& n) const {
+    if (!r) fail(n.pos, std::string(node_name(n.kind)) + "(): " + r.error().message);
+  }
+
+  // More than a million segments per circle is refused before the faceting rule
+  // turns it into an int (and before building it would run out of memory).
+  void check_segments(const Node& n, double r, const shape::Faceting& f) const {
+    constexpr double kMax = 1e6;
+    const double fa = std::max(f.fa, shape::kMinimumFaFs), fs = std::max(f.fs, shape::kMinimumFaFs);
+    const double segments = f.fn > 0 ? f.fn : std::min(360.0 / fa, std::fabs(r) * 2 * M_PI / fs);
+    if (std::isfinite(f.fn) && !(segments <= kMax)) {
+      fail(n.pos, std::string(node_name(n.kind)) + "(): more than 10^6 segments per circle");
+    }
+  }
+
+  Model leaf3(const Node& n) {
+    Model m;
+    if (n.kind == NodeKind::kSphere) check_segments(n, n.r, n.faceting);
+    if (n.kind == NodeKind::kCylinder) check_segments(n, std::max(n.r1, n.r2), n.faceting);
+    switch (n.kind) {
+      case NodeKind::kCube:
+        if (n.size.x == 0 || n.size.y == 0 || n.size.z == 0) return m;
+        check(shape::make_cube(m, {.size = n.size, .center = n.center}), n);
+        return m;
+      case NodeKind::kSphere:
+        if (n.r == 0) return m;
+        check(shape::make_sphere(m, {.r = n.r, .faceting = n.faceting}), n);
+        return m;
+      case NodeKind::kCylinder:
+        if (n.h == 0 || (n.r1 == 0 && n.r2 == 0)) return m;
+        check(
+            shape::make_cylinder(
+                m, {.h = n.h, .r1 = n.r1, .r2 = n.r2, .center = n.center, .faceting = n.faceting}),
+            n);
+        return m;
+      case NodeKind::kPolyhedron:
+        check(shape::make_polyhedron(m, {.points = n.points, .faces = n.faces, .clockwise = true}),
+              n);
+        return m;
+      case NodeKind::kImport: {
+        auto r = io::read_file(m, n.path);
+        check(r, n);
+        return m;
+      }
+      case NodeKind::kLinearExtrude:
+      case NodeKind::kRotateExtrude:
+        return extrude(n);
+      case NodeKind::kResize:
+        return resize(n);
+      case NodeKind::kHull:
+        return hull3(n);
+      case NodeKind::kMinkowski:
+        return minkowski3(n);
+      default:
+        fail(n.pos, std::string(node_name(n.kind)) + "() is a 2D object where a 3D one is needed");
+    }
+  }
+
+  // The children of n built into one model (a subtree of its own).
+  Model build_children(const Node& n) {
+    std::vector<Leaf> leaves;
+    Node group;
+    group.kind = NodeKind::kGroup;
+    group.children = n.children;
+    auto expr = collect3(group, shape::Transform::identity(), std::nullopt, leaves);
+    if (!expr) return Model();
+    return combine(*expr, leaves, n.pos, nullptr);
+  }
+
+  Model resize(const Node& n) {
+    Model sub = build_children(n);
+    if (sub.num_faces() == 0) return sub;
+    const shape::MassProperties mp = shape::mass_properties(sub);
+    auto f =
+        shape::resize_factors(mp.bbox_max - mp.bbox_min, {.size = n.size, .autosize = n.auto_size});
+    check(f, n);
+    return copy_transformed(sub, shape::Transform::scale(*f));
+  }
+
+  Model hull3(const Node& n) {
+    std::vector<Leaf> leaves;
+    Node group;
+    group.kind = NodeKind::kGroup;
+    group.children = n.children;
+    // The hull of a union is the hull of all the vertices: no Boolean is needed.
+    collect3(group, shape::Transform::identity(), std::nullopt, leaves);
+    std::vector<Vec3> points;
+    for (const Leaf& l : leaves) {
+      for (Vec3 p : shape::vertex_positions(l.model)) points.push_back(p);
+    }
+    Model m;
+    if (points.empty()) return m;
+    check(shape::convex_hull(m, points), n);
+    return m;
+  }
+
+  Model minkowski3(const Node& n) {
+    std::vector<Model> parts;
+    for (const Node* c : active_children(n)) {
+      Node one;
+      one.kind = NodeKind::kGroup;
+      one.children = {std::make_shared<Node>(*c)};
+      Model m = build_children(one);
+      if (m.num_faces() == 0) return Model();
+      parts.push_back(std::move(m));
+    }
+    if (parts.empty()) return Model();
+    std::vector<const Model*> operands;
+    for (const Model& m : parts) operands.push_back(&m);
+    auto r = boolean::minkowski(operands);
+    check(r, n);
+    return std::move(*r);
+  }
+
+  // A 2D subtree as one shape: its set operations evaluated (2D Booleans).
+  shape::Shape2D to_shape(const Shape2& s, const Node& at) {
+    if (s.expr.kind == boolean::Expr::Kind::kOperand)
+      return shape::shape_of(s.regions[static_cast<std::size_t>(s.expr.operand)]);
+    std::vector<shape::Shape2D> operands;
+    for (const shape::Region& r : s.regions) operands.push_back(shape::shape_of(r));
+    const auto start = Clock::now();
+    auto r = boolean::evaluate_2d(operands, s.expr);
+    stats_.boolean_seconds += seconds_since(start);
+    ++stats_.booleans;
+    check(r, at);
+    return std::move(*r);
+  }
+
+  // A shape (disjoint regions) as a Shape2: the union of its regions.
+  static std::optional<Shape2> from_shape(shape::Shape2D shape) {
+    if (shape.empty()) return std::nullopt;
+    Shape2 s;
+    std::vector<boolean::Expr> parts;
+    for (auto& r : shape.regions) {
+      parts.push_back(boolean::Expr::of(static_cast<int>(s.regions.size())));
+      s.regions.push_back(std::move(r));
+    }
+    s.expr = parts.size() == 1 ? std::move(parts[0])
+                               : boolean::Expr::op(boolean::Op::kUnion, std::move(parts));
+    return s;
+  }
+
+  std::optional<Shape2> children2(const Node& n, const shape::Transform& t) {
+    Node group;
+    group.kind = NodeKind::kGroup;
+    group.children = n.children;
+    return collect2(group, t);
+  }
+
+  // ---- 2D
+  std::optional<Shape2> collect2(const Node& n, const shape::Transform& t) {
+    switch (n.kind) {
+      case NodeKind::kGroup:
+      case NodeKind::kUnion:
+      case NodeKind::kDifference:
+      case NodeKind::kIntersection:
+      case NodeKind::kMultmatrix:
+      case NodeKind::kColor: {
+        const shape::Transform inner = n.kind == NodeKind::kMultmatrix ? t * n.matrix : t;
+        Shape2 all;
+        std::vector<std::optional<boolean::Expr>> parts;
+        for (const Node* c : active_children(n)) {
+          auto s = collect2(*c, inner);
+          if (!s) {
+            parts.push_back(std::nullopt);
+            continue;
+          }
+          const int offset = static_cast<int>(all.regions.size());
+          for (auto& r : s->regions) all.regions.push_back(std::move(r));
+          shift(s->expr, offset);
+          parts.push_back(std::move(s->expr));
+        }
+        const NodeKind k = n.kind == NodeKind::kMultmatrix || n.kind == NodeKind::kColor
+                               ? NodeKind::kGroup
+                               : n.kind;
+        auto e = set_op(k, std::move(parts));
+        if (!e) return std::nullopt;
+        all.expr = std::move(*e);
+        return all;
+      }
+      default:
+        break;
+    }
+    if (n.kind == NodeKind::kHull || n.kind == NodeKind::kMinkowski ||
+        n.kind == NodeKind::kOffset || n.kind == NodeKind::kProjection ||
+        n.kind == NodeKind::kResize) {
+      return operation2(n, t);
+    }
+    if (n.kind == NodeKind::kImport) {
+      fail(n.pos, "import() of a 2D file (DXF, SVG) is not supported yet");
+    }
+    Result<shape::Region> region = Error{ErrorCode::kUnsupported, ""};
+    switch (n.kind) {
+      case NodeKind::kSquare:
+        if (n.size.x == 0 || n.size.y == 0) return std::nullopt;
+        region = shape::rectangle(Vec2{n.size.x, n.size.y}, n.center);
+        break;
+      case NodeKind::kCircle:
+        if (n.r == 0) return std::nullopt;
+        check_segments(n, n.r, n.faceting);
+        region = shape::circle(n.r, n.faceting);
+        break;
+      case NodeKind::kPolygon: {
+        std::vector<std::vector<std::uint32_t>> paths = n.faces;
+        if (paths.empty()) {
+          paths.emplace_back();
+          for (std::uint32_t i = 0; i < n.points.size(); ++i) paths[0].push_back(i);
+        }
+        if (paths[0].size() < 3) return std::nullopt;
+        auto loop = [&](const std::vector<std::uint32_t>& p) {
+          std::vector<Vec2> out;
+          for (std::uint32_t i : p) out.push_back(Vec2{n.points[i].x, n.points[i].y});
+          return out;
+        };
+        std::vector<std::vector<Vec2>> holes;
+        for (std::size_t i = 1; i < paths.size(); ++i) holes.push_back(loop(paths[i]));
+        region = shape::polygon(loop(paths[0]), std::move(holes));
+        if (!region && paths.size() > 1) {
+          // Not an outline with holes inside it: OpenSCAD fills the paths even-odd,
+          // the symmetric difference of their polygons, one path at a time.
+          std::optional<shape::Shape2D> fill;
+          for (const auto& path : paths) {
+            if (path.size() < 3) continue;
+            auto one = shape::polygon(loop(path));
+            check(one, n);
+            if (!fill) {
+              fill = shape::shape_of(std::move(*one));
+              continue;
+            }
+            const shape::Shape2D pair[2] = {std::move(*fill), shape::shape_of(std::move(*one))};
+            using boolean::Expr;
+            const Expr either = Expr::op(boolean::Op::kUnion, {Expr::of(0), Expr::of(1)});
+            const Expr both = Expr::op(boolean::Op::kIntersection, {Expr::of(0), Expr::of(1)});
+            auto x = boolean::evaluate_2d(pair, Expr::op(boolean::Op::kDifference, {either, both}));
+            check(x, n);
+            fill = std::move(*x);
+          }
+          if (!fill) return std::nullopt;
+          if (!is_identity(t)) {
+            auto moved = shape::transformed(*fill, t);
+            check(moved, n);
+            fill = std::move(*moved);
+          }
+          return from_shape(std::move(*fill));
+        }
+        break;
+      }
+      default:
+        fail(n.pos, std::string(node_name(n.kind)) + "() is a 3D object where a 2D one is needed");
+    }
+    check(region, n);
+    shape::Region r = std::move(*region);
+    if (!is_identity(t)) {
+      const auto& m = t.m;
+      if (m[2][0] != 0 || m[2][1] != 0) {
+        fail(n.pos,
+             "a 2D object moved out of the xy plane (only transforms within it are "
+             "supported for 2D)");
+      }
+      const double det = m[0][0] * m[1][1] - m[0][1] * m[1][0];
+      if (det == 0) return std::nullopt;
+      for (auto& l : r.loops) {
+        for (Vec2& p : l)
+          p = Vec2{m[0][0] * p.x + m[0][1] * p.y + m[0][3],
+                   m[1][0] * p.x + m[1][1] * p.y + m[1][3]};
+      }
+      if (det < 0) {
+        std::vector<std::vector<Vec2>> holes(r.loops.begin() + 1, r.loops.end());
+        auto again = shape::polygon(r.loops[0], std::move(holes));
+        check(again, n);
+        r = std::move(*again);
+      }
+    }
+    Shape2 s;
+    s.regions.push_back(std::move(r));
+    s.expr = boolean::Expr::of(0);
+    return s;
+  }
+
+  // hull, minkowski, offset, projection and resize of 2D children (projection: of 3D
+  // ones), in the children's own frame, then moved by t.
+  std::optional<Shape2> operation2(const Node& n, const shape::Transform& t) {
+    shape::Shape2D result;
+    if (n.kind == NodeKind::kProjection) {
+      Node group;
+      group.kind = NodeKind::kGroup;
+      group.children = n.children;
+      if (dimension(group) == 2) fail(n.pos, "projection() of a 2D object");
+      Model m = build_children(n);
+      if (m.num_faces() == 0) return std::nullopt;
+      auto r = boolean::projection(m, {.cut = n.cut});
+      check(r, n);
+      result = std::move(*r);
+    } else if (n.kind == NodeKind::kMinkowski) {
+      std::vector<shape::Shape2D> parts;
+      for (const Node* c : active_children(n)) {
+        auto s = collect2(*c, shape::Transform::identity());
+        if (!s) return std::nullopt;
+        parts.push_back(to_shape(*s, n));
+      }
+      if (parts.empty()) return std::nullopt;
+      auto r = boolean::minkowski_2d(parts);
+      check(r, n);
+      result = std::move(*r);
+    } else {
+      auto s = children2(n, shape::Transform::identity());
+      if (!s) return std::nullopt;
+      if (n.kind == NodeKind::kHull) {
+        std::vector<Vec2> points;
+        for (const auto& reg : s->regions) {
+          for (const auto& l : reg.loops) points.insert(points.end(), l.begin(), l.end());
+        }
+        auto r = shape::convex_hull(points);
+        check(r, n);
+        result = shape::shape_of(std::move(*r));
+      } else if (n.kind == NodeKind::kOffset) {
+        const boolean::OffsetJoin join = n.round     ? boolean::OffsetJoin::kRound
+                                         : n.chamfer ? boolean::OffsetJoin::kChamfer
+                                                     : boolean::OffsetJoin::kMiter;
+        auto r = boolean::offset(to_shape(*s, n),
+                                 {.amount = n.delta, .join = join, .faceting = n.faceting});
+        check(r, n);
+        result = std::move(*r);
+      } else {
+        auto r = shape::resized(to_shape(*s, n), {.size = n.size, .autosize = n.auto_size});
+        check(r, n);
+        result = std::move(*r);
+      }
+    }
+    if (!is_identity(t)) {
+      auto moved = shape::transformed(result, t);
+      check(moved, n);
+      result = std::move(*moved);
+    }
+    return from_shape(std::move(result));
+  }
+
+  static void shift(boolean::Expr& e, int offset) {
+    if (e.kind == boolean::Expr::Kind::kOperand) {
+      e.operand += offset;
+      return;
+    }
+    for (auto& c : e.children) shift(c, offset);
+  }
+
+  static bool union_only(const boolean::Expr& e) {
+    if (e.kind == boolean::Expr::Kind::kOperand) return true;
+    if (e.kind != boolean::Expr::Kind::kUnion) return false;
+    for (const auto& c : e.children) {
+      if (!union_only(c)) return false;
+    }
+    return true;
+  }
+
+  Model extrude(const Node& n) {
+    Node group;
+    group.kind = NodeKind::kGroup;
+    group.children = n.children;
+    if (dimension(group) == 3) fail(n.pos, std::string(node_name(n.kind)) + "() of a 3D object");
+    auto s = collect2(group, shape::Transform::identity());
+    if (!s) return Model();
+    bool several = s->regions.size() > 1;
+    // A set operation of regions extrudes as that set operation of the extrusions when
+    // the sweep maps every plane section the same way (straight linear_extrude; a
+    // rotate_extrude of a union with shared segments); otherwise it is evaluated in 2D.
+    const bool distributes = n.kind == NodeKind::kLinearExtrude
+                                 ? n.linear.twist == 0 && n.linear.scale_x == n.linear.scale_y
+                                 : union_only(s->expr);
+    if (several && !distributes) {
+      s = from_shape(to_shape(*s, n));
+      if (!s) return Model();
+      several = s->regions.size() > 1;
+    }
+    std::vector<Leaf> leaves(s->regions.size());
+    if (n.kind == NodeKind::kLinearExtrude) {
+      if (n.linear.height <= 0) return Model();
+      shape::LinearExtrudeOptions o = n.linear;
+      if (o.scale_x < 0 || o.scale_y < 0)
+        fail(n.pos, "linear_extrude(): scale must not be negative");
+      if (several && o.slices == 0) {
+        // OpenSCAD's slice count is the whole profile's.
+        shape::Region all;
+        for (const auto& reg : s->regions)
+          all.loops.insert(all.loops.end(), reg.loops.begin(), reg.loops.end());
+        o.slices = shape::extrude_slices(all, o);
+      }
+      for (std::size_t i = 0; i < s->regions.size(); ++i) {
+        check(shape::linear_extrude(leaves[i].model, s->regions[i], o), n);
+      }
+    } else {
+      shape::RotateExtrudeOptions o = n.rotate;
+      if (o.angle == 0) return Model();
+      o.angle = std::clamp(o.angle, -360.0, 360.0);
+      double r = 0;
+      for (const auto& reg : s->regions) {
+        for (const auto& l : reg.loops) {
+          for (Vec2 p : l) r = std::max(r, std::fabs(p.x));
+        }
+      }
+      check_segments(n, r, n.rotate.faceting);
+      if (several) {
+        // The same segments for every region: those of the whole profile.
+        o.faceting =
+            shape::Faceting{.fn = static_cast<double>(shape::fragments(r, n.rotate.faceting))};
+      }
+      for (std::size_t i = 0; i < s->regions.size(); ++i) {
+        check(shape::rotate_extrude(leaves[i].model, s->regions[i], o), n);
+      }
+    }
+    return combine(s->expr, leaves, n.pos, nullptr);
+  }
+
+  const BuildOptions& options_;
+  DiskCache cache_;
+  BuildStats stats_;
+};
+
+}  // namespace
+
+Result<BuildOutput> build(const Node& root, const BuildOptions& options) {
+  Builder b(options);
+  try {
+    return b.run(root);
+  } catch (const BuildError& e) {
+    return Error{ErrorCode::kInvalidInput,
+                 options.sources ? options.sources->format(e.pos, e.message) : e.message};
+  }
+}
+
+}  // namespace cellforge::csg

@@ -1,0 +1,291 @@
+// The language outside the corpus: diagnostics (place, line, caret), the limits that
+// keep hostile scripts from crashing or hanging, the JSON form of the tree, colors per
+// face, and the `cellforge build` command's exit codes.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+
+#include "cellforge/csg/evaluator.h"
+#include "cellforge/csg/parser.h"
+#include "cellforge/csg/tree.h"
+#include "cellforge/csg/tree_json.h"
+#include "cellforge/shape/mass.h"
+
+namespace cellforge::csg {
+namespace {
+
+Result<EvalOutput> run(const std::string& text, EvalOptions options = {}) {
+  options.use_default_library_path = false;
+  options.allow_files = false;
+  return evaluate_text(text, "t.scad", options);
+}
+
+std::string error_of(const std::string& text, EvalOptions options = {}) {
+  auto r = run(text, options);
+  return r ? std::string() : r.error().message;
+}
+
+TEST(Diagnostics, ParseErrorHasPlaceLineAndCaret) {
+  const std::string msg = error_of("cube(1);\n  sphere(r = );\n");
+  EXPECT_EQ(msg,
+            "t.scad:2:14: expected an expression, found ')'\n    sphere(r = );\n               ^");
+}
+
+TEST(Diagnostics, UnclosedCommentAndString) {
+  EXPECT_EQ(error_of("cube(1); /* no end").substr(0, 53),
+            "t.scad:1:10: the comment is not closed ('*/' missing)");
+  EXPECT_NE(error_of("echo(\"abc);").find("t.scad:1:6: the string is not closed"),
+            std::string::npos);
+}
+
+TEST(Diagnostics, WarningForUnknownVariableHasCaret) {
+  auto r = run("x = 1;\necho(y);\n");
+  ASSERT_TRUE(r) << r.error().message;
+  ASSERT_EQ(r->warnings.size(), 1u);
+  EXPECT_EQ(r->warnings[0],
+            "t.scad:2:6: warning: unknown variable 'y' (undef)\n  echo(y);\n       ^");
+  EXPECT_EQ(r->echoes, std::vector<std::string>{"ECHO: undef"});
+}
+
+TEST(Diagnostics, EvaluationErrorNamesThePlace) {
+  EXPECT_EQ(error_of("module m() assert(false, \"no\");\nm();"),
+            "t.scad:1:12: assertion 'false' failed: \"no\"\n  module m() assert(false, \"no\");\n  "
+            "           ^");
+}
+
+TEST(Limits, EndlessTailRecursionHitsTheStepLimit) {
+  EvalOptions o;
+  o.max_steps = 100000;
+  const std::string msg = error_of("function f(n) = f(n + 1);\necho(f(0));", o);
+  EXPECT_NE(msg.find("more than 100000 steps"), std::string::npos) << msg;
+}
+
+TEST(Limits, EndlessLoopOfStatementsHitsTheStepLimit) {
+  EvalOptions o;
+  o.max_steps = 100000;
+  const std::string msg = error_of("module m(n) m(n + 1);\nm(0);", o);
+  EXPECT_TRUE(msg.find("steps") != std::string::npos ||
+              msg.find("recursion too deep") != std::string::npos)
+      << msg;
+}
+
+TEST(Limits, HugeRangeIsRefusedBeforeItIsMade) {
+  const std::string msg = error_of("x = [for (i = [0 : 1e12]) i];");
+  EXPECT_NE(msg.find("more elements than the limit"), std::string::npos) << msg;
+}
+
+TEST(Limits, ListSizeLimit) {
+  EvalOptions o;
+  o.max_list_size = 1000;
+  EXPECT_NE(error_of("x = [for (i = [0 : 5000]) i];", o).find("than the limit (1000)"),
+            std::string::npos);
+  EXPECT_EQ(error_of("x = [for (i = [0 : 500]) i];", o), "");
+}
+
+TEST(Limits, VectorNestingLimit) {
+  const std::string msg =
+      error_of("function nest(n, v = []) = n == 0 ? v : nest(n - 1, [v]);\nx = nest(20000);");
+  EXPECT_NE(msg.find("nest deeper than the limit"), std::string::npos) << msg;
+}
+
+// Under AddressSanitizer the stack budget is 48 MiB and frames are larger.
+#if defined(__SANITIZE_ADDRESS__)
+constexpr int kDeep = 2000;
+#else
+constexpr int kDeep = 20000;
+#endif
+
+TEST(Limits, DeepNonTailRecursionRunsOnTheLargeStack) {
+  auto r =
+      run("function d(n) = n == 0 ? 0 : 1 + d(n - 1);\necho(d(" + std::to_string(kDeep) + "));");
+  ASSERT_TRUE(r) << r.error().message;
+  EXPECT_EQ(r->echoes, std::vector<std::string>{"ECHO: " + std::to_string(kDeep)});
+}
+
+TEST(Limits, EndlessNonTailRecursionIsAnError) {
+  EvalOptions o;
+  o.max_stack_bytes = 8u << 20;
+  const std::string msg = error_of("function f(n) = 1 + f(n + 1);\necho(f(0));", o);
+  EXPECT_NE(msg.find("recursion too deep"), std::string::npos) << msg;
+}
+
+TEST(Limits, ParserNestingLimit) {
+  const std::string deep = "x = " + std::string(1000, '(') + "1" + std::string(1000, ')') + ";";
+  EXPECT_NE(error_of(deep).find("nested too deeply"), std::string::npos);
+}
+
+TEST(Files, IncludeIsRefusedWhenFilesAreOff) {
+  EXPECT_NE(error_of("include <x.scad>\ncube(1);")
+                .find("t.scad:1:1: reading 'x.scad' (files are turned off)"),
+            std::string::npos);
+}
+
+TEST(Files, MissingIncludeNamesThePlace) {
+  EvalOptions o;
+  o.use_default_library_path = false;
+  auto r = evaluate_text("cube(1);\ninclude <no_such_file.scad>\n", "/tmp/t.scad", o);
+  ASSERT_FALSE(r);
+  EXPECT_NE(r.error().message.find("/tmp/t.scad:2:1: cannot find 'no_such_file.scad'"),
+            std::string::npos)
+      << r.error().message;
+}
+
+TEST(Defines, OverrideTopLevelAssignments) {
+  EvalOptions o;
+  o.defines = {{"a", "[1, 2]"}, {"s", "\"x\""}};
+  auto r = run("a = 0;\ns = \"y\";\necho(a, s);", o);
+  ASSERT_TRUE(r) << r.error().message;
+  EXPECT_EQ(r->echoes, std::vector<std::string>{"ECHO: [1, 2], \"x\""});
+}
+
+double volume_of(const Node& root) {
+  auto b = build(root);
+  EXPECT_TRUE(b) << b.error().message;
+  return b ? shape::mass_properties(b->model).volume : -1;
+}
+
+TEST(TreeJson, RoundTripKeepsTheTreeAndItsKey) {
+  auto r = run(
+      "difference() { cube(10, center = true); rotate([90, 0, 0]) cylinder(h = 12, r = 3, center = "
+      "true, $fn = 12); }\ntranslate([20, 0, 0]) linear_extrude(height = 2, scale = [0.5, 0.5]) "
+      "polygon([[0, 0], [4, 0], [0, 3]]);\ntranslate([0, -20, 0]) color([1, 0, 0]) mirror([1, 1, "
+      "0]) cube([1, 2, 3]);");
+  ASSERT_TRUE(r) << r.error().message;
+  const std::string json = tree_to_json(*r->root);
+  auto back = tree_from_json(json);
+  ASSERT_TRUE(back) << back.error().message;
+  EXPECT_EQ(node_json(**back), node_json(*r->root));  // the same tree, places aside
+  EXPECT_EQ(content_key(**back), content_key(*r->root));
+  EXPECT_DOUBLE_EQ(volume_of(**back), volume_of(*r->root));
+  // 1000 - 12-gon of r 3 (area 27) x 10, + a prism 6 x 2 scaled to a quarter on top: 6 (1 + 1/4 +
+  // 1/2) 2 / 3, + 6.
+  EXPECT_NEAR(volume_of(*r->root), 1000 - 270 + 7 + 6, 1e-9);
+}
+
+TEST(TreeJson, ErrorsGiveTheByteOffset) {
+  auto bad =
+      tree_from_json("{\"cellforge_csg\": 1, \"root\": {\"type\": \"cube\", \"size\": [1, 2]}}");
+  ASSERT_FALSE(bad);
+  EXPECT_EQ(bad.error().message, "byte 54: size has the wrong length");
+  auto unknown = tree_from_json("{\"cellforge_csg\": 1, \"root\": {\"type\": \"teapot\"}}");
+  ASSERT_FALSE(unknown);
+  EXPECT_EQ(unknown.error().message, "byte 38: unknown node type \"teapot\"");
+  EXPECT_FALSE(tree_from_json("{\"root\": {}}"));
+  EXPECT_FALSE(tree_from_json("[1, 2"));
+}
+
+TEST(TreeJson, ContentKeyIgnoresPlacesButNotParameters) {
+  auto a = run("cube(2);");
+  auto b = run("\n\n   cube(2);");
+  auto c = run("cube(3);");
+  ASSERT_TRUE(a && b && c);
+  EXPECT_EQ(content_key(*a->root), content_key(*b->root));
+  EXPECT_NE(content_key(*a->root), content_key(*c->root));
+}
+
+TEST(Build, ColorsArePerFace) {
+  auto r =
+      run("color(\"red\") cube(2);\ncolor([0, 0, 1]) translate([1, 1, 1]) cube(2);\ncube(0.5);");
+  ASSERT_TRUE(r) << r.error().message;
+  auto b = build(*r->root);
+  ASSERT_TRUE(b) << b.error().message;
+  std::size_t red = 0, blue = 0, none = 0;
+  for (FaceId f : b->model.faces()) {
+    const auto& c = b->face_colors.at(f.value);
+    if (!c) {
+      ++none;
+    } else if ((*c)[0] == 1 && (*c)[2] == 0) {
+      ++red;
+    } else if ((*c)[0] == 0 && (*c)[2] == 1) {
+      ++blue;
+    }
+  }
+  EXPECT_GT(red, 0u);
+  EXPECT_GT(blue, 0u);
+  EXPECT_EQ(none, 0u);  // cube(0.5) lies inside the red cube: none of its faces is left
+  EXPECT_NEAR(shape::mass_properties(b->model).volume, 15, 1e-9);
+}
+
+TEST(Build, OneBooleanForARunOfSetOperations) {
+  auto r =
+      run("difference() { union() { cube(4); translate([3, 0, 0]) cube(4); }\n"
+          "  for (i = [0 : 3]) translate([i * 1.5 + 0.5, 1, -1]) cube([0.5, 0.5, 6]); }");
+  ASSERT_TRUE(r);
+  auto b = build(*r->root);
+  ASSERT_TRUE(b) << b.error().message;
+  EXPECT_EQ(b->stats.booleans, 1u);
+  EXPECT_EQ(b->stats.boolean_operands, 6u);
+  EXPECT_NEAR(shape::mass_properties(b->model).volume, 7 * 4 * 4 - 4 * 0.25 * 4, 1e-9);
+}
+
+TEST(Build, CacheRebuildsOnlyTheEditedPart) {
+  const std::string dir = testing::TempDir() + "cf_cache_test";
+  std::filesystem::remove_all(dir);
+  auto script = [](int r) {
+    return "for (i = [0 : 3]) translate([i * 10, 0, 0]) difference() { cube(5); translate([2.5, "
+           "2.5, -1]) "
+           "cylinder(h = 7, r = 1, $fn = 8); }\ntranslate([0, 20, 0]) difference() { cube(5); "
+           "translate([2.5, 2.5, -1]) cylinder(h = 7, r = " +
+           std::to_string(r) + ", $fn = 8); }";
+  };
+  BuildOptions o;
+  o.cache_dir = dir;
+  auto first = run(script(1));
+  ASSERT_TRUE(first);
+  auto a = build(*first->root, o);
+  ASSERT_TRUE(a) << a.error().message;
+  EXPECT_EQ(a->stats.cache_misses, 5u);
+  EXPECT_EQ(a->stats.cache_hits, 0u);
+  auto b = build(*first->root, o);
+  ASSERT_TRUE(b);
+  EXPECT_EQ(b->stats.cache_hits, 5u);
+  EXPECT_EQ(b->stats.booleans, 0u);
+  auto edited = run(script(2));
+  ASSERT_TRUE(edited);
+  auto c = build(*edited->root, o);
+  ASSERT_TRUE(c);
+  EXPECT_EQ(c->stats.cache_hits, 4u);
+  EXPECT_EQ(c->stats.cache_misses, 1u);
+  // An octagon of circumradius r has area 2 sqrt(2) r^2.
+  const double octagon = 2 * std::sqrt(2.0);
+  EXPECT_NEAR(shape::mass_properties(a->model).volume, 5 * (125 - 5 * octagon), 1e-9);
+  EXPECT_NEAR(shape::mass_properties(b->model).volume, 5 * (125 - 5 * octagon), 1e-9);
+  EXPECT_NEAR(shape::mass_properties(c->model).volume,
+              4 * (125 - 5 * octagon) + 125 - 5 * 4 * octagon, 1e-9);
+  EXPECT_EQ(c->model.num_volumes(), 5u);
+  std::filesystem::remove_all(dir);
+}
+
+// ---- the command
+int cellforge(const std::string& args) {
+  const int rc = std::system(
+      (std::string(CELLFORGE_BIN) + " build --no-cache " + args + " > /dev/null 2>&1").c_str());
+  return WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
+}
+
+TEST(Command, ExitCodes) {
+  const std::string dir = testing::TempDir() + "cf_build_test/";
+  std::filesystem::create_directories(dir);
+  {
+    std::ofstream(dir + "ok.scad") << "cube(s);\n";
+    std::ofstream(dir + "bad.scad") << "cube(;\n";
+  }
+  EXPECT_EQ(cellforge(dir + "ok.scad -D s=2 -o " + dir + "ok.stl -o " + dir + "ok.off --tree " +
+                      dir + "ok.json"),
+            0);
+  EXPECT_TRUE(std::filesystem::exists(dir + "ok.stl"));
+  EXPECT_TRUE(std::filesystem::exists(dir + "ok.off"));
+  EXPECT_EQ(cellforge(dir + "ok.json -o " + dir + "again.stl"), 0);  // the JSON form builds too
+  EXPECT_EQ(cellforge(dir + "bad.scad -o " + dir + "bad.stl"), 1);
+  EXPECT_EQ(cellforge(dir + "missing.scad -o " + dir + "x.stl"), 1);
+  EXPECT_EQ(cellforge(""), 2);
+  EXPECT_EQ(cellforge(dir + "ok.scad -o out.xyz"), 2);
+  EXPECT_EQ(cellforge(dir + "ok.scad --report yaml"), 2);
+  EXPECT_EQ(cellforge(dir + "ok.scad -D novalue"), 2);
+}
+
+}  // namespace
+}  // namespace cellforge::csg

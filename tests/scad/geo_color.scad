@@ -1,0 +1,3 @@
+// color() keeps the geometry.
+// expect volume: 1
+color("red") cube(1);

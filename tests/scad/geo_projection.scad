@@ -1,0 +1,2 @@
+// expect volume: 4
+linear_extrude(1) projection() cube(2);

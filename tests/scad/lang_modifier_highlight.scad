@@ -1,0 +1,3 @@
+// '#' highlights and keeps its subtree.
+// expect volume: 8
+#cube(2);

@@ -1,0 +1,4 @@
+// An unknown variable is undef with a warning, as OpenSCAD does.
+// expect echo: ECHO: undef
+// expect warning: unknown variable 'nope'
+echo(nope);
