@@ -11,8 +11,8 @@
 //    largest vertex is the outer one (a region whose boundary passes a vertex twice
 //    stays unmerged). A vertex with two neighbours on one line goes.
 // 4. Coordinates are rounded, face-connected shells found, and each shell of positive
-//    volume bounds a cell; a shell of negative volume is a cavity of the smallest
-//    cell whose box holds it.
+//    volume bounds a cell; a shell of negative volume is a cavity of the innermost
+//    cell around it (an exact nesting test).
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -20,8 +20,11 @@
 #include <unordered_map>
 
 #include "boolean/stages.h"
+#include "cellforge/geom/polygon.h"
 #include "cellforge/geom/predicates.h"
+#include "cellforge/geom/winding.h"
 #include "cellforge/geom/union_find.h"
+#include "cellforge/io/triangulate.h"
 #include "cellforge/topo/builder.h"
 
 namespace cellforge::boolean {
@@ -526,34 +529,53 @@ Result<BooleanResult> build_result(Arrangement& a, std::vector<OutPoly> polys, R
     i = j;
   }
   std::vector<double> volume(polys.size(), 0);
-  std::vector<Box> box(polys.size());
   std::vector<std::vector<std::uint32_t>> faces_idx;
   for (std::uint32_t f = 0; f < polys.size(); ++f) {
     const std::uint32_t s = shells.find(f);
     for (const auto& loop : polys[f].loops) {
       std::vector<std::uint32_t> idx;
-      for (std::uint32_t v : loop) {
-        idx.push_back(index[v]);
-        box[s].add(in.positions[idx.back()]);
-      }
+      for (std::uint32_t v : loop) idx.push_back(index[v]);
       volume[s] += loop_volume6(in.positions, idx);
     }
   }
   std::vector<int> cell(polys.size(), -1);
   for (std::uint32_t s = 0; s < polys.size(); ++s)
     if (shells.find(s) == s && volume[s] > 0) cell[s] = in.volumes++;
+  // A shell of negative volume is a cavity of the innermost cell around it, by the
+  // exact nesting of the shells (geom/winding.h) on their rounded triangles.
+  std::vector<std::uint32_t> surface(polys.size(), kInvalidIndex), root_of;
+  bool any_cavity = false;
   for (std::uint32_t s = 0; s < polys.size(); ++s) {
-    if (shells.find(s) != s || volume[s] >= 0) continue;
-    int best = -1;
-    for (std::uint32_t o = 0; o < polys.size(); ++o) {
-      if (cell[o] < 0 || shells.find(o) != o) continue;
-      const Box& bo = box[o];
-      const Box& bs = box[s];
-      const bool holds = bo.lo.x <= bs.lo.x && bo.lo.y <= bs.lo.y && bo.lo.z <= bs.lo.z &&
-                         bo.hi.x >= bs.hi.x && bo.hi.y >= bs.hi.y && bo.hi.z >= bs.hi.z;
-      if (holds && (best < 0 || volume[o] < volume[best])) best = static_cast<int>(o);
+    if (shells.find(s) != s) continue;
+    surface[s] = static_cast<std::uint32_t>(root_of.size());
+    root_of.push_back(s);
+    any_cavity |= volume[s] < 0;
+  }
+  if (any_cavity) {
+    std::vector<std::array<std::uint32_t, 3>> tris;
+    std::vector<std::uint32_t> surface_of;
+    for (std::uint32_t f = 0; f < polys.size(); ++f) {
+      std::vector<std::vector<Vec3>> loops;
+      std::vector<std::uint32_t> ids;
+      for (const auto& loop : polys[f].loops) {
+        loops.emplace_back();
+        for (std::uint32_t v : loop) {
+          ids.push_back(index[v]);
+          loops.back().push_back(in.positions[index[v]]);
+        }
+      }
+      for (const auto& t : io::triangulate_polygon(loops, newell_normal(loops[0]))) {
+        tris.push_back({ids[t[0]], ids[t[1]], ids[t[2]]});
+        surface_of.push_back(surface[shells.find(f)]);
+      }
     }
-    if (best >= 0) cell[s] = cell[best];
+    std::vector<bool> container(root_of.size());
+    for (std::size_t k = 0; k < root_of.size(); ++k) container[k] = volume[root_of[k]] > 0;
+    const Nesting nest = nest_surfaces(in.positions, tris, surface_of,
+                                       static_cast<std::uint32_t>(root_of.size()), container);
+    for (std::size_t k = 0; k < root_of.size(); ++k)
+      if (volume[root_of[k]] < 0 && nest.parent[k] != Nesting::kNone)
+        cell[root_of[k]] = cell[root_of[nest.parent[k]]];
   }
   for (std::uint32_t f = 0; f < polys.size(); ++f) {
     MeshFace mf;

@@ -185,6 +185,33 @@ TEST(Boolean, NestedBoxMakesACavity) {
   EXPECT_EQ(i.faces, 6u);
 }
 
+// A cavity belongs to the solid around it, decided exactly: an L of two thin slabs
+// wrapped round the cube's corner holds the cube's cavity in its bounding box and has
+// the smaller volume (the rule "smallest cell whose box holds it" gave it the cavity).
+TEST(Boolean, CavityBelongsToTheSolidAroundIt) {
+  const Model a = box_model({0, 0, 0}, {10, 10, 10}), b = box_model({1, 1, 1}, {2, 2, 2});
+  const Model p = box_model({-1, -1, -1}, {3, 3, -0.5}), q = box_model({-1, -1, -1}, {-0.5, 3, 3});
+  const Model* ops[4] = {&a, &b, &p, &q};
+  using boolean::Expr;
+  const auto r = boolean::evaluate(
+      ops, Expr::op(Op::kUnion, {Expr::op(Op::kDifference, {Expr::of(0), Expr::of(1)}), Expr::of(2), Expr::of(3)}));
+  ASSERT_TRUE(r.ok()) << r.error().message;
+  const Model& m = r->model;
+  EXPECT_TRUE(validate(m).empty());
+  EXPECT_EQ(m.num_volumes(), 2u);
+  EXPECT_NEAR(shape::mass_properties(m).volume, 999 + (8 + 8 - 1), 1e-9);  // the slabs overlap in 1
+  // The faces of the cube (operand 0) and of its cavity (operand 1) bound one cell,
+  // the slabs' faces (operands 2, 3) the other.
+  VolumeId cube, slabs;
+  for (FaceId f : m.faces()) {
+    const VolumeId v = m.back_volume(f).is_valid() ? m.back_volume(f) : m.front_volume(f);
+    VolumeId& want = r->sources[f.value].operand < 2 ? cube : slabs;
+    if (!want.is_valid()) want = v;
+    EXPECT_EQ(v, want) << "face " << f.value << " of operand " << r->sources[f.value].operand;
+  }
+  EXPECT_NE(cube, slabs);
+}
+
 TEST(Boolean, BoxMinusBoxSharingThreeFaces) {
   const Model a = box_model({0, 0, 0}, {3, 3, 3});
   const Model b = box_model({0, 0, 0}, {1, 1, 1});
