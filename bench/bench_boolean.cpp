@@ -624,7 +624,7 @@ std::string vs_cellforge(const Outcome& peer, const Outcome& cf, const Settings&
 }
 
 void print_tables(const std::vector<Row>& rows, const Settings& s) {
-  std::printf("\ncellforge (threads = %d; Options.threads is passed on, the stages run on one thread today)\n\n",
+  std::printf("\ncellforge (threads = %d: soup, pairs, rays and the rounding check on threads)\n\n",
               s.threads);
   std::printf("| case | input tris | runs | time | peak MB | V | E | F | valid | rounding crossings | exact fallbacks | volume |\n");
   std::printf("|---|--:|--:|--:|--:|--:|--:|--:|:-:|--:|--:|--:|\n");
