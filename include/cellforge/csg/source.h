@@ -45,4 +45,7 @@ class Sources {
   std::vector<std::unique_ptr<SourceFile>> files_;
 };
 
+// Appends the UTF-8 encoding of code point cp (string escapes, chr()).
+void append_utf8(std::string& out, std::uint32_t cp);
+
 }  // namespace cellforge::csg
