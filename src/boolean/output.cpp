@@ -20,11 +20,9 @@
 #include <unordered_map>
 
 #include "boolean/stages.h"
-#include "cellforge/geom/polygon.h"
 #include "cellforge/geom/predicates.h"
 #include "cellforge/geom/winding.h"
 #include "cellforge/geom/union_find.h"
-#include "cellforge/io/triangulate.h"
 #include "cellforge/topo/builder.h"
 
 namespace cellforge::boolean {
@@ -529,7 +527,6 @@ Result<BooleanResult> build_result(Arrangement& a, std::vector<OutPoly> polys, R
     i = j;
   }
   std::vector<double> volume(polys.size(), 0);
-  std::vector<std::vector<std::uint32_t>> faces_idx;
   for (std::uint32_t f = 0; f < polys.size(); ++f) {
     const std::uint32_t s = shells.find(f);
     for (const auto& loop : polys[f].loops) {
@@ -541,6 +538,15 @@ Result<BooleanResult> build_result(Arrangement& a, std::vector<OutPoly> polys, R
   std::vector<int> cell(polys.size(), -1);
   for (std::uint32_t s = 0; s < polys.size(); ++s)
     if (shells.find(s) == s && volume[s] > 0) cell[s] = in.volumes++;
+  for (std::uint32_t f = 0; f < polys.size(); ++f) {
+    MeshFace mf;
+    for (const auto& loop : polys[f].loops) {
+      std::vector<std::uint32_t> idx;
+      for (std::uint32_t v : loop) idx.push_back(index[v]);
+      mf.loops.push_back(std::move(idx));
+    }
+    in.faces.push_back(std::move(mf));
+  }
   // A shell of negative volume is a cavity of the innermost cell around it, by the
   // exact nesting of the shells (geom/winding.h) on their rounded triangles.
   std::vector<std::uint32_t> surface(polys.size(), kInvalidIndex), root_of;
@@ -554,21 +560,11 @@ Result<BooleanResult> build_result(Arrangement& a, std::vector<OutPoly> polys, R
   if (any_cavity) {
     std::vector<std::array<std::uint32_t, 3>> tris;
     std::vector<std::uint32_t> surface_of;
-    for (std::uint32_t f = 0; f < polys.size(); ++f) {
-      std::vector<std::vector<Vec3>> loops;
-      std::vector<std::uint32_t> ids;
-      for (const auto& loop : polys[f].loops) {
-        loops.emplace_back();
-        for (std::uint32_t v : loop) {
-          ids.push_back(index[v]);
-          loops.back().push_back(in.positions[index[v]]);
-        }
-      }
-      for (const auto& t : io::triangulate_polygon(loops, newell_normal(loops[0]))) {
-        tris.push_back({ids[t[0]], ids[t[1]], ids[t[2]]});
+    for (std::uint32_t f = 0; f < polys.size(); ++f)
+      for (const auto& t : tile_face(in, in.faces[f])) {
+        tris.push_back(t);
         surface_of.push_back(surface[shells.find(f)]);
       }
-    }
     std::vector<bool> container(root_of.size());
     for (std::size_t k = 0; k < root_of.size(); ++k) container[k] = volume[root_of[k]] > 0;
     const Nesting nest = nest_surfaces(in.positions, tris, surface_of,
@@ -577,16 +573,7 @@ Result<BooleanResult> build_result(Arrangement& a, std::vector<OutPoly> polys, R
       if (volume[root_of[k]] < 0 && nest.parent[k] != Nesting::kNone)
         cell[root_of[k]] = cell[root_of[nest.parent[k]]];
   }
-  for (std::uint32_t f = 0; f < polys.size(); ++f) {
-    MeshFace mf;
-    for (const auto& loop : polys[f].loops) {
-      std::vector<std::uint32_t> idx;
-      for (std::uint32_t v : loop) idx.push_back(index[v]);
-      mf.loops.push_back(std::move(idx));
-    }
-    mf.back = cell[shells.find(f)];
-    in.faces.push_back(std::move(mf));
-  }
+  for (std::uint32_t f = 0; f < polys.size(); ++f) in.faces[f].back = cell[shells.find(f)];
   std::vector<char> inexact(in.positions.size(), 0);
   for (auto [point, i] : index) inexact[i] = !a.rounds_exactly(point);
   std::vector<std::uint32_t> point_of(in.positions.size());

@@ -28,7 +28,9 @@ namespace {
 
 using Tri3 = std::array<std::uint32_t, 3>;  // indices into MeshInput::positions
 
-std::vector<Tri3> tile(const MeshInput& in, const MeshFace& f) {
+}  // namespace
+
+std::vector<Tri3> tile_face(const MeshInput& in, const MeshFace& f) {
   std::vector<std::vector<Vec3>> loops;
   std::vector<std::uint32_t> ids;
   for (const auto& loop : f.loops) {
@@ -44,6 +46,8 @@ std::vector<Tri3> tile(const MeshInput& in, const MeshFace& f) {
     out.push_back({ids[t[0]], ids[t[1]], ids[t[2]]});
   return out;
 }
+
+namespace {
 
 Box box_of(const MeshInput& in, const Tri3& t) {
   Box b;
@@ -87,7 +91,7 @@ void nudge_rounding(MeshInput& in, const std::vector<char>& inexact,
     {
       auto parts = parallel_ranges<std::vector<std::vector<Tri3>>>(
           in.faces.size(), threads, [&](std::size_t lo, std::size_t hi, auto& out) {
-            for (std::size_t f = lo; f < hi; ++f) out.push_back(tile(in, in.faces[f]));
+            for (std::size_t f = lo; f < hi; ++f) out.push_back(tile_face(in, in.faces[f]));
           });
       std::size_t f = 0;
       for (auto& p : parts)
@@ -144,7 +148,7 @@ void nudge_rounding(MeshInput& in, const std::vector<char>& inexact,
       auto local = [&] {
         std::vector<std::pair<std::uint32_t, Tri3>> near;  // face, triangle
         for (std::uint32_t f : fs)
-          for (const Tri3& t : tile(in, in.faces[f])) near.push_back({f, t});
+          for (const Tri3& t : tile_face(in, in.faces[f])) near.push_back({f, t});
         std::size_t n = 0;
         for (std::size_t a = 0; a < near.size(); ++a) {
           const Box ba = grown(box_of(in, near[a].second));

@@ -35,6 +35,10 @@ std::vector<OutPoly> classify_and_select(const Arrangement& a, const Expr& expr,
 Result<BooleanResult> build_result(Arrangement& a, std::vector<OutPoly> polys, Report& report,
                                    int threads = 1);
 
+// A face of `in` as triangles (indices into in.positions), as io::triangulate_face
+// tiles the face it becomes (rounding.cpp).
+std::vector<std::array<std::uint32_t, 3>> tile_face(const MeshInput& in, const MeshFace& f);
+
 // Where rounding made two faces' triangles cross, moves the inexact vertices of the
 // crossing triangles (inexact[i] for positions[i]) to neighbouring doubles that
 // remove crossings, keeping the coordinates that are exact (exact(i, axis): the
