@@ -52,6 +52,14 @@ struct Options {
   // faces, the pair tests, the classification rays and the rounding check (0: every
   // hardware thread). The result is the same at any count, bit for bit.
   int threads = 1;
+  // Non-regularized (seed 003): the result is the point set the expression gives on the
+  // closed operands, lower-dimensional parts included. Faces, edges and points with no
+  // volume around them are kept (cubes sharing a face intersect in that face), and the
+  // boundary the set does not hold is kept and marked (BooleanResult::face_in).
+  bool keep_lower_dim = false;
+  // Faces between two kept 3-cells that lie in different operands stay, as inner faces
+  // separating two volumes of the result's group (a part of several materials).
+  bool cells = false;
 };
 
 // Where a result face came from.
@@ -87,6 +95,10 @@ struct BooleanResult {
   // By result VertexId value: true where the exact position may not be a double, so
   // that rounding may have moved the vertex (false: it is exactly where it was).
   std::vector<bool> rounded;
+  // Whether the points of each result face, edge and vertex (by id value) belong to
+  // the result's point set. Regularized results hold all their boundary; a
+  // non-regularized one may not (a difference removing a face, a cut by a sheet).
+  std::vector<bool> face_in, edge_in, vertex_in;
   Report report;
 };
 
