@@ -788,7 +788,7 @@ void Arrangement::split() {
     if (clusters[ci].touched) split_cluster(ci);
 }
 
-void Arrangement::release_pieces() {
+void Arrangement::release_pieces(bool keep_tree) {
   for (Cluster& c : clusters) {
     std::vector<Piece>().swap(c.pieces);
     std::vector<Constraint>().swap(c.constraints);
@@ -798,9 +798,10 @@ void Arrangement::release_pieces() {
     std::vector<std::vector<std::uint32_t>>().swap(f.loops);
     std::vector<std::uint32_t>().swap(f.tris);
   }
+  lpi_ids_ = {};
+  if (keep_tree) return;
   std::vector<Box>().swap(tri_boxes);
   bvh = Bvh();
-  lpi_ids_ = {};
 }
 
 void Arrangement::piece_box(const Cluster& c, Piece& p) const {

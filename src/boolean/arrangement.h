@@ -57,6 +57,8 @@ struct SoupFace {
   std::vector<std::vector<std::uint32_t>> loops;
   std::vector<std::uint32_t> tris;
   bool flipped = false;  // the model's face points into its cell: reversed here
+  bool sheet = false;    // a face with no cell on either side: it bounds nothing, and
+                         // its points are the operand's (non-regularized operations)
 };
 
 enum class LineKind : std::uint8_t { kThrough, kTrace, kAxisU, kAxisV };
@@ -128,8 +130,9 @@ class Arrangement {
   // Stage 2: each cluster cut into convex pieces.
   void split();
   // Frees what only stages 1 to 4 read (the pieces, the constraints, the triangles'
-  // boxes and tree, the input faces' loops), before the result is built.
-  void release_pieces();
+  // boxes and tree, the input faces' loops), before the result is built; with
+  // keep_tree, the triangles' boxes and tree stay (for classify_sites).
+  void release_pieces(bool keep_tree = false);
 
   // ---- data
   std::vector<Vec3> pos;

@@ -18,12 +18,14 @@
 #include <map>
 #include <numeric>
 #include <unordered_map>
+#include <unordered_set>
 
 #include "boolean/stages.h"
 #include "cellforge/geom/predicates.h"
 #include "cellforge/geom/winding.h"
 #include "cellforge/geom/union_find.h"
 #include "cellforge/topo/builder.h"
+#include "cellforge/io/volumes.h"
 
 namespace cellforge::boolean {
 
@@ -183,6 +185,62 @@ void insert_between(const Arrangement& a, const LineClasses& lc, std::uint32_t r
   }
 }
 
+// The lower-dimensional parts of a non-regularized result: the edges of the
+// arrangement's faces that no kept face holds, in the set with the points around
+// them not (wires), and the points no kept face or wire holds that are in the set
+// alone (isolated points). All in canonical ids.
+struct LowerParts {
+  std::vector<std::array<std::uint32_t, 2>> wires;
+  std::vector<std::uint32_t> points;
+  std::unordered_set<std::uint32_t> ends;  // the wires' ends: no face loop drops them
+};
+
+LowerParts lower_parts(Arrangement& a, const LineClasses& lc, const std::vector<std::uint32_t>& canon,
+                       const std::vector<OutPoly>& polys, const std::vector<OutSide>& sides,
+                       const Expr& expr, int threads) {
+  std::unordered_set<std::uint64_t> held_edges, seen;
+  std::unordered_set<std::uint32_t> held_points;
+  for (const OutPoly& p : polys)
+    for (const auto& loop : p.loops)
+      for (std::size_t i = 0; i < loop.size(); ++i) {
+        held_edges.insert(ordered(loop[i], loop[(i + 1) % loop.size()]));
+        held_points.insert(loop[i]);
+      }
+  std::vector<std::array<std::uint32_t, 2>> edges;
+  std::vector<std::uint32_t> corners, chain;
+  for (const OutSide& side : sides) {
+    const std::uint32_t p = canon[side.p], q = canon[side.q];
+    if (p == q) continue;
+    chain.assign(1, p);
+    if (side.key != kInvalidIndex) insert_between(a, lc, a.line_root(side.key), p, q, chain);
+    chain.push_back(q);
+    for (std::size_t i = 0; i + 1 < chain.size(); ++i) {
+      const std::uint32_t x = chain[i], y = chain[i + 1];
+      corners.push_back(x);
+      if (x == y || held_edges.count(ordered(x, y)) || !seen.insert(ordered(x, y)).second) continue;
+      edges.push_back({x, y});
+    }
+    corners.push_back(q);
+  }
+  LowerParts out;
+  const std::vector<SiteVerdict> on_edges = classify_sites(a, expr, edges, threads);
+  for (std::size_t i = 0; i < edges.size(); ++i)
+    if (on_edges[i].in && !on_edges[i].around) {
+      out.wires.push_back(edges[i]);
+      out.ends.insert(edges[i][0]);
+      out.ends.insert(edges[i][1]);
+    }
+  std::sort(corners.begin(), corners.end());
+  corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
+  std::vector<std::array<std::uint32_t, 2>> sites;
+  for (std::uint32_t p : corners)
+    if (!held_points.count(p) && !out.ends.count(p)) sites.push_back({p, p});
+  const std::vector<SiteVerdict> on_points = classify_sites(a, expr, sites, threads);
+  for (std::size_t i = 0; i < sites.size(); ++i)
+    if (on_points[i].in && !on_points[i].around) out.points.push_back(sites[i][0]);
+  return out;
+}
+
 bool lex_greater(const Arrangement& a, std::uint32_t p, std::uint32_t q) {
   for (int ax = 0; ax < 3; ++ax) {
     const int c = a.compare3(p, q, ax);
@@ -194,6 +252,7 @@ bool lex_greater(const Arrangement& a, std::uint32_t p, std::uint32_t q) {
 // Whether two faces' planes and orientations agree (they share an edge).
 bool same_plane(const Arrangement& a, const OutPoly& x, const OutPoly& y) {
   if (x.cluster == kInvalidIndex || y.cluster == kInvalidIndex) return false;
+  if (x.kind != y.kind || x.mark != y.mark) return false;
   if (x.cluster == y.cluster) return x.normal_sign == y.normal_sign;
   const Cluster& cx = a.clusters[x.cluster];
   const Tri& rx = a.tris[cx.ref];
@@ -339,12 +398,18 @@ double loop_volume6(const std::vector<Vec3>& pos, const std::vector<std::uint32_
 
 }  // namespace
 
-Result<BooleanResult> build_result(Arrangement& a, std::vector<OutPoly> polys, Report& report,
-                                   int threads) {
+Result<BooleanResult> build_result(Arrangement& a, Selection selection, const Expr& expr,
+                                   const Options& options, Report& report) {
+  const int threads = options.threads;
+  std::vector<OutPoly>& polys = selection.polys;
   // 1. One id per exact position, among the points a face or a line holds.
   std::vector<std::uint32_t> used;
   for (const OutPoly& p : polys)
     for (const auto& loop : p.loops) used.insert(used.end(), loop.begin(), loop.end());
+  for (const OutSide& side : selection.sides) {
+    used.push_back(side.p);
+    used.push_back(side.q);
+  }
   for (const Cluster& c : a.clusters)
     for (const Line& l : c.lines) used.insert(used.end(), l.points.begin(), l.points.end());
   for (auto [key, p] : a.edge_points) used.push_back(p);
@@ -385,6 +450,11 @@ Result<BooleanResult> build_result(Arrangement& a, std::vector<OutPoly> polys, R
       }
       p.loops[l] = std::move(out);
     }
+
+  // 2b. Non-regularized: the edges and points of the arrangement that are in the set
+  // while no face holds them and the points around them are not: wires and points.
+  LowerParts lower;
+  if (options.keep_lower_dim) lower = lower_parts(a, lc, canon, polys, selection.sides, expr, threads);
 
   // 3. Merge coplanar neighbours.
   struct Use {
@@ -483,7 +553,8 @@ Result<BooleanResult> build_result(Arrangement& a, std::vector<OutPoly> polys, R
     for (std::size_t i = 0; i < nb.size();) {
       std::size_t j = i;
       while (j < nb.size() && nb[j].first == nb[i].first) ++j;
-      if (j - i == 2 && (on_one_line(nb[i].second, nb[i].first, nb[i + 1].second) ||
+      if (j - i == 2 && !lower.ends.count(nb[i].first) &&
+          (on_one_line(nb[i].second, nb[i].first, nb[i + 1].second) ||
                          a.collinear3(nb[i].second, nb[i].first, nb[i + 1].second)))
         drop[nb[i].first] = 1;
       i = j;
@@ -508,36 +579,72 @@ Result<BooleanResult> build_result(Arrangement& a, std::vector<OutPoly> polys, R
     polys = std::move(kept);
   }
 
+  // Face-connected shells (across edges two faces use), each of positive volume a
+  // cell, each of negative volume a cavity of the innermost cell around it, by the
+  // exact nesting of the shells (geom/winding.h) on their rounded triangles.
+  auto assign_shell_cells = [&](MeshInput& in, const std::vector<OutPoly>& polys, int) {
+    const std::vector<Use> uses = edge_uses(polys);
+    UnionFind shells(polys.size());
+    for (std::size_t i = 0; i < uses.size();) {
+      std::size_t j = i;
+      while (j < uses.size() && uses[j].key == uses[i].key) ++j;
+      if (j - i == 2) shells.unite(uses[i].poly, uses[i + 1].poly);
+      i = j;
+    }
+    std::vector<double> volume(polys.size(), 0);
+    for (std::uint32_t f = 0; f < polys.size(); ++f) {
+      const std::uint32_t s = shells.find(f);
+      for (const auto& loop : in.faces[f].loops) volume[s] += loop_volume6(in.positions, loop);
+    }
+    std::vector<int> cell(polys.size(), -1);
+    for (std::uint32_t s = 0; s < polys.size(); ++s)
+      if (shells.find(s) == s && volume[s] > 0) cell[s] = in.volumes++;
+    std::vector<std::uint32_t> surface(polys.size(), kInvalidIndex), root_of;
+    bool any_cavity = false;
+    for (std::uint32_t s = 0; s < polys.size(); ++s) {
+      if (shells.find(s) != s) continue;
+      surface[s] = static_cast<std::uint32_t>(root_of.size());
+      root_of.push_back(s);
+      any_cavity |= volume[s] < 0;
+    }
+    if (any_cavity) {
+      std::vector<std::array<std::uint32_t, 3>> tris;
+      std::vector<std::uint32_t> surface_of;
+      for (std::uint32_t f = 0; f < polys.size(); ++f)
+        for (const auto& t : tile_face(in, in.faces[f])) {
+          tris.push_back(t);
+          surface_of.push_back(surface[shells.find(f)]);
+        }
+      std::vector<bool> container(root_of.size());
+      for (std::size_t k = 0; k < root_of.size(); ++k) container[k] = volume[root_of[k]] > 0;
+      const Nesting nest = nest_surfaces(in.positions, tris, surface_of,
+                                         static_cast<std::uint32_t>(root_of.size()), container);
+      for (std::size_t k = 0; k < root_of.size(); ++k)
+        if (volume[root_of[k]] < 0 && nest.parent[k] != Nesting::kNone)
+          cell[root_of[k]] = cell[root_of[nest.parent[k]]];
+    }
+    for (std::uint32_t f = 0; f < polys.size(); ++f) in.faces[f].back = cell[shells.find(f)];
+  };
+
   // 4. Round, find shells and cells, build.
+  const bool closed = options.keep_lower_dim || options.cells;
   BooleanResult result;
   MeshInput in;
   in.group_name = "boolean";
   std::unordered_map<std::uint32_t, std::uint32_t> index;
+  auto add_point = [&](std::uint32_t v) {
+    if (index.try_emplace(v, static_cast<std::uint32_t>(in.positions.size())).second)
+      in.positions.push_back(a.approx3(v));
+  };
   for (const OutPoly& p : polys)
     for (const auto& loop : p.loops)
-      for (std::uint32_t v : loop)
-        if (index.try_emplace(v, static_cast<std::uint32_t>(in.positions.size())).second)
-          in.positions.push_back(a.approx3(v));
-  const std::vector<Use> uses = edge_uses(polys);
-  UnionFind shells(polys.size());
-  for (std::size_t i = 0; i < uses.size();) {
-    std::size_t j = i;
-    while (j < uses.size() && uses[j].key == uses[i].key) ++j;
-    if (j - i == 2) shells.unite(uses[i].poly, uses[i + 1].poly);
-    i = j;
+      for (std::uint32_t v : loop) add_point(v);
+  for (const auto& w : lower.wires) {
+    add_point(w[0]);
+    add_point(w[1]);
+    in.wires.push_back({index[w[0]], index[w[1]]});
   }
-  std::vector<double> volume(polys.size(), 0);
-  for (std::uint32_t f = 0; f < polys.size(); ++f) {
-    const std::uint32_t s = shells.find(f);
-    for (const auto& loop : polys[f].loops) {
-      std::vector<std::uint32_t> idx;
-      for (std::uint32_t v : loop) idx.push_back(index[v]);
-      volume[s] += loop_volume6(in.positions, idx);
-    }
-  }
-  std::vector<int> cell(polys.size(), -1);
-  for (std::uint32_t s = 0; s < polys.size(); ++s)
-    if (shells.find(s) == s && volume[s] > 0) cell[s] = in.volumes++;
+  for (std::uint32_t v : lower.points) add_point(v);
   for (std::uint32_t f = 0; f < polys.size(); ++f) {
     MeshFace mf;
     for (const auto& loop : polys[f].loops) {
@@ -547,33 +654,10 @@ Result<BooleanResult> build_result(Arrangement& a, std::vector<OutPoly> polys, R
     }
     in.faces.push_back(std::move(mf));
   }
-  // A shell of negative volume is a cavity of the innermost cell around it, by the
-  // exact nesting of the shells (geom/winding.h) on their rounded triangles.
-  std::vector<std::uint32_t> surface(polys.size(), kInvalidIndex), root_of;
-  bool any_cavity = false;
-  for (std::uint32_t s = 0; s < polys.size(); ++s) {
-    if (shells.find(s) != s) continue;
-    surface[s] = static_cast<std::uint32_t>(root_of.size());
-    root_of.push_back(s);
-    any_cavity |= volume[s] < 0;
-  }
-  if (any_cavity) {
-    std::vector<std::array<std::uint32_t, 3>> tris;
-    std::vector<std::uint32_t> surface_of;
-    for (std::uint32_t f = 0; f < polys.size(); ++f)
-      for (const auto& t : tile_face(in, in.faces[f])) {
-        tris.push_back(t);
-        surface_of.push_back(surface[shells.find(f)]);
-      }
-    std::vector<bool> container(root_of.size());
-    for (std::size_t k = 0; k < root_of.size(); ++k) container[k] = volume[root_of[k]] > 0;
-    const Nesting nest = nest_surfaces(in.positions, tris, surface_of,
-                                       static_cast<std::uint32_t>(root_of.size()), container);
-    for (std::size_t k = 0; k < root_of.size(); ++k)
-      if (volume[root_of[k]] < 0 && nest.parent[k] != Nesting::kNone)
-        cell[root_of[k]] = cell[root_of[nest.parent[k]]];
-  }
-  for (std::uint32_t f = 0; f < polys.size(); ++f) in.faces[f].back = cell[shells.find(f)];
+  // Regularized: face-connected shells, each of positive volume a cell, each of
+  // negative volume a cavity. Otherwise the cells come from the built model's regions
+  // (io/volumes.h), where the radial order at every edge is known.
+  if (!closed) assign_shell_cells(in, polys, threads);
   std::vector<char> inexact(in.positions.size(), 0);
   for (auto [point, i] : index) inexact[i] = !a.rounds_exactly(point);
   std::vector<std::uint32_t> point_of(in.positions.size());
@@ -584,6 +668,45 @@ Result<BooleanResult> build_result(Arrangement& a, std::vector<OutPoly> polys, R
       threads);
   auto built = build_mesh(result.model, in);
   if (!built) return Error{ErrorCode::kUnsupported, "boolean: the result could not be built: " + built.error().message};
+  if (closed) {
+    Model& m = result.model;
+    std::vector<FaceKind> kind_of(m.face_slots(), FaceKind::kBoundary);
+    result.face_in.assign(m.face_slots(), true);
+    for (std::uint32_t f = 0; f < polys.size(); ++f) {
+      kind_of[built->faces[f].value] = polys[f].kind;
+      result.face_in[built->faces[f].value] = polys[f].mark;
+    }
+    auto cells = io::make_region_volumes(m, built->group, [&](FaceId f, bool front) {
+      const FaceKind k = kind_of[f.value];
+      return front ? k == FaceKind::kInner : k != FaceKind::kSheet;
+    });
+    if (!cells) return Error{ErrorCode::kUnsupported, "boolean: the result's cells: " + cells.error().message};
+    if (options.keep_lower_dim) {
+      // Edges and vertices: in the set or not, at a point of each.
+      std::vector<std::uint32_t> arr(m.vertex_slots(), kInvalidIndex);
+      for (std::uint32_t i = 0; i < in.positions.size(); ++i) arr[built->vertices[i].value] = point_of[i];
+      std::vector<std::array<std::uint32_t, 2>> sites;
+      std::vector<EdgeId> edges;
+      std::vector<VertexId> vertices;
+      for (EdgeId e : m.edges()) {
+        edges.push_back(e);
+        sites.push_back({arr[m.start_of(e).value], arr[m.end_of(e).value]});
+      }
+      for (VertexId v : m.vertices()) {
+        vertices.push_back(v);
+        sites.push_back({arr[v.value], arr[v.value]});
+      }
+      const std::vector<SiteVerdict> in_set = classify_sites(a, expr, sites, threads);
+      result.edge_in.assign(m.edge_slots(), true);
+      result.vertex_in.assign(m.vertex_slots(), true);
+      for (std::size_t k = 0; k < edges.size(); ++k) result.edge_in[edges[k].value] = in_set[k].in;
+      for (std::size_t k = 0; k < vertices.size(); ++k)
+        result.vertex_in[vertices[k].value] = in_set[edges.size() + k].in;
+    } else {
+      result.edge_in.assign(m.edge_slots(), true);
+      result.vertex_in.assign(m.vertex_slots(), true);
+    }
+  }
   std::vector<FaceSource> by_id;
   for (std::uint32_t f = 0; f < polys.size(); ++f) {
     const OutPoly& p = polys[f];
