@@ -706,6 +706,20 @@ Result<BooleanResult> build_result(Arrangement& a, Selection selection, const Ex
       result.edge_in.assign(m.edge_slots(), true);
       result.vertex_in.assign(m.vertex_slots(), true);
     }
+    for (FaceId f : m.faces()) {
+      const bool front = m.front_volume(f).is_valid(), back = m.back_volume(f).is_valid();
+      report.sheet_faces += !front && !back;
+      report.inner_faces += front && back;
+      report.excluded += !result.face_in[f.value];
+    }
+    for (EdgeId e : m.edges()) {
+      report.wire_edges += m.is_wire(e);
+      report.excluded += !result.edge_in[e.value];
+    }
+    for (VertexId v : m.vertices()) {
+      report.isolated_points += !m.first_end(v).edge.is_valid() && !m.point_loop(v).is_valid();
+      report.excluded += !result.vertex_in[v.value];
+    }
   }
   std::vector<FaceSource> by_id;
   for (std::uint32_t f = 0; f < polys.size(); ++f) {
@@ -732,7 +746,6 @@ Result<BooleanResult> build_result(Arrangement& a, Selection selection, const Ex
     if (v.value >= result.rounded.size()) result.rounded.resize(v.value + 1, false);
     result.rounded[v.value] = inexact[i];
   }
-  (void)report;
   return result;
 }
 
