@@ -122,6 +122,7 @@ Result<Arrangement> make_soup(std::span<const Model* const> operands, int thread
   std::unordered_map<Vec3, std::uint32_t, VecHash> ids;
   std::vector<Tri> tris;
   std::vector<SoupFace> faces;
+  std::vector<WireSeg> wires;
   for (std::uint32_t k = 0; k < operands.size(); ++k) {
     const Model& m = *operands[k];
     std::unordered_map<std::uint32_t, std::uint32_t> vmap;
@@ -169,12 +170,18 @@ Result<Arrangement> make_soup(std::span<const Model* const> operands, int thread
       }
       faces.push_back(std::move(sf));
     }
-    if (tris.size() == before)
+    // Wire edges, and vertices on nothing (not a face's point loop either).
+    const std::size_t wires_before = wires.size();
+    for (EdgeId e : m.edges())
+      if (m.is_wire(e)) wires.push_back({vid(m.start_of(e)), vid(m.end_of(e)), k});
+    for (VertexId v : m.vertices())
+      if (!m.first_end(v).edge.is_valid() && !m.point_loop(v).is_valid()) wires.push_back({vid(v), vid(v), k});
+    if (tris.size() == before && wires.size() == wires_before)
       return Error{ErrorCode::kInvalidInput,
-                   "boolean: operand " + std::to_string(k) + " holds no face (no solid and no sheet)"};
+                   "boolean: operand " + std::to_string(k) + " is empty (no face, edge or point)"};
   }
   return Arrangement(std::move(pos), std::move(tris), std::move(faces),
-                     static_cast<std::uint32_t>(operands.size()));
+                     static_cast<std::uint32_t>(operands.size()), std::move(wires));
 }
 
 // ---------------------------------------------------------------- the rounding check
@@ -247,6 +254,7 @@ Result<BooleanResult> evaluate(std::span<const Model* const> operands, const Exp
 
   t = Clock::now();
   a.split();
+  a.split_wires();
   report.seconds.split = seconds_since(t);
 
   t = Clock::now();

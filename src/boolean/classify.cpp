@@ -91,10 +91,13 @@ class RayCaster {
     run(PieceStart{a_, r}, c.k, &a_.tris[c.ref], r.cluster, w);
   }
   // At a free point, its two sides are one: the point is shifted by an infinitesimal
-  // along the ray's axis z. The operands whose closed set holds the point are marked
-  // in w.on (their windings are those of a point next to it).
-  void cast_free(std::uint32_t p, std::uint32_t q, Windings& w) const {
-    run(FreeStart{a_, p, q}, 2, nullptr, kInvalidIndex, w);
+  // along the ray's axis (`axis`, towards `dir` = +1 or -1). The operands whose closed
+  // set holds the point are marked in w.on (their windings are those of a point next
+  // to it).
+  void cast_free(std::uint32_t p, std::uint32_t q, Windings& w, int axis = 2, int dir = 1) const {
+    dir_ = dir;
+    run(FreeStart{a_, p, q}, axis, nullptr, kInvalidIndex, w);
+    dir_ = 1;
   }
 
   mutable std::size_t rays = 0;
@@ -141,6 +144,20 @@ class RayCaster {
       }
       if (!a_.faces[a_.tris[t].input_face].sheet) contribute(start, ws, ref, cluster, t, w);
     });
+    if (ref || a_.wires.empty()) return;
+    a_.wire_bvh.query(
+        [&](const Box& b) {
+          bool near = true;
+          for (int d = 0; d < 3; ++d) near &= b.lo[d] <= x[d] + e[d] && b.hi[d] >= x[d] - e[d];
+          return near;
+        },
+        [&](std::uint32_t wi) {
+          const WireSeg& s = a_.wires[wi];
+          if (on_segment(start, ws, a_.pos[s.p], a_.pos[s.q])) {
+            w.on[s.operand] = 1;
+            w.touched.push_back(s.operand);
+          }
+        });
   }
 
   // The sign of a polynomial that is affine in the point: first on the point's
@@ -181,6 +198,32 @@ class RayCaster {
              return n[0] * (x.c[0] - T(p[0].x) * x.c[3]) + n[1] * (x.c[1] - T(p[0].y) * x.c[3]) +
                     n[2] * (x.c[2] - T(p[0].z) * x.c[3]);
            }) == 0;
+  }
+
+  // Whether the start lies on the closed segment pq (a point where p == q).
+  template <class Start>
+  bool on_segment(const Start& start, int ws, Vec3 p, Vec3 q) const {
+    for (int i = 0; i < 3; ++i) {
+      // The components of d x (X - p) vanish (X - p itself where p == q).
+      const int j = (i + 1) % 3, k = (i + 2) % 3;
+      const int s = affine_sign(start, ws, [&]<class T>(const H3<T>& x) {
+        if (p == q) return x.c[i] - T(p[i]) * x.c[3];
+        return (T(q[j]) - T(p[j])) * (x.c[k] - T(p[k]) * x.c[3]) -
+               (T(q[k]) - T(p[k])) * (x.c[j] - T(p[j]) * x.c[3]);
+      });
+      if (s != 0) return false;
+    }
+    if (p == q) return true;
+    for (const Vec3 from : {p, q}) {
+      const Vec3 to = from == p ? q : p;
+      const int s = affine_sign(start, ws, [&]<class T>(const H3<T>& x) {
+        T sum = T(0.0);
+        for (int i = 0; i < 3; ++i) sum = sum + (T(to[i]) - T(from[i])) * (x.c[i] - T(from[i]) * x.c[3]);
+        return sum;
+      });
+      if (s < 0) return false;
+    }
+    return true;
   }
 
   // ref: the piece's reference triangle (its plane and sides), null for a free start.
@@ -234,7 +277,7 @@ class RayCaster {
       const int d = ref ? decide([&]<class T>() {
         const V3<T> n = normal_t<T>(a_, t), m = normal_t<T>(a_, *ref);
         return n[0] * m[0] + n[1] * m[1] + n[2] * m[2];
-      }) : mk;
+      }) : dir_ * mk;
       if (d != 0) {
         sf = d;
         sb = -d;
@@ -250,6 +293,7 @@ class RayCaster {
 
   const Arrangement& a_;
   mutable int k_ = 0, i_ = 1, j_ = 2;  // the ray's axis and the two across it
+  mutable int dir_ = 1;                // a free start's shift along the axis
   mutable Fp x_[3];  // the point of the current ray, rounded, with error bounds
   mutable std::optional<H3<Dyadic>> exact_x_;  // and exactly, once needed
 };
@@ -641,7 +685,7 @@ Selection classify_and_select(const Arrangement& a, const Expr& expr, const Opti
 
 std::vector<SiteVerdict> classify_sites(const Arrangement& a, const Expr& expr,
                                         const std::vector<std::array<std::uint32_t, 2>>& sites,
-                                        int threads) {
+                                        int threads, bool both_sides) {
   std::vector<std::vector<SiteVerdict>> parts = parallel_ranges<std::vector<SiteVerdict>>(
       sites.size(), threads, [&](std::size_t lo, std::size_t hi, std::vector<SiteVerdict>& part) {
         RayCaster rays(a);
@@ -650,7 +694,16 @@ std::vector<SiteVerdict> classify_sites(const Arrangement& a, const Expr& expr,
         for (std::size_t k = lo; k < hi; ++k) {
           rays.cast_free(sites[k][0], sites[k][1], w);
           const auto [in, around] = selector.at_point(w);
-          part.push_back({in, around});
+          SiteVerdict v{in, around, false};
+          // Shifted both ways along each axis: two sides that differ are the two
+          // sides of a face of the result through the point.
+          for (int axis = 0; axis < 3 && both_sides && !v.on_face; ++axis)
+            for (int dir : {1, -1}) {
+              if (axis == 2 && dir == 1) continue;
+              rays.cast_free(sites[k][0], sites[k][1], w, axis, dir);
+              v.on_face |= selector.at_point(w).second != around;
+            }
+          part.push_back(v);
         }
       });
   std::vector<SiteVerdict> all;

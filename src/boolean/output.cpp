@@ -186,9 +186,10 @@ void insert_between(const Arrangement& a, const LineClasses& lc, std::uint32_t r
 }
 
 // The lower-dimensional parts of a non-regularized result: the edges of the
-// arrangement's faces that no kept face holds, in the set with the points around
-// them not (wires), and the points no kept face or wire holds that are in the set
-// alone (isolated points). All in canonical ids.
+// arrangement's faces and the operands' wire pieces that no kept face holds, in the
+// set with the points around them not, or out of it inside a volume (a cut), as
+// wires; and the points no kept face or wire holds that are likewise alone (isolated
+// points). All in canonical ids.
 struct LowerParts {
   std::vector<std::array<std::uint32_t, 2>> wires;
   std::vector<std::uint32_t> points;
@@ -222,22 +223,62 @@ LowerParts lower_parts(Arrangement& a, const LineClasses& lc, const std::vector<
     }
     corners.push_back(q);
   }
+  // The operands' wires, cut at every crossing, and their isolated points: these may
+  // also lie on a kept face (held by it).
+  std::vector<std::array<std::uint32_t, 2>> wire_edges;
+  for (const WireSeg& w : a.wire_pieces) {
+    const std::uint32_t p = canon[w.p], q = canon[w.q];
+    corners.push_back(p);
+    corners.push_back(q);
+    if (p == q || held_edges.count(ordered(p, q)) || !seen.insert(ordered(p, q)).second) continue;
+    wire_edges.push_back({p, q});
+  }
   LowerParts out;
-  const std::vector<SiteVerdict> on_edges = classify_sites(a, expr, edges, threads);
-  for (std::size_t i = 0; i < edges.size(); ++i)
-    if (on_edges[i].in && !on_edges[i].around) {
-      out.wires.push_back(edges[i]);
-      out.ends.insert(edges[i][0]);
-      out.ends.insert(edges[i][1]);
-    }
+  std::vector<char> kept_in;  // by out.wires: in the set (else a cut)
+  auto keep = [&](const std::vector<std::array<std::uint32_t, 2>>& list, bool both_sides) {
+    const std::vector<SiteVerdict> v = classify_sites(a, expr, list, threads, both_sides);
+    for (std::size_t i = 0; i < list.size(); ++i)
+      if (v[i].in != v[i].around && !v[i].on_face) {
+        out.wires.push_back(list[i]);
+        kept_in.push_back(v[i].in);
+      }
+  };
+  keep(edges, false);
+  keep(wire_edges, true);
+  // A vertex between two collinear wires of one verdict, and on nothing else, goes.
+  std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> at;  // point -> wires
+  for (std::uint32_t i = 0; i < out.wires.size(); ++i)
+    for (std::uint32_t e : out.wires[i]) at[e].push_back(i);
+  std::vector<char> gone(out.wires.size(), 0);
+  std::unordered_set<std::uint32_t> inside_wires;  // the vertices merged away
+  for (auto& [v, list] : at) {
+    if (list.size() != 2 || held_points.count(v)) continue;
+    const std::uint32_t i = list[0], j = list[1];
+    if (i == j || gone[i] || gone[j] || kept_in[i] != kept_in[j]) continue;
+    const std::uint32_t x = out.wires[i][0] == v ? out.wires[i][1] : out.wires[i][0];
+    const std::uint32_t y = out.wires[j][0] == v ? out.wires[j][1] : out.wires[j][0];
+    if (x == y || !a.collinear3(x, v, y)) continue;
+    out.wires[i] = {x, y};
+    gone[j] = 1;
+    inside_wires.insert(v);
+    for (std::uint32_t end : {y}) std::replace(at[end].begin(), at[end].end(), j, i);
+  }
+  std::vector<std::array<std::uint32_t, 2>> merged;
+  for (std::size_t i = 0; i < out.wires.size(); ++i)
+    if (!gone[i]) merged.push_back(out.wires[i]);
+  out.wires = std::move(merged);
+  for (const auto& w : out.wires) {
+    out.ends.insert(w[0]);
+    out.ends.insert(w[1]);
+  }
   std::sort(corners.begin(), corners.end());
   corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
   std::vector<std::array<std::uint32_t, 2>> sites;
   for (std::uint32_t p : corners)
-    if (!held_points.count(p) && !out.ends.count(p)) sites.push_back({p, p});
-  const std::vector<SiteVerdict> on_points = classify_sites(a, expr, sites, threads);
+    if (!held_points.count(p) && !out.ends.count(p) && !inside_wires.count(p)) sites.push_back({p, p});
+  const std::vector<SiteVerdict> on_points = classify_sites(a, expr, sites, threads, true);
   for (std::size_t i = 0; i < sites.size(); ++i)
-    if (on_points[i].in && !on_points[i].around) out.points.push_back(sites[i][0]);
+    if (on_points[i].in != on_points[i].around && !on_points[i].on_face) out.points.push_back(sites[i][0]);
   return out;
 }
 
@@ -409,6 +450,10 @@ Result<BooleanResult> build_result(Arrangement& a, Selection selection, const Ex
   for (const OutSide& side : selection.sides) {
     used.push_back(side.p);
     used.push_back(side.q);
+  }
+  for (const WireSeg& w : a.wire_pieces) {
+    used.push_back(w.p);
+    used.push_back(w.q);
   }
   for (const Cluster& c : a.clusters)
     for (const Line& l : c.lines) used.insert(used.end(), l.points.begin(), l.points.end());

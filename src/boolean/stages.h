@@ -52,12 +52,14 @@ Selection classify_and_select(const Arrangement& a, const Expr& expr, const Opti
 // For non-regularized results: at each site (p, q) of the arrangement, a point (p == q)
 // or the open segment pq (sampled at (p + 2q) / 3), whether it is in the set, and
 // whether the points next to it are (where no face separates them, the region around).
+// With both_sides, also whether it lies on a face between points in and out of the set
+// (next to it on two sides along some axis, the verdicts differ): five more rays.
 struct SiteVerdict {
-  bool in = false, around = false;
+  bool in = false, around = false, on_face = false;
 };
 std::vector<SiteVerdict> classify_sites(const Arrangement& a, const Expr& expr,
                                         const std::vector<std::array<std::uint32_t, 2>>& sites,
-                                        int threads);
+                                        int threads, bool both_sides = false);
 
 // Stages 5 and 6: one vertex per exact position, every vertex of a line on each edge
 // along it, coplanar neighbours and collinear edges merged, coordinates rounded, and

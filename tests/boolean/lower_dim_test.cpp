@@ -4,6 +4,9 @@
 // the cells of several operands kept apart. Counts are checked by hand.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
+#include <random>
+
 #include "boolean/boolean_test_util.h"
 
 namespace cellforge::testing {
@@ -208,6 +211,181 @@ TEST(LowerDim, OverlappingCubesAsCells) {
   EXPECT_NEAR(u.volume, 15, 1e-12);
   EXPECT_EQ(u.volumes, 3u);
   EXPECT_EQ(u.inner_faces, 6u);  // the common cube's six sides, split where they cross
+}
+
+// ---- wires and points as operands
+
+Model wire_model(std::vector<std::array<Vec3, 2>> segments, std::vector<Vec3> points = {}) {
+  MeshInput in;
+  for (const auto& s : segments) {
+    in.positions.push_back(s[0]);
+    in.positions.push_back(s[1]);
+    in.wires.push_back({static_cast<std::uint32_t>(in.positions.size() - 2),
+                        static_cast<std::uint32_t>(in.positions.size() - 1)});
+  }
+  for (Vec3 p : points) in.positions.push_back(p);
+  return build(in);
+}
+
+TEST(LowerDim, WireThroughACube) {
+  const Model a = box_model({0, 0, 0}, {1, 1, 1});
+  const Model w = wire_model({{Vec3{-1, 0.5, 0.5}, Vec3{2, 0.5, 0.5}}});
+  // Union: the cube and the wire's two pieces outside it.
+  const Parts u = sets(Op::kUnion, {&a, &w});
+  EXPECT_NEAR(u.volume, 1, 1e-12);
+  EXPECT_EQ(u.volumes, 1u);
+  EXPECT_EQ(u.faces, 6u);
+  EXPECT_EQ(u.wire_edges, 2u);
+  EXPECT_EQ(u.vertices, 12u);
+  EXPECT_EQ(u.edges_out + u.vertices_out, 0u);
+  // Regularized, it is the cube.
+  EXPECT_EQ(sets(Op::kUnion, {&a, &w}, false).edges, 12u);
+  // Intersection: the piece inside, its ends on the cube's faces.
+  const Parts i = sets(Op::kIntersection, {&a, &w});
+  EXPECT_EQ(i.faces, 0u);
+  EXPECT_EQ(i.wire_edges, 1u);
+  EXPECT_EQ(i.vertices, 2u);
+  EXPECT_EQ(i.edges_out + i.vertices_out, 0u);
+  // The wire minus the cube: two pieces, their inner ends out of the set.
+  const Parts d = sets(Expr::op(Op::kDifference, {Expr::of(1), Expr::of(0)}), {&a, &w});
+  EXPECT_EQ(d.wire_edges, 2u);
+  EXPECT_EQ(d.vertices, 4u);
+  EXPECT_EQ(d.vertices_out, 2u);
+  // The cube minus the wire: the cube whole, the wire's path through it a cut.
+  const Parts c = sets(Op::kDifference, {&a, &w});
+  EXPECT_NEAR(c.volume, 1, 1e-12);
+  EXPECT_EQ(c.wire_edges, 1u);
+  EXPECT_EQ(c.edges_out, 1u);
+  EXPECT_EQ(c.vertices_out, 2u);
+}
+
+TEST(LowerDim, WireAlongAFaceAndThroughAnEdge) {
+  const Model a = box_model({0, 0, 0}, {1, 1, 1});
+  // On the top face, from outside across it; it crosses the edges y = 0 and y = 1.
+  const Model w = wire_model({{Vec3{0.5, -1, 1}, Vec3{0.5, 2, 1}}});
+  const Parts i = sets(Op::kIntersection, {&a, &w});
+  EXPECT_EQ(i.wire_edges, 1u);
+  EXPECT_EQ(i.vertices, 2u);
+  // Union: the wire's outer pieces meet the cube at its top edges, which take their
+  // ends as vertices.
+  const Parts u = sets(Op::kUnion, {&a, &w});
+  EXPECT_NEAR(u.volume, 1, 1e-12);
+  EXPECT_EQ(u.vertices, 8u + 2u + 2u);
+  EXPECT_GE(u.wire_edges, 2u);
+  const VertexId v = vertex_at(u.result.model, {0.5, 0, 1});
+  ASSERT_TRUE(v.is_valid());
+  std::size_t faces_at_v = 0;
+  for (EdgeId e : u.result.model.edges())
+    if (!u.result.model.is_wire(e) &&
+        (u.result.model.start_of(e) == v || u.result.model.end_of(e) == v))
+      ++faces_at_v;
+  EXPECT_EQ(faces_at_v, 2u);  // the split top edge
+}
+
+TEST(LowerDim, PointsAndCrossingWires) {
+  const Model a = box_model({0, 0, 0}, {1, 1, 1});
+  // A point inside, one on a face, one outside; two wires crossing at (3, 3, 3).
+  const Model p = wire_model({{Vec3{2, 3, 3}, Vec3{4, 3, 3}}, {Vec3{3, 2, 3}, Vec3{3, 4, 3}}},
+                             {Vec3{0.5, 0.5, 0.5}, Vec3{0.5, 0.5, 1}, Vec3{5, 5, 5}});
+  const Parts i = sets(Op::kIntersection, {&a, &p});
+  EXPECT_EQ(i.vertices, 2u);  // the point inside and the point on the face
+  EXPECT_EQ(i.lone_points, 2u);
+  const Parts u = sets(Op::kUnion, {&a, &p});
+  EXPECT_EQ(u.lone_points, 1u);  // the outside point (the one on the face is the face's)
+  EXPECT_EQ(u.wire_edges, 4u);   // the crossing cuts both wires
+  const VertexId x = vertex_at(u.result.model, {3, 3, 3});
+  ASSERT_TRUE(x.is_valid());
+}
+
+// ---- the point set, at sampled points, against closed boxes
+
+// Whether p is in the point set of a result: at a vertex, inside an edge or a face (by
+// their marks), else inside a cell (winding number > 0). Exact on grid points.
+bool member(const boolean::BooleanResult& r, Vec3 p) {
+  const Model& m = r.model;
+  for (VertexId v : m.vertices())
+    if (m.position(v) == p) return r.vertex_in.empty() || r.vertex_in[v.value];
+  for (EdgeId e : m.edges()) {
+    const Vec3 a = m.position(m.start_of(e)), b = m.position(m.end_of(e));
+    if (!collinear3d(a, b, p)) continue;
+    bool inside = false;
+    for (int d = 0; d < 3; ++d)
+      if (a[d] != b[d]) {
+        inside = (a[d] < p[d]) == (p[d] < b[d]);
+        break;
+      }
+    if (inside) return r.edge_in.empty() || r.edge_in[e.value];
+  }
+  for (FaceId f : m.faces()) {
+    const auto tris = io::triangulate_face(m, f);
+    for (const auto& t : tris) {
+      const Vec3 a = m.position(t[0]), b = m.position(t[1]), c = m.position(t[2]);
+      if (orient3d(a, b, c, p) != 0) continue;
+      int k = 0;
+      while (k < 3 && orient2d_projected(a, b, c, k) == 0) ++k;
+      if (k == 3) continue;
+      const int o = orient2d_projected(a, b, c, k);
+      // Not on the face's boundary (edges were tried): inside a triangle or on a
+      // diagonal between two, so inside the face.
+      if (orient2d_projected(a, b, p, k) * o >= 0 && orient2d_projected(b, c, p, k) * o >= 0 &&
+          orient2d_projected(c, a, p, k) * o >= 0)
+        return r.face_in.empty() || r.face_in[f.value];
+    }
+  }
+  return winding_at(m, p) > 0;
+}
+
+TEST(LowerDim, RandomBoxesAgreeWithClosedSetsAtSampledPoints) {
+  const int cases = std::getenv("CELLFORGE_LOWER_CASES") ? std::atoi(std::getenv("CELLFORGE_LOWER_CASES")) : 300;
+  int failures = 0;
+  for (int seed = 1; seed <= cases && failures < 5; ++seed) {
+    std::mt19937 rng(static_cast<std::uint32_t>(seed));
+    auto coord = [&] { return 0.5 * static_cast<int>(rng() % 7); };  // 0 .. 3, touching often
+    const int n = 2 + static_cast<int>(rng() % 2);
+    std::vector<Model> boxes;
+    std::vector<std::array<Vec3, 2>> extent;
+    std::vector<double> ticks;
+    for (int i = 0; i < n; ++i) {
+      Vec3 lo, hi;
+      for (int d = 0; d < 3; ++d) {
+        double x = coord(), y = coord();
+        while (x == y) y = coord();
+        lo[d] = std::min(x, y);
+        hi[d] = std::max(x, y);
+        ticks.push_back(lo[d]);
+        ticks.push_back(hi[d]);
+      }
+      boxes.push_back(box_model(lo, hi));
+      extent.push_back({lo, hi});
+    }
+    std::vector<const Model*> ops;
+    for (const Model& b : boxes) ops.push_back(&b);
+    const Op op = static_cast<Op>(rng() % 3);
+    const Expr e = Expr::over(op, n);
+    boolean::Options o;
+    o.keep_lower_dim = true;
+    auto r = boolean::evaluate(ops, e, o);
+    ASSERT_TRUE(r.ok()) << "seed " << seed << ": " << r.error().message;
+    const auto v = validate(r->model);
+    EXPECT_TRUE(v.empty()) << "seed " << seed << ": " << to_string(v);
+    // Points on the boxes' planes, their edges and corners, and between.
+    for (int k = 0; k < 60; ++k) {
+      Vec3 p;
+      for (int d = 0; d < 3; ++d)
+        p[d] = rng() % 3 ? ticks[rng() % ticks.size()] : 0.25 * static_cast<int>(rng() % 13);
+      std::vector<bool> inside(n);
+      for (int i = 0; i < n; ++i)
+        inside[i] = extent[i][0].x <= p.x && p.x <= extent[i][1].x && extent[i][0].y <= p.y &&
+                    p.y <= extent[i][1].y && extent[i][0].z <= p.z && p.z <= extent[i][1].z;
+      const bool want = e.contains(inside), got = member(*r, p);
+      if (want != got) {
+        ++failures;
+        ADD_FAILURE() << "seed " << seed << ": " << to_string(op) << " of " << n << " boxes, at " << p
+                      << ": expected " << want << ", the result says " << got;
+        break;
+      }
+    }
+  }
 }
 
 }  // namespace
