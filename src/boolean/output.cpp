@@ -185,6 +185,59 @@ void insert_between(const Arrangement& a, const LineClasses& lc, std::uint32_t r
   }
 }
 
+// Non-regularized results mark each edge in or out of the set as a whole, so an edge
+// must have a vertex wherever another operand's vertex (or a wire's end or point)
+// lies inside it: the set may change there (a - b for boxes touching along part of an
+// edge).
+void split_at_vertices(const Arrangement& a, const std::vector<std::uint32_t>& canon,
+                       std::vector<OutPoly>& polys) {
+  std::vector<std::uint32_t> found;
+  auto strictly_inside = [&](std::uint32_t x, std::uint32_t y, std::uint32_t v, int ax) {
+    return v != x && v != y && a.compare3(x, v, ax) * a.compare3(v, y, ax) > 0 && a.collinear3(x, y, v);
+  };
+  for (OutPoly& poly : polys)
+    for (auto& loop : poly.loops) {
+      std::vector<std::uint32_t> out;
+      for (std::size_t i = 0; i < loop.size(); ++i) {
+        const std::uint32_t x = loop[i], y = loop[(i + 1) % loop.size()];
+        out.push_back(x);
+        double ex = 0, ey = 0;
+        const Vec3 px = a.approx3(x, &ex), py = a.approx3(y, &ey);
+        Box box;
+        box.add(px - Vec3{ex, ex, ex});
+        box.add(px + Vec3{ex, ex, ex});
+        box.add(py - Vec3{ey, ey, ey});
+        box.add(py + Vec3{ey, ey, ey});
+        const Vec3 d = py - px;
+        const int ax = std::abs(d.x) >= std::abs(d.y) && std::abs(d.x) >= std::abs(d.z) ? 0 : (std::abs(d.y) >= std::abs(d.z) ? 1 : 2);
+        found.clear();
+        auto test = [&](std::uint32_t v) {
+          v = canon[v];
+          const Vec3 pv = a.pos[v];
+          if (pv.x < box.lo.x || pv.x > box.hi.x || pv.y < box.lo.y || pv.y > box.hi.y || pv.z < box.lo.z || pv.z > box.hi.z)
+            return;
+          if (strictly_inside(x, y, v, ax)) found.push_back(v);
+        };
+        a.bvh.query([&](const Box& b) { return b.overlaps(box); }, [&](std::uint32_t t) {
+          for (std::uint32_t v : a.tris[t].v) test(v);
+        });
+        if (!a.wires.empty())
+          a.wire_bvh.query([&](const Box& b) { return b.overlaps(box); }, [&](std::uint32_t w) {
+            test(a.wires[w].p);
+            test(a.wires[w].q);
+          });
+        if (found.empty()) continue;
+        const int dir = a.compare3(x, y, ax);
+        std::sort(found.begin(), found.end(), [&](std::uint32_t u, std::uint32_t v) {
+          return a.compare3(u, v, ax) * dir < 0;
+        });
+        found.erase(std::unique(found.begin(), found.end()), found.end());
+        out.insert(out.end(), found.begin(), found.end());
+      }
+      loop = std::move(out);
+    }
+}
+
 // The lower-dimensional parts of a non-regularized result: the edges of the
 // arrangement's faces and the operands' wire pieces that no kept face holds, in the
 // set with the points around them not, or out of it inside a volume (a cut), as
@@ -499,7 +552,10 @@ Result<BooleanResult> build_result(Arrangement& a, Selection selection, const Ex
   // 2b. Non-regularized: the edges and points of the arrangement that are in the set
   // while no face holds them and the points around them are not: wires and points.
   LowerParts lower;
-  if (options.keep_lower_dim) lower = lower_parts(a, lc, canon, polys, selection.sides, expr, threads);
+  if (options.keep_lower_dim) {
+    split_at_vertices(a, canon, polys);
+    lower = lower_parts(a, lc, canon, polys, selection.sides, expr, threads);
+  }
 
   // 3. Merge coplanar neighbours.
   struct Use {
@@ -603,6 +659,25 @@ Result<BooleanResult> build_result(Arrangement& a, Selection selection, const Ex
                          a.collinear3(nb[i].second, nb[i].first, nb[i + 1].second)))
         drop[nb[i].first] = 1;
       i = j;
+    }
+    // Non-regularized: only where the set is the same on both edges and the vertex.
+    if (options.keep_lower_dim && !drop.empty()) {
+      std::vector<std::uint32_t> candidates;
+      std::vector<std::array<std::uint32_t, 2>> sites;
+      for (std::size_t i = 0; i < nb.size();) {
+        std::size_t j = i;
+        while (j < nb.size() && nb[j].first == nb[i].first) ++j;
+        if (drop.count(nb[i].first)) {
+          candidates.push_back(nb[i].first);
+          sites.push_back({nb[i].second, nb[i].first});
+          sites.push_back({nb[i].first, nb[i + 1].second});
+          sites.push_back({nb[i].first, nb[i].first});
+        }
+        i = j;
+      }
+      const std::vector<SiteVerdict> v = classify_sites(a, expr, sites, threads);
+      for (std::size_t k = 0; k < candidates.size(); ++k)
+        if (v[3 * k].in != v[3 * k + 1].in || v[3 * k].in != v[3 * k + 2].in) drop.erase(candidates[k]);
     }
     std::vector<OutPoly> kept;
     for (OutPoly& p : polys) {

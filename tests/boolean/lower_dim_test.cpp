@@ -6,6 +6,7 @@
 
 #include <cstdlib>
 #include <random>
+#include <sstream>
 
 #include "boolean/boolean_test_util.h"
 
@@ -337,8 +338,9 @@ bool member(const boolean::BooleanResult& r, Vec3 p) {
 
 TEST(LowerDim, RandomBoxesAgreeWithClosedSetsAtSampledPoints) {
   const int cases = std::getenv("CELLFORGE_LOWER_CASES") ? std::atoi(std::getenv("CELLFORGE_LOWER_CASES")) : 300;
+  const int only = std::getenv("CELLFORGE_LOWER_SEED") ? std::atoi(std::getenv("CELLFORGE_LOWER_SEED")) : 0;
   int failures = 0;
-  for (int seed = 1; seed <= cases && failures < 5; ++seed) {
+  for (int seed = only ? only : 1; seed <= (only ? only : cases) && failures < 5; ++seed) {
     std::mt19937 rng(static_cast<std::uint32_t>(seed));
     auto coord = [&] { return 0.5 * static_cast<int>(rng() % 7); };  // 0 .. 3, touching often
     const int n = 2 + static_cast<int>(rng() % 2);
@@ -346,15 +348,16 @@ TEST(LowerDim, RandomBoxesAgreeWithClosedSetsAtSampledPoints) {
     std::vector<std::array<Vec3, 2>> extent;
     std::vector<double> ticks;
     for (int i = 0; i < n; ++i) {
-      Vec3 lo, hi;
+      double l[3], h[3];
       for (int d = 0; d < 3; ++d) {
         double x = coord(), y = coord();
         while (x == y) y = coord();
-        lo[d] = std::min(x, y);
-        hi[d] = std::max(x, y);
-        ticks.push_back(lo[d]);
-        ticks.push_back(hi[d]);
+        l[d] = std::min(x, y);
+        h[d] = std::max(x, y);
+        ticks.push_back(l[d]);
+        ticks.push_back(h[d]);
       }
+      const Vec3 lo{l[0], l[1], l[2]}, hi{h[0], h[1], h[2]};
       boxes.push_back(box_model(lo, hi));
       extent.push_back({lo, hi});
     }
@@ -370,9 +373,9 @@ TEST(LowerDim, RandomBoxesAgreeWithClosedSetsAtSampledPoints) {
     EXPECT_TRUE(v.empty()) << "seed " << seed << ": " << to_string(v);
     // Points on the boxes' planes, their edges and corners, and between.
     for (int k = 0; k < 60; ++k) {
-      Vec3 p;
-      for (int d = 0; d < 3; ++d)
-        p[d] = rng() % 3 ? ticks[rng() % ticks.size()] : 0.25 * static_cast<int>(rng() % 13);
+      double c[3];
+      for (double& x : c) x = rng() % 3 ? ticks[rng() % ticks.size()] : 0.25 * static_cast<int>(rng() % 13);
+      const Vec3 p{c[0], c[1], c[2]};
       std::vector<bool> inside(n);
       for (int i = 0; i < n; ++i)
         inside[i] = extent[i][0].x <= p.x && p.x <= extent[i][1].x && extent[i][0].y <= p.y &&
@@ -380,7 +383,9 @@ TEST(LowerDim, RandomBoxesAgreeWithClosedSetsAtSampledPoints) {
       const bool want = e.contains(inside), got = member(*r, p);
       if (want != got) {
         ++failures;
-        ADD_FAILURE() << "seed " << seed << ": " << to_string(op) << " of " << n << " boxes, at " << p
+        std::string boxes_text;
+        for (const auto& x : extent) { std::ostringstream os; os << " [" << x[0] << " .. " << x[1] << "]"; boxes_text += os.str(); }
+        ADD_FAILURE() << "seed " << seed << ": " << to_string(op) << " of" << boxes_text << ", at " << p
                       << ": expected " << want << ", the result says " << got;
         break;
       }
