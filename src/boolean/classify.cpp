@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <array>
 #include <optional>
+#include <type_traits>
 
 #include "boolean/parallel.h"
 #include "boolean/stages.h"
@@ -167,9 +168,54 @@ class RayCaster {
   int affine_sign(const Start& start, int ws, Affine f) const {
     const int s = sign_of(f(H3<Fp>{{x_[0], x_[1], x_[2], Fp(1.0)}}));
     if (s != kUncertain) return s;
+    if constexpr (std::is_same_v<Start, FreeStart>) {
+      // Between two input vertices, f is (f(p) + 2 f(q)) / 3: their signs, on doubles,
+      // decide unless they differ.
+      if (start.p < a_.pos.size() && start.q < a_.pos.size()) {
+        auto at = [&](std::uint32_t v) {
+          const Vec3 x = a_.pos[v];
+          return decide([&]<class T>() { return f(H3<T>{{T(x.x), T(x.y), T(x.z), T(1.0)}}); });
+        };
+        const int sp = at(start.p), sq = start.q == start.p ? sp : at(start.q);
+        if (sp == sq || sq == 0) return sp;
+        if (sp == 0) return sq;
+      }
+    }
     ++exact_evaluations();
     if (!exact_x_) exact_x_ = start.template get<Dyadic>();
     return ws * sign_of(f(*exact_x_));
+  }
+
+  // The side of the start of triangle ti's plane (0: on it). A free start between two
+  // points whose sides are known without arithmetic (input vertices by orient3d on
+  // doubles, implicit points made on that plane by construction) is on the side they
+  // share; otherwise, and for a piece's start, exactly.
+  template <class Start>
+  int plane_sign(const Start& start, int ws, std::uint32_t ti) const {
+    if constexpr (std::is_same_v<Start, FreeStart>) {
+      const int sp = known_side(start.p, ti);
+      const int sq = start.q == start.p ? sp : known_side(start.q, ti);
+      if (sp != kUncertain && sq != kUncertain) {
+        if (sp == sq || sq == 0) return sp;
+        if (sp == 0) return sq;
+      }
+    }
+    const Tri& t = a_.tris[ti];
+    const Vec3 p0 = a_.pos[t.v[0]];
+    return affine_sign(start, ws, [&]<class T>(const H3<T>& x) {
+      const V3<T> n = normal_t<T>(a_, t);
+      return n[0] * (x.c[0] - T(p0.x) * x.c[3]) + n[1] * (x.c[1] - T(p0.y) * x.c[3]) +
+             n[2] * (x.c[2] - T(p0.z) * x.c[3]);
+    });
+  }
+  int known_side(std::uint32_t p, std::uint32_t ti) const {
+    const Tri& t = a_.tris[ti];
+    if (p < a_.pos.size()) return orient3d(a_.pos[t.v[0]], a_.pos[t.v[1]], a_.pos[t.v[2]], a_.pos[p]);
+    const std::uint32_t plane = a_.plane_of[a_.cluster_of[ti]];
+    const PointDef& d = a_.points[p - a_.pos.size()];
+    if (d.kind == PointKind::kLpi && a_.plane_of[a_.cluster_of[d.c]] == plane) return 0;
+    if (d.kind == PointKind::kCross && a_.plane_of[d.a] == plane) return 0;
+    return kUncertain;
   }
 
   // Whether the start lies on the closed triangle t: on its plane, and inside or on
@@ -193,11 +239,7 @@ class RayCaster {
       });
       if (o == -mk) return false;
     }
-    return affine_sign(start, ws, [&]<class T>(const H3<T>& x) {
-             const V3<T> n = normal_t<T>(a_, t);
-             return n[0] * (x.c[0] - T(p[0].x) * x.c[3]) + n[1] * (x.c[1] - T(p[0].y) * x.c[3]) +
-                    n[2] * (x.c[2] - T(p[0].z) * x.c[3]);
-           }) == 0;
+    return plane_sign(start, ws, ti) == 0;
   }
 
   // Whether the start lies on the closed segment pq (a point where p == q).
@@ -266,11 +308,7 @@ class RayCaster {
                  (orient3d(r0, r1, r2, p[0]) == 0 && orient3d(r0, r1, r2, p[1]) == 0 &&
                   orient3d(r0, r1, r2, p[2]) == 0);
     }
-    const int s = coplanar ? 0 : affine_sign(start, ws, [&]<class T>(const H3<T>& x) {
-      const V3<T> n = normal_t<T>(a_, t);
-      return n[0] * (x.c[0] - T(p[0].x) * x.c[3]) + n[1] * (x.c[1] - T(p[0].y) * x.c[3]) +
-             n[2] * (x.c[2] - T(p[0].z) * x.c[3]);
-    });
+    const int s = coplanar ? 0 : plane_sign(start, ws, ti);
     int sf = s, sb = s;
     if (s == 0) {
       // On the triangle's plane: shifted by the side (a free start: up the ray's axis).

@@ -281,8 +281,6 @@ LowerParts lower_parts(Arrangement& a, const LineClasses& lc, const std::vector<
   std::vector<std::array<std::uint32_t, 2>> wire_edges;
   for (const WireSeg& w : a.wire_pieces) {
     const std::uint32_t p = canon[w.p], q = canon[w.q];
-    corners.push_back(p);
-    corners.push_back(q);
     if (p == q || held_edges.count(ordered(p, q)) || !seen.insert(ordered(p, q)).second) continue;
     wire_edges.push_back({p, q});
   }
@@ -324,14 +322,27 @@ LowerParts lower_parts(Arrangement& a, const LineClasses& lc, const std::vector<
     out.ends.insert(w[0]);
     out.ends.insert(w[1]);
   }
+  // Corners of dropped faces, then the operands' points and wire ends (which, like
+  // their wires, may lie on a kept face).
   std::sort(corners.begin(), corners.end());
   corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
-  std::vector<std::array<std::uint32_t, 2>> sites;
-  for (std::uint32_t p : corners)
-    if (!held_points.count(p) && !out.ends.count(p) && !inside_wires.count(p)) sites.push_back({p, p});
-  const std::vector<SiteVerdict> on_points = classify_sites(a, expr, sites, threads, true);
-  for (std::size_t i = 0; i < sites.size(); ++i)
-    if (on_points[i].in != on_points[i].around && !on_points[i].on_face) out.points.push_back(sites[i][0]);
+  std::vector<std::uint32_t> loose;
+  for (const WireSeg& w : a.wire_pieces) {
+    loose.push_back(canon[w.p]);
+    loose.push_back(canon[w.q]);
+  }
+  std::sort(loose.begin(), loose.end());
+  loose.erase(std::unique(loose.begin(), loose.end()), loose.end());
+  for (bool both_sides : {false, true}) {
+    std::vector<std::array<std::uint32_t, 2>> sites;
+    for (std::uint32_t p : both_sides ? loose : corners)
+      if (!held_points.count(p) && !out.ends.count(p) && !inside_wires.count(p) &&
+          (both_sides || !std::binary_search(loose.begin(), loose.end(), p)))
+        sites.push_back({p, p});
+    const std::vector<SiteVerdict> on_points = classify_sites(a, expr, sites, threads, both_sides);
+    for (std::size_t i = 0; i < sites.size(); ++i)
+      if (on_points[i].in != on_points[i].around && !on_points[i].on_face) out.points.push_back(sites[i][0]);
+  }
   return out;
 }
 
