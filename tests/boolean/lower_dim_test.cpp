@@ -393,5 +393,32 @@ TEST(LowerDim, RandomBoxesAgreeWithClosedSetsAtSampledPoints) {
   }
 }
 
+// Faceted primitives under random motions: the non-regularized result validates and
+// has the regularized result's volume (they differ in parts of no volume only).
+TEST(LowerDim, RandomPrimitivesKeepTheRegularizedVolume) {
+  std::mt19937 rng(2026);
+  std::uniform_real_distribution<double> angle(0, 360), offset(-1.5, 1.5);
+  for (int k = 0; k < 24; ++k) {
+    const Model a = k % 2 ? sphere_model(2, 12) : cylinder_model(1.5, 3, 10);
+    const Model b0 = k % 3 ? box_model({-1, -1, -1}, {1, 1, 1}) : sphere_model(1.5, 10);
+    const Model b = moved(b0, shape::Transform::translate({offset(rng), offset(rng), offset(rng)}) *
+                                  shape::Transform::rotate(angle(rng), {angle(rng) - 180, angle(rng) - 180, angle(rng)}));
+    for (Op op : {Op::kUnion, Op::kIntersection, Op::kDifference}) {
+      const boolean::Expr e = Expr::over(op, 2);
+      boolean::Options o;
+      auto reg = boolean::evaluate(std::vector<const Model*>{&a, &b}, e, o);
+      o.keep_lower_dim = true;
+      auto low = boolean::evaluate(std::vector<const Model*>{&a, &b}, e, o);
+      ASSERT_TRUE(reg.ok() && low.ok()) << k;
+      EXPECT_TRUE(validate(low->model).empty()) << "case " << k << " " << to_string(op) << ": "
+                                                << to_string(validate(low->model));
+      const double vr = reg->model.num_faces() ? shape::mass_properties(reg->model).volume : 0;
+      const double vl = low->model.num_faces() ? shape::mass_properties(low->model).volume : 0;
+      EXPECT_NEAR(vl, vr, 1e-9 * (1 + vr)) << "case " << k << " " << to_string(op);
+      EXPECT_EQ(low->model.num_volumes(), reg->model.num_volumes()) << "case " << k << " " << to_string(op);
+    }
+  }
+}
+
 }  // namespace
 }  // namespace cellforge::testing
