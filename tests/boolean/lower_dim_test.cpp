@@ -8,7 +8,11 @@
 #include <random>
 #include <sstream>
 
+#include <filesystem>
+
 #include "boolean/boolean_test_util.h"
+#include "cellforge/io/mesh_io.h"
+#include "support/cli.h"
 
 namespace cellforge::testing {
 namespace {
@@ -418,6 +422,29 @@ TEST(LowerDim, RandomPrimitivesKeepTheRegularizedVolume) {
       EXPECT_EQ(low->model.num_volumes(), reg->model.num_volumes()) << "case " << k << " " << to_string(op);
     }
   }
+}
+
+TEST(LowerDim, CommandLine) {
+  const auto dir = std::filesystem::temp_directory_path() / "cellforge_lower_dim_cli";
+  std::filesystem::create_directories(dir);
+  const std::string a = (dir / "a.json").string(), b = (dir / "b.json").string();
+  const std::string out = (dir / "c.json").string();
+  ASSERT_TRUE(io::write_file(box_model({0, 0, 0}, {1, 1, 1}), a).ok());
+  ASSERT_TRUE(io::write_file(box_model({0, 0, 1}, {1, 1, 2}), b).ok());
+  const CliRun r = run_cli("bool intersection " + a + " " + b + " -o " + out + " --keep-lower-dim --report json");
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("\"faces\": 1,"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\"sheet_faces\": 1,"), std::string::npos) << r.out;
+  Model back;
+  ASSERT_TRUE(io::read_file(back, out).ok());
+  EXPECT_EQ(back.num_faces(), 1u);
+  EXPECT_EQ(back.num_volumes(), 0u);
+  const CliRun cells = run_cli("bool union " + a + " " + b + " -o " + out + " --cells");
+  ASSERT_EQ(cells.status, 0) << cells.out;
+  EXPECT_NE(cells.out.find("2 volumes"), std::string::npos) << cells.out;
+  EXPECT_NE(cells.out.find("1 inner faces"), std::string::npos) << cells.out;
+  const CliRun regular = run_cli("bool intersection " + a + " " + b + " -o " + out);
+  EXPECT_NE(regular.out.find("0 faces"), std::string::npos) << regular.out;
 }
 
 }  // namespace
