@@ -395,9 +395,26 @@ std::vector<std::string> packed_ddl(const PackedTable& t) {
     }
     view += ",\n  " + e + " AS " + c.name;
   }
+  const std::string select = view.substr(view.find("SELECT"));
   view += std::string("\nFROM ") + t.blocks + " b CROSS JOIN LATERAL generate_series(0, length(b.data) / " +
           rec + " - 1) AS k";
-  return {
+  std::vector<std::string> range;
+  if (t.columns.front().field == Field::kKey) {
+    // <kind>_range(volume_id, first, last): the rows of keys first ... last of one
+    // volume, read from the blocks that hold them (an indexed scan; the view
+    // itself would unpack every block of the volume to find them). SQL, so the
+    // planner inlines it into a query.
+    const std::string per = std::to_string(t.per_block);
+    const std::string name = std::string(t.blocks, std::strlen(t.blocks) - 7) + "_range";
+    range.push_back("CREATE OR REPLACE FUNCTION " + name +
+                    "(bigint, integer, integer) RETURNS SETOF " + t.name +
+                    "\nLANGUAGE sql STABLE PARALLEL SAFE AS $$\n" + select + "\nFROM " + t.blocks +
+                    " b CROSS JOIN LATERAL generate_series(greatest($2 - b.block * " + per +
+                    ", 0), least($3 - b.block * " + per + ", length(b.data) / " + rec +
+                    " - 1)) AS k\nWHERE b.volume_id = $1 AND b.block BETWEEN $2 / " + per +
+                    " AND $3 / " + per + " $$");
+  }
+  std::vector<std::string> out = {
       std::string("CREATE TABLE ") + t.blocks +
           " (\n  volume_id BIGINT NOT NULL,\n  block INTEGER NOT NULL,\n  data BYTEA NOT NULL,\n"
           "  PRIMARY KEY (volume_id, block))",
@@ -405,6 +422,8 @@ std::vector<std::string> packed_ddl(const PackedTable& t) {
       std::string("ALTER TABLE ") + t.blocks + " ALTER COLUMN data SET STORAGE PLAIN",
       view,
   };
+  for (std::string& r : range) out.push_back(std::move(r));
+  return out;
 }
 
 // The decoding functions of the views: big-endian int4 and float8 at a byte
@@ -739,10 +758,8 @@ END $$)"};
   }
   Status before_key_set_reads() override { return exec("SET LOCAL enable_nestloop = off", {}); }
   std::string tiles_then_faces() const override {
-    // LATERAL ... OFFSET 0 keeps the planner from scanning the faces first (it
-    // cannot know that a tile's key range is small).
-    return "face_tiles t CROSS JOIN LATERAL (SELECT * FROM faces f WHERE f.volume_id = "
-           "t.volume_id AND f.face_key BETWEEN t.first_face AND t.last_face OFFSET 0) f";
+    // face_range reads only the blocks of each tile's faces.
+    return "face_tiles t CROSS JOIN LATERAL face_range(t.volume_id, t.first_face, t.last_face) f";
   }
   std::string key_set_query(int param) const override {
     return "SELECT unnest($" + std::to_string(param) + "::bigint[])";

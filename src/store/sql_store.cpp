@@ -284,7 +284,14 @@ class SqlStore final : public Store {
         p.emplace_back(c);
       }
       // The tiles that meet the box (through the spatial index), then the exact
-      // box of each of their faces.
+      // box of each of their faces: in one join where faces are rows, by the
+      // faces' keys where they are packed in blocks (PostgreSQL).
+      if (db_->stored_in("faces") == "faces") {
+        return db_->select("SELECT f.face_key FROM " + db_->tiles_then_faces() +
+                               " WHERE t.volume_id = $1 AND " + db_->overlaps("t", 2) + " AND " +
+                               box_test("f", 2) + " ORDER BY f.face_key",
+                           p, [&](const Row& r) { out.push_back(key(r, 0)); });
+      }
       std::vector<std::uint32_t> keys;
       Status st = db_->select("SELECT t.first_face, t.last_face FROM face_tiles t WHERE "
                               "t.volume_id = $1 AND " + db_->overlaps("t", 2) + " ORDER BY t.id",
