@@ -462,7 +462,8 @@ std::string param_text(const Value& v) {
     std::snprintf(tmp, sizeof tmp, "%.17g", *d);
     return tmp;
   }
-  return std::get<std::string>(v);
+  if (const auto* s = std::get_if<std::string>(&v)) return *s;
+  return {};  // NULL: sent as a null pointer
 }
 
 class PgConnection final : public Connection {
