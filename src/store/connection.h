@@ -147,8 +147,8 @@ class Connection {
 
   // One user query, refused unless it is read-only, run so that it can read only
   // the model tables, within options.timeout.
-  virtual Result<QueryResult> read_only_query(const std::string& sql,
-                                              const QueryOptions& options) = 0;
+  virtual Result<bool> read_only_query(const std::string& sql, const QueryOptions& options,
+                                       const QueryCallbacks& callbacks) = 0;
 };
 
 Result<std::unique_ptr<Connection>> open_sqlite(const std::string& path);

@@ -18,6 +18,7 @@
 #include <cstring>
 #include <map>
 #include <memory>
+#include <optional>
 
 #include "store/connection.h"
 
@@ -780,14 +781,14 @@ END $$)"};
   // set_config — can take the rights of the store's role. The text is wrapped as
   // a subquery, so only a query parses (no COPY, SET or other utility command),
   // inside a READ ONLY transaction with a statement timeout, rolled back after.
-  Result<QueryResult> read_only_query(const std::string& sql,
-                                      const QueryOptions& options) override {
+  Result<bool> read_only_query(const std::string& sql, const QueryOptions& options,
+                               const QueryCallbacks& callbacks) override {
     if (!reader_ || PQstatus(reader_->conn_) != CONNECTION_OK) {
       auto reader = open_reader();
       if (!reader) return reader.error();
       reader_ = std::move(reader.value());
     }
-    return reader_->run_user_query(sql, options);
+    return reader_->run_user_query(sql, options, callbacks);
   }
 
  private:
@@ -823,7 +824,11 @@ END $$)"};
     return c;
   }
 
-  Result<QueryResult> run_user_query(std::string sql, const QueryOptions& options) {
+  // Single-row mode: each row is its own PGresult, handed over and freed before
+  // the next is read, so nothing accumulates. A stop asked by the caller cancels
+  // the query on the server.
+  Result<bool> run_user_query(std::string sql, const QueryOptions& options,
+                              const QueryCallbacks& callbacks) {
     while (!sql.empty() && (std::isspace(static_cast<unsigned char>(sql.back())) || sql.back() == ';')) {
       sql.pop_back();
     }
@@ -838,47 +843,84 @@ END $$)"};
     const std::string wrapped =
         "SELECT * FROM (\n" + sql + "\n) AS cellforge_user_query" +
         (options.max_rows ? " LIMIT " + std::to_string(options.max_rows + 1) : std::string());
-    ResultGuard r{PQexecParams(conn_, wrapped.c_str(), 0, nullptr, nullptr, nullptr, nullptr, 0)};
-    if (PQresultStatus(r.r) != PGRES_TUPLES_OK) {
-      const char* state = r.r ? PQresultErrorField(r.r, PG_DIAG_SQLSTATE) : nullptr;
-      Status e = state && std::strcmp(state, "57014") == 0
-                     ? db_error("postgresql: the query ran past its time limit of " +
-                                std::to_string(options.timeout) + " s and was cancelled")
-                     : result_error(r.r, "query");
+    if (PQsendQueryParams(conn_, wrapped.c_str(), 0, nullptr, nullptr, nullptr, nullptr, 0) != 1 ||
+        PQsetSingleRowMode(conn_) != 1) {
+      Status e = fail("query");
+      drain();
       rollback();
       return e.error();
     }
-    QueryResult out;
-    const int n = PQnfields(r.r);
-    for (int c = 0; c < n; ++c) out.columns.emplace_back(PQfname(r.r, c));
-    // The kind of each column from its type (pg_type's OIDs): int2, int4, int8, oid;
-    // float4, float8, numeric; bytea.
+    std::optional<Status> error;
+    bool truncated = false, stopped = false, started = false;
+    std::size_t rows = 0;
     std::vector<ValueKind> kinds;
-    for (int c = 0; c < n; ++c) {
-      const Oid type = PQftype(r.r, c);
-      kinds.push_back(type == 20 || type == 21 || type == 23 || type == 26 ? ValueKind::kInteger
-                      : type == 700 || type == 701 || type == 1700         ? ValueKind::kReal
-                      : type == 17                                         ? ValueKind::kBlob
-                                                                           : ValueKind::kText);
-    }
-    for (int k = 0, rows = PQntuples(r.r); k < rows; ++k) {
-      if (options.max_rows && out.rows.size() == options.max_rows) {
-        out.truncated = true;
-        break;
+    QueryRow row;
+    while (PGresult* r = PQgetResult(conn_)) {
+      ResultGuard guard{r};
+      const ExecStatusType st = PQresultStatus(r);
+      if (error || stopped || truncated) continue;  // the rest of a stopped query
+      if (st != PGRES_SINGLE_TUPLE && st != PGRES_TUPLES_OK) {
+        const char* state = PQresultErrorField(r, PG_DIAG_SQLSTATE);
+        error = state && std::strcmp(state, "57014") == 0 && !stopped
+                    ? db_error("postgresql: the query ran past its time limit of " +
+                               std::to_string(options.timeout) + " s and was cancelled")
+                    : result_error(r, "query");
+        continue;
       }
-      auto& row = out.rows.emplace_back();
-      out.kinds.push_back(kinds);
-      for (int c = 0; c < n; ++c) {
-        if (PQgetisnull(r.r, k, c)) {
-          row.emplace_back();
-        } else {
-          row.emplace_back(
-              std::string(PQgetvalue(r.r, k, c), static_cast<std::size_t>(PQgetlength(r.r, k, c))));
+      const int n = PQnfields(r);
+      if (!started) {
+        started = true;
+        std::vector<std::string> columns;
+        for (int c = 0; c < n; ++c) columns.emplace_back(PQfname(r, c));
+        // The kind of each column from its type (pg_type's OIDs): int2, int4,
+        // int8, oid; float4, float8, numeric; bytea.
+        for (int c = 0; c < n; ++c) {
+          const Oid type = PQftype(r, c);
+          kinds.push_back(type == 20 || type == 21 || type == 23 || type == 26 ? ValueKind::kInteger
+                          : type == 700 || type == 701 || type == 1700         ? ValueKind::kReal
+                          : type == 17                                         ? ValueKind::kBlob
+                                                                               : ValueKind::kText);
+        }
+        if (callbacks.columns) callbacks.columns(columns);
+      }
+      for (int k = 0, count = PQntuples(r); k < count && !stopped && !truncated; ++k) {
+        if (options.max_rows && rows == options.max_rows) {
+          truncated = true;
+          break;
+        }
+        ++rows;
+        row.values.clear();
+        row.kinds = kinds;
+        for (int c = 0; c < n; ++c) {
+          if (PQgetisnull(r, k, c)) {
+            row.values.emplace_back();
+          } else {
+            row.values.emplace_back(
+                std::string(PQgetvalue(r, k, c), static_cast<std::size_t>(PQgetlength(r, k, c))));
+          }
+        }
+        if (callbacks.row && !callbacks.row(row)) {
+          stopped = true;
+          cancel();
         }
       }
     }
     rollback();
-    return out;
+    if (error) return error->error();
+    return truncated;
+  }
+
+  // Asks the server to stop the query running on this connection.
+  void cancel() {
+    if (PGcancel* c = PQgetCancel(conn_)) {
+      char message[256];
+      PQcancel(c, message, sizeof message);
+      PQfreeCancel(c);
+    }
+  }
+
+  void drain() {
+    while (PGresult* r = PQgetResult(conn_)) PQclear(r);
   }
 
   Status begin(const char* sql) {

@@ -498,7 +498,23 @@ class SqlStore final : public Store {
   }
 
   Result<QueryResult> query(const std::string& sql, const QueryOptions& options) override {
-    return db_->read_only_query(sql, options);
+    QueryResult out;
+    QueryCallbacks collect;
+    collect.columns = [&](const std::vector<std::string>& c) { out.columns = c; };
+    collect.row = [&](const QueryRow& r) {
+      out.rows.push_back(r.values);
+      out.kinds.push_back(r.kinds);
+      return true;
+    };
+    auto truncated = db_->read_only_query(sql, options, collect);
+    if (!truncated) return truncated.error();
+    out.truncated = truncated.value();
+    return out;
+  }
+
+  Result<bool> query_each(const std::string& sql, const QueryOptions& options,
+                          const QueryCallbacks& callbacks) override {
+    return db_->read_only_query(sql, options, callbacks);
   }
 
  private:
