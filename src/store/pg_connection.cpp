@@ -429,28 +429,28 @@ std::vector<std::string> packed_ddl(const PackedTable& t) {
 
 // The decoding functions of the views: big-endian int4 and float8 at a byte
 // offset of a bytea. PostgreSQL has no cast from 8 bytes to float8, so the
-// double is rebuilt from its bits exactly (sign, exponent, significand; -0,
-// subnormals and infinities included).
+// double is rebuilt from its bits exactly: sign * significand * 2^exponent, each
+// factor and the product exact (-0, subnormals and infinities included; NaN is
+// PostgreSQL's one NaN).
 const std::vector<std::string>& packed_functions() {
   static const std::vector<std::string> f = {
       R"(CREATE OR REPLACE FUNCTION cellforge_i4(b bytea, o integer) RETURNS integer
 LANGUAGE sql IMMUTABLE STRICT PARALLEL SAFE AS
 $$ SELECT (get_byte(b, o) << 24) | (get_byte(b, o + 1) << 16) | (get_byte(b, o + 2) << 8)
           | get_byte(b, o + 3) $$)",
+      // One SQL expression, not STRICT (a CASE is not strict), so that the
+      // planner inlines it: twice as fast as the same in PL/pgSQL.
       R"(CREATE OR REPLACE FUNCTION cellforge_f8(b bytea, o integer) RETURNS double precision
-LANGUAGE plpgsql IMMUTABLE STRICT PARALLEL SAFE AS $$
-DECLARE
-  v bigint := ('x' || encode(substring(b FROM o + 1 FOR 8), 'hex'))::bit(64)::bigint;
-  e integer := ((v >> 52) & 2047)::integer;
-  m bigint := v & 4503599627370495;
-BEGIN
-  IF e = 2047 THEN
-    RETURN CASE WHEN m <> 0 THEN 'NaN'::float8 WHEN v < 0 THEN '-Infinity'::float8
-                ELSE 'Infinity'::float8 END;
-  END IF;
-  RETURN (CASE WHEN v < 0 THEN -1.0::float8 ELSE 1.0::float8 END)
-         * (m + CASE WHEN e = 0 THEN 0 ELSE 4503599627370496 END)::float8
-         * (2.0::float8 ^ (greatest(e, 1) - 1075));
+LANGUAGE sql IMMUTABLE PARALLEL SAFE AS $$
+SELECT CASE WHEN (((get_byte(b, o) & 127) << 4) | (get_byte(b, o + 1) >> 4)) = 2047 THEN
+  CASE WHEN (('x' || encode(substring(b FROM o + 2 FOR 7), 'hex'))::bit(56)::bigint
+             & 4503599627370495) <> 0 THEN 'NaN'::float8
+       WHEN get_byte(b, o) >= 128 THEN '-Infinity'::float8 ELSE 'Infinity'::float8 END
+ELSE (CASE WHEN get_byte(b, o) >= 128 THEN -1.0::float8 ELSE 1.0::float8 END)
+  * ((('x' || encode(substring(b FROM o + 2 FOR 7), 'hex'))::bit(56)::bigint & 4503599627370495)
+     | (CASE WHEN (((get_byte(b, o) & 127) << 4) | (get_byte(b, o + 1) >> 4)) = 0 THEN 0
+             ELSE 4503599627370496 END))::float8
+  * (2.0::float8 ^ (greatest(((get_byte(b, o) & 127) << 4) | (get_byte(b, o + 1) >> 4), 1) - 1075))
 END $$)",
   };
   return f;
