@@ -991,14 +991,22 @@ FROM faces_old f JOIN (
   Status read_face_rows(std::int64_t id, const std::string& condition, ModelRows& r) {
     auto opt = [](const Row& row, int c) { return row.is_null(c) ? kNone : row.i(c); };
     std::vector<std::uint32_t> face_keys;
+    // In key order, sorted here: on PostgreSQL the key is computed by the faces
+    // view, and the server would sort every row the condition keeps.
+    std::vector<std::pair<std::uint32_t, Snapshot::Face>> named;
     Status s = db_->untrusted_select(
         "SELECT f.face_key, f.group_key, f.surface_key FROM faces f JOIN volumes v ON v.id = "
         "f.volume_id WHERE f.volume_id = $1 AND (" +
-            condition + ") ORDER BY f.face_key",
+            condition + ")",
         {id}, [&](const Row& row) {
-          face_keys.push_back(key(row, 0));
-          r.faces.push_back({key(row, 1), kNone, kNone, opt(row, 2)});
+          named.push_back({key(row, 0), {key(row, 1), kNone, kNone, opt(row, 2)}});
         });
+    std::sort(named.begin(), named.end(),
+              [](const auto& a, const auto& b) { return a.first < b.first; });
+    for (const auto& [k, f] : named) {
+      face_keys.push_back(k);
+      r.faces.push_back(f);
+    }
     if (s) s = read_small_tables(id, r);
     if (s) s = db_->before_key_set_reads();
     std::vector<std::uint32_t> loop_keys;
