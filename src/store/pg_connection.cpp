@@ -170,8 +170,8 @@ struct PackedColumn {
 };
 
 struct PackedTable {
-  const char* name;    // the view
-  const char* blocks;  // the table of blocks
+  const char* name;                   // the view
+  const char* blocks;                 // the table of blocks
   std::vector<PackedColumn> columns;  // after volume_id, in the table's column order
   int record = 0;                     // bytes per row
   int per_block = 0;                  // rows per block
@@ -200,11 +200,21 @@ const std::vector<PackedTable>& packed_tables() {
           {"uses", F::kInt}}},
         {"faces",
          "face_blocks",
-         {{"face_key", F::kKey},     {"group_key", F::kInt},   {"front_cell", F::kOptInt},
-          {"back_cell", F::kOptInt}, {"surface_key", F::kOptInt}, {"nx", F::kDouble},
-          {"ny", F::kDouble},        {"nz", F::kDouble},       {"d", F::kDouble},
-          {"min_x", F::kDouble},     {"min_y", F::kDouble},    {"min_z", F::kDouble},
-          {"max_x", F::kDouble},     {"max_y", F::kDouble},    {"max_z", F::kDouble}}},
+         {{"face_key", F::kKey},
+          {"group_key", F::kInt},
+          {"front_cell", F::kOptInt},
+          {"back_cell", F::kOptInt},
+          {"surface_key", F::kOptInt},
+          {"nx", F::kDouble},
+          {"ny", F::kDouble},
+          {"nz", F::kDouble},
+          {"d", F::kDouble},
+          {"min_x", F::kDouble},
+          {"min_y", F::kDouble},
+          {"min_z", F::kDouble},
+          {"max_x", F::kDouble},
+          {"max_y", F::kDouble},
+          {"max_z", F::kDouble}}},
         {"loops",
          "loop_blocks",
          {{"loop_key", F::kKey},
@@ -340,12 +350,16 @@ class PackedRow final : public Row {
   std::int64_t value(const PackedColumn& c) const {
     const PackedColumn* col = &c;
     switch (col->field) {
-      case Field::kKey: return block_ * t_.per_block + index_;
+      case Field::kKey:
+        return block_ * t_.per_block + index_;
       case Field::kInt:
-      case Field::kOptInt: return static_cast<std::int32_t>(load_be32(rec_ + col->offset));
-      case Field::kOne: return 1;
+      case Field::kOptInt:
+        return static_cast<std::int32_t>(load_be32(rec_ + col->offset));
+      case Field::kOne:
+        return 1;
       case Field::kLoopKind:
-      case Field::kDouble: break;
+      case Field::kDouble:
+        break;
     }
     return 0;
   }
@@ -385,11 +399,21 @@ std::vector<std::string> packed_ddl(const PackedTable& t) {
   for (const PackedColumn& c : t.columns) {
     std::string e;
     switch (c.field) {
-      case Field::kKey: e = "b.block * " + std::to_string(t.per_block) + " + k"; break;
-      case Field::kInt: e = "cellforge_i4(" + at(c.offset) + ")"; break;
-      case Field::kOptInt: e = "NULLIF(cellforge_i4(" + at(c.offset) + "), -1)"; break;
-      case Field::kDouble: e = "cellforge_f8(" + at(c.offset) + ")"; break;
-      case Field::kOne: e = "1"; break;
+      case Field::kKey:
+        e = "b.block * " + std::to_string(t.per_block) + " + k";
+        break;
+      case Field::kInt:
+        e = "cellforge_i4(" + at(c.offset) + ")";
+        break;
+      case Field::kOptInt:
+        e = "NULLIF(cellforge_i4(" + at(c.offset) + "), -1)";
+        break;
+      case Field::kDouble:
+        e = "cellforge_f8(" + at(c.offset) + ")";
+        break;
+      case Field::kOne:
+        e = "1";
+        break;
       case Field::kLoopKind:
         e = "CASE cellforge_i4(" + at(t.ord_offset) + ") WHEN 0 THEN 'outer' ELSE 'inner' END";
         break;
@@ -397,8 +421,8 @@ std::vector<std::string> packed_ddl(const PackedTable& t) {
     view += ",\n  " + e + " AS " + c.name;
   }
   const std::string select = view.substr(view.find("SELECT"));
-  view += std::string("\nFROM ") + t.blocks + " b CROSS JOIN LATERAL generate_series(0, length(b.data) / " +
-          rec + " - 1) AS k";
+  view += std::string("\nFROM ") + t.blocks +
+          " b CROSS JOIN LATERAL generate_series(0, length(b.data) / " + rec + " - 1) AS k";
   std::vector<std::string> range;
   if (t.columns.front().field == Field::kKey) {
     // <kind>_range(volume_id, first, last): the rows of keys first ... last of one
@@ -662,18 +686,21 @@ class PgConnection final : public Connection {
     for (const PackedColumn& c : t->columns) {
       const std::string name = c.name;
       if (c.field == Field::kKey) order = name;
-      if (c.field == Field::kInt) record += (record.empty() ? "" : " || ") + ("int4send(" + name + ")");
+      if (c.field == Field::kInt)
+        record += (record.empty() ? "" : " || ") + ("int4send(" + name + ")");
       if (c.field == Field::kOptInt) {
         record += (record.empty() ? "" : " || ") + ("int4send(COALESCE(" + name + ", -1))");
       }
-      if (c.field == Field::kDouble) record += (record.empty() ? "" : " || ") + ("float8send(" + name + ")");
+      if (c.field == Field::kDouble)
+        record += (record.empty() ? "" : " || ") + ("float8send(" + name + ")");
     }
     if (order.empty()) order = "loop_key, ord";  // loop_edges: uses in loop order
     const std::string per = std::to_string(t->per_block);
     return {std::string("INSERT INTO ") + t->blocks + " (volume_id, block, data)\n" +
             "SELECT volume_id, (n / " + per + ")::integer, string_agg(r, ''::bytea ORDER BY n)\n" +
-            "FROM (SELECT volume_id, " + record + " AS r, row_number() OVER (PARTITION BY volume_id ORDER BY " +
-            order + ") - 1 AS n FROM " + rows_table + ") s\nGROUP BY volume_id, n / " + per};
+            "FROM (SELECT volume_id, " + record +
+            " AS r, row_number() OVER (PARTITION BY volume_id ORDER BY " + order +
+            ") - 1 AS n FROM " + rows_table + ") s\nGROUP BY volume_id, n / " + per};
   }
 
   Status copy_out(const std::string& text, const std::function<void(const BinaryRow&)>& fn) {

@@ -3,11 +3,11 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <ctime>
 #include <map>
 #include <thread>
-#include <cstdlib>
-#include <cstring>
 
 #include "cellforge/topo/validate.h"
 #include "store/connection.h"
@@ -293,23 +293,26 @@ class SqlStore final : public Store {
                            p, [&](const Row& r) { out.push_back(key(r, 0)); });
       }
       std::vector<std::uint32_t> keys;
-      Status st = db_->select("SELECT t.first_face, t.last_face FROM face_tiles t WHERE "
-                              "t.volume_id = $1 AND " + db_->overlaps("t", 2) + " ORDER BY t.id",
-                              p, [&](const Row& r) {
-                                for (std::uint32_t k = key(r, 0); k <= key(r, 1); ++k) {
-                                  keys.push_back(k);
-                                }
-                              });
+      Status st = db_->select(
+          "SELECT t.first_face, t.last_face FROM face_tiles t WHERE "
+          "t.volume_id = $1 AND " +
+              db_->overlaps("t", 2) + " ORDER BY t.id",
+          p, [&](const Row& r) {
+            for (std::uint32_t k = key(r, 0); k <= key(r, 1); ++k) {
+              keys.push_back(k);
+            }
+          });
       if (!st || keys.empty()) return st;
       std::sort(keys.begin(), keys.end());
-      return rows_of(*db_, "faces", "face_key, min_x, min_y, min_z, max_x, max_y, max_z", id,
-                     [&](const Row& r) {
-                       if (r.d(4) >= box.min.x && r.d(1) <= box.max.x && r.d(5) >= box.min.y &&
-                           r.d(2) <= box.max.y && r.d(6) >= box.min.z && r.d(3) <= box.max.z) {
-                         out.push_back(key(r, 0));
-                       }
-                     },
-                     "face_key", &keys);
+      return rows_of(
+          *db_, "faces", "face_key, min_x, min_y, min_z, max_x, max_y, max_z", id,
+          [&](const Row& r) {
+            if (r.d(4) >= box.min.x && r.d(1) <= box.max.x && r.d(5) >= box.min.y &&
+                r.d(2) <= box.max.y && r.d(6) >= box.min.z && r.d(3) <= box.max.z) {
+              out.push_back(key(r, 0));
+            }
+          },
+          "face_key", &keys);
     });
     if (!s) return s.error();
     return out;
@@ -355,15 +358,11 @@ class SqlStore final : public Store {
       auto cell = [](const Row& r, int c) {
         return r.is_null(c) ? std::nullopt : std::optional<std::uint32_t>(key(r, c));
       };
-      Status st = rows_of(*db_, "faces", "face_key, front_cell, back_cell, nx, ny, nz, d", id,
-                          [&](const Row& r) {
-                            out.push_back({key(r, 0),
-                                           {},
-                                           cell(r, 1),
-                                           cell(r, 2),
-                                           {r.d(3), r.d(4), r.d(5)},
-                                           r.d(6)});
-                          });
+      Status st = rows_of(
+          *db_, "faces", "face_key, front_cell, back_cell, nx, ny, nz, d", id, [&](const Row& r) {
+            out.push_back(
+                {key(r, 0), {}, cell(r, 1), cell(r, 2), {r.d(3), r.d(4), r.d(5)}, r.d(6)});
+          });
       if (!st) return st;
       std::vector<std::pair<std::uint32_t, std::uint32_t>> loop_at;  // (face, index in loops)
       bool bad = false;
@@ -535,16 +534,15 @@ class SqlStore final : public Store {
     return db.read_volume_rows(table, columns, order, id, key_column, keys, fn);
   }
 
-
   // The DDL of the current schema, each statement with the table it belongs to
   // (empty for views and functions).
   std::vector<std::pair<std::string, std::string>> current_ddl() const {
     std::vector<std::pair<std::string, std::string>> ddl;
     auto add = [&](std::string sql) {
-      for (const auto& [from, to] : {std::pair<std::string, std::string>{"{serial}",
-                                                                          db_->serial_primary_key()},
-                                     {"{clustered}", db_->clustered()},
-                                     {"{double}", db_->double_type()}}) {
+      for (const auto& [from, to] :
+           {std::pair<std::string, std::string>{"{serial}", db_->serial_primary_key()},
+            {"{clustered}", db_->clustered()},
+            {"{double}", db_->double_type()}}) {
         for (std::size_t at; (at = sql.find(from)) != std::string::npos;) {
           sql.replace(at, from.size(), to);
         }
@@ -614,8 +612,9 @@ class SqlStore final : public Store {
     if (pg) {
       rebuilt = {"vertices", "edges", "faces", "loops", "loop_edges"};
     } else if (from == 1) {
-      rebuilt = {"objects",  "volumes", "object_volumes", "model_groups", "parameters", "cells",
-                 "vertices", "edges",   "surfaces",       "faces",        "loops",      "loop_edges"};
+      rebuilt = {"objects",    "volumes", "object_volumes", "model_groups",
+                 "parameters", "cells",   "vertices",       "edges",
+                 "surfaces",   "faces",   "loops",          "loop_edges"};
     }
     std::vector<std::string> steps;
     for (const char* view :
@@ -624,7 +623,8 @@ class SqlStore final : public Store {
     }
     steps.push_back("DROP INDEX IF EXISTS loop_edges_by_edge");
     if (!pg && from == 1) steps.push_back("DROP INDEX IF EXISTS object_volumes_by_name");
-    for (const std::string& t : rebuilt) steps.push_back("ALTER TABLE " + t + " RENAME TO " + t + "_old");
+    for (const std::string& t : rebuilt)
+      steps.push_back("ALTER TABLE " + t + " RENAME TO " + t + "_old");
     for (const std::string& step : steps) {
       if (Status s = db_->exec(step); !s) return s;
     }
@@ -671,9 +671,11 @@ FROM faces_old f JOIN (
       const std::string tile = std::to_string(kTileFaces);
       steps.push_back(
           "INSERT INTO face_tiles (id, min_x, max_x, min_y, max_y, min_z, max_z, volume_id, "
-          "first_face, last_face) SELECT volume_id * 4294967296 + face_key / " + tile +
+          "first_face, last_face) SELECT volume_id * 4294967296 + face_key / " +
+          tile +
           ", MIN(min_x), MAX(max_x), MIN(min_y), MAX(max_y), MIN(min_z), MAX(max_z), volume_id, "
-          "MIN(face_key), MAX(face_key) FROM faces GROUP BY volume_id, face_key / " + tile);
+          "MIN(face_key), MAX(face_key) FROM faces GROUP BY volume_id, face_key / " +
+          tile);
       steps.push_back(
           "INSERT INTO volume_boxes (id, min_x, max_x, min_y, max_y, min_z, max_z) SELECT id, "
           "min_x, max_x, min_y, max_y, min_z, max_z FROM volumes WHERE n_vertices > 0");
@@ -929,11 +931,10 @@ FROM faces_old f JOIN (
   }
 
   static Status read_uses(Connection& db, std::int64_t id, std::vector<Snapshot::Use>& uses) {
-    return rows_of(db, "loop_edges", "loop_key, ord, edge_key, reversed, radial_ord", id,
-                   [&](const Row& row) {
-                     uses.push_back(
-                         {key(row, 0), key(row, 1), key(row, 2), row.i(3) != 0, key(row, 4)});
-                   });
+    return rows_of(
+        db, "loop_edges", "loop_key, ord, edge_key, reversed, radial_ord", id, [&](const Row& row) {
+          uses.push_back({key(row, 0), key(row, 1), key(row, 2), row.i(3) != 0, key(row, 4)});
+        });
   }
 
   // The edge uses (nearly half the rows) of stored volume `id`, read on the
@@ -1011,35 +1012,37 @@ FROM faces_old f JOIN (
     if (s) s = db_->before_key_set_reads();
     std::vector<std::uint32_t> loop_keys;
     if (s) {
-      s = rows_of(*db_, "loops", "loop_key, face_key, ord, point_vertex", id,
-                  [&](const Row& row) {
-                    loop_keys.push_back(key(row, 0));
-                    r.loops.push_back({key(row, 1), key(row, 2), opt(row, 3)});
-                  },
-                  "face_key", &face_keys);
+      s = rows_of(
+          *db_, "loops", "loop_key, face_key, ord, point_vertex", id,
+          [&](const Row& row) {
+            loop_keys.push_back(key(row, 0));
+            r.loops.push_back({key(row, 1), key(row, 2), opt(row, 3)});
+          },
+          "face_key", &face_keys);
     }
     std::vector<std::uint32_t> edge_keys;
     if (s) {
-      s = rows_of(*db_, "loop_edges", "loop_key, ord, edge_key, reversed, radial_ord", id,
-                  [&](const Row& row) {
-                    r.uses.push_back(
-                        {key(row, 0), key(row, 1), key(row, 2), row.i(3) != 0, key(row, 4)});
-                    edge_keys.push_back(key(row, 2));
-                  },
-                  "loop_key", &loop_keys);
+      s = rows_of(
+          *db_, "loop_edges", "loop_key, ord, edge_key, reversed, radial_ord", id,
+          [&](const Row& row) {
+            r.uses.push_back({key(row, 0), key(row, 1), key(row, 2), row.i(3) != 0, key(row, 4)});
+            edge_keys.push_back(key(row, 2));
+          },
+          "loop_key", &loop_keys);
     }
     std::sort(edge_keys.begin(), edge_keys.end());
     edge_keys.erase(std::unique(edge_keys.begin(), edge_keys.end()), edge_keys.end());
     std::vector<std::uint32_t> vertex_keys;
     if (s) {
-      s = rows_of(*db_, "edges", "start_vertex, end_vertex, uses", id,
-                  [&](const Row& row) {
-                    r.edges.push_back({key(row, 0), key(row, 1)});
-                    r.edge_uses.push_back(key(row, 2));
-                    vertex_keys.push_back(key(row, 0));
-                    vertex_keys.push_back(key(row, 1));
-                  },
-                  "edge_key", &edge_keys);
+      s = rows_of(
+          *db_, "edges", "start_vertex, end_vertex, uses", id,
+          [&](const Row& row) {
+            r.edges.push_back({key(row, 0), key(row, 1)});
+            r.edge_uses.push_back(key(row, 2));
+            vertex_keys.push_back(key(row, 0));
+            vertex_keys.push_back(key(row, 1));
+          },
+          "edge_key", &edge_keys);
     }
     for (const auto& l : r.loops) {
       if (l.point_vertex != kNone) vertex_keys.push_back(static_cast<std::uint32_t>(l.point_vertex));
@@ -1047,11 +1050,12 @@ FROM faces_old f JOIN (
     std::sort(vertex_keys.begin(), vertex_keys.end());
     vertex_keys.erase(std::unique(vertex_keys.begin(), vertex_keys.end()), vertex_keys.end());
     if (s) {
-      s = rows_of(*db_, "vertices", "x, y, z, group_key", id,
-                  [&](const Row& row) {
-                    r.vertices.push_back({{row.d(0), row.d(1), row.d(2)}, key(row, 3)});
-                  },
-                  "vertex_key", &vertex_keys);
+      s = rows_of(
+          *db_, "vertices", "x, y, z, group_key", id,
+          [&](const Row& row) {
+            r.vertices.push_back({{row.d(0), row.d(1), row.d(2)}, key(row, 3)});
+          },
+          "vertex_key", &vertex_keys);
     }
     if (!s) return s;
     // Stored keys to dense ones; a key the rows name but the set lacks is left

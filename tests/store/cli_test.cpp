@@ -261,7 +261,8 @@ TEST_P(Cli, SqlOutputStreams) {
             "FROM generate_series(1, 10) AS i";
   CliRun r = cli({"db", "sql", failing, "--json", "--db", db_});
   EXPECT_EQ(r.status, 1);
-  EXPECT_EQ(r.out.substr(0, r.out.find("cellforge db:")), "[\n {\"i\": 1},\n {\"i\": 2},\n {\"i\": 3}")
+  EXPECT_EQ(r.out.substr(0, r.out.find("cellforge db:")),
+            "[\n {\"i\": 1},\n {\"i\": 2},\n {\"i\": 3}")
       << r.out;
   r = cli({"db", "sql", failing, "--db", db_});
   EXPECT_EQ(r.status, 1);

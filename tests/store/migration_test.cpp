@@ -160,8 +160,8 @@ std::unique_ptr<store::Connection> schema1_database(const std::string& backend,
   if (!c) return nullptr;
   if (backend == "postgresql") {
     std::string schema;
-    EXPECT_OK(c->select("SELECT current_schema()", {},
-                        [&](const store::Row& r) { schema = r.s(0); }));
+    EXPECT_OK(
+        c->select("SELECT current_schema()", {}, [&](const store::Row& r) { schema = r.s(0); }));
     EXPECT_OK(c->exec("DROP SCHEMA " + schema + " CASCADE"));
     EXPECT_OK(c->exec("CREATE SCHEMA " + schema));
   }
@@ -188,22 +188,39 @@ void put_v1(store::Connection& c, const std::string& name, int version, const Mo
       "max_x, max_y, max_z, source, created, n_vertices, n_edges, n_faces, n_loops, n_cells, "
       "n_groups) VALUES ($1, $2, $3, $4, $5, $6, $7, $8, $9, $10, $11, $12, $13, $14, $15, $16, "
       "$17, $18, $19, $20, $21, $22) RETURNING id",
-      {name, std::int64_t{version}, v.type, v.centroid.x, v.centroid.y, v.centroid.z, v.volume,
-       v.area, v.bbox_min.x, v.bbox_min.y, v.bbox_min.z, v.bbox_max.x, v.bbox_max.y, v.bbox_max.z,
-       std::string("cube();"), std::string("2026-11-30T12:00:00.000Z"), v.vertices, v.edges,
-       v.faces, v.loops, v.cells, v.groups},
+      {name,
+       std::int64_t{version},
+       v.type,
+       v.centroid.x,
+       v.centroid.y,
+       v.centroid.z,
+       v.volume,
+       v.area,
+       v.bbox_min.x,
+       v.bbox_min.y,
+       v.bbox_min.z,
+       v.bbox_max.x,
+       v.bbox_max.y,
+       v.bbox_max.z,
+       std::string("cube();"),
+       std::string("2026-11-30T12:00:00.000Z"),
+       v.vertices,
+       v.edges,
+       v.faces,
+       v.loops,
+       v.cells,
+       v.groups},
       [&](const store::Row& row) { id = row.i(0); }));
   auto opt = [](std::int64_t k) { return k < 0 ? store::Value{} : store::Value{k}; };
   using I = std::int64_t;
   for (std::size_t i = 0; i < r.groups.size(); ++i) {
-    ASSERT_OK(c.exec("INSERT INTO model_groups VALUES ($1, $2, $3)",
-                     {id, I(i), r.groups[i].name}));
+    ASSERT_OK(c.exec("INSERT INTO model_groups VALUES ($1, $2, $3)", {id, I(i), r.groups[i].name}));
   }
   for (std::size_t i = 0, ord = 0; i < r.parameters.size(); ++i) {
     ord = i > 0 && r.parameters[i - 1].group == r.parameters[i].group ? ord + 1 : 0;
-    ASSERT_OK(c.exec("INSERT INTO parameters VALUES ($1, $2, $3, $4, $5)",
-                     {id, I(r.parameters[i].group), I(ord), r.parameters[i].name,
-                      r.parameters[i].value}));
+    ASSERT_OK(c.exec(
+        "INSERT INTO parameters VALUES ($1, $2, $3, $4, $5)",
+        {id, I(r.parameters[i].group), I(ord), r.parameters[i].name, r.parameters[i].value}));
   }
   for (std::size_t i = 0; i < r.cells.size(); ++i) {
     ASSERT_OK(c.exec("INSERT INTO cells VALUES ($1, $2, $3)", {id, I(i), I(r.cells[i])}));
@@ -228,8 +245,8 @@ void put_v1(store::Connection& c, const std::string& name, int version, const Mo
     const auto& f = r.faces[i];
     const auto& pl = r.planes[i];
     ASSERT_OK(c.exec("INSERT INTO faces VALUES ($1, $2, $3, $4, $5, $6, $7, $8, $9, $10)",
-                     {id, I(i), I(f.group), opt(f.front), opt(f.back), opt(f.surface),
-                      pl.normal.x, pl.normal.y, pl.normal.z, pl.d}));
+                     {id, I(i), I(f.group), opt(f.front), opt(f.back), opt(f.surface), pl.normal.x,
+                      pl.normal.y, pl.normal.z, pl.d}));
   }
   for (std::size_t i = 0; i < r.loops.size(); ++i) {
     const auto& l = r.loops[i];
@@ -239,8 +256,7 @@ void put_v1(store::Connection& c, const std::string& name, int version, const Mo
   }
   for (const auto& u : r.uses) {
     ASSERT_OK(c.exec("INSERT INTO loop_edges VALUES ($1, $2, $3, $4, $5, $6)",
-                     {id, I(u.loop), I(u.ord), I(u.edge), I(u.reversed ? 1 : 0),
-                      I(u.radial_ord)}));
+                     {id, I(u.loop), I(u.ord), I(u.edge), I(u.reversed ? 1 : 0), I(u.radial_ord)}));
   }
 }
 

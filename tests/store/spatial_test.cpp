@@ -146,13 +146,15 @@ TEST_P(Spatial, DocumentedSqlUsesTheIndex) {
       GetParam() == "sqlite"
           ? "SELECT f.face_key FROM face_tiles t CROSS JOIN faces f"
             "  ON f.volume_id = t.volume_id AND f.face_key BETWEEN t.first_face AND t.last_face"
-            " WHERE " + volume +
+            " WHERE " +
+                volume +
                 " AND t.max_x >= 0.95 AND t.min_x <= 1.45 AND t.max_y >= 1.05 AND t.min_y <= 1.2"
-                " AND t.max_z >= -1 AND t.min_z <= 1" + exact
+                " AND t.max_z >= -1 AND t.min_z <= 1" +
+                exact
           : "SELECT f.face_key FROM face_tiles t"
             "  CROSS JOIN LATERAL face_range(t.volume_id, t.first_face, t.last_face) f"
-            " WHERE " + volume +
-                " AND t.box && cube(ARRAY[0.95, 1.05, -1], ARRAY[1.45, 1.2, 1])" + exact;
+            " WHERE " +
+                volume + " AND t.box && cube(ARRAY[0.95, 1.05, -1], ARRAY[1.45, 1.2, 1])" + exact;
   auto r = store_->query(sql);
   ASSERT_OK(r);
   if (GetParam() == "sqlite") {  // the R*Tree answers the tile test (PostgreSQL may

@@ -64,7 +64,8 @@ TEST_P(Views, GiveTheStoredValuesBitForBit) {
     }
   }
   auto uses = store_->query(
-      "SELECT loop_key, ord, edge_key, reversed, radial_ord FROM loop_edges ORDER BY loop_key, ord");
+      "SELECT loop_key, ord, edge_key, reversed, radial_ord FROM loop_edges ORDER BY loop_key, "
+      "ord");
   ASSERT_OK(uses);
   ASSERT_EQ(uses->rows.size(), rows.uses.size());
   for (std::size_t i = 0; i < rows.uses.size(); ++i) {
@@ -81,8 +82,8 @@ TEST_P(Views, GiveTheStoredValuesBitForBit) {
   EXPECT_FALSE(loops->rows[1][4].has_value());
   auto edges = store_->query("SELECT COUNT(*), MIN(edge_type), MAX(edge_type) FROM edges");
   ASSERT_OK(edges);
-  EXPECT_EQ(edges->rows[0], (std::vector<std::optional<std::string>>{
-                                std::to_string(rows.edges.size()), "1", "1"}));
+  EXPECT_EQ(edges->rows[0],
+            (std::vector<std::optional<std::string>>{std::to_string(rows.edges.size()), "1", "1"}));
 }
 
 CELLFORGE_BACKENDS(Views);
