@@ -18,6 +18,7 @@
 #pragma once
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <string>
 #include <vector>
@@ -93,6 +94,8 @@ struct Report {
   StageTimes seconds;
 };
 
+struct ExactForm;  // exact.h
+
 struct BooleanResult {
   Model model;                      // one group, one cell per connected solid
   std::vector<FaceSource> sources;  // by result FaceId value
@@ -104,6 +107,9 @@ struct BooleanResult {
   // non-regularized one may not (a difference removing a face, a cut by a sheet).
   std::vector<bool> face_in, edge_in, vertex_in;
   Report report;
+  // How it was made, exactly, when it came from boolean::chain (exact.h): a Boolean on
+  // it re-evaluates from the same inputs instead of from its rounded model.
+  std::shared_ptr<const ExactForm> exact;
 };
 
 // Evaluates `expr` on the operands. An error names an operand that holds no solid,
