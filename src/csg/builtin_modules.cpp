@@ -441,17 +441,24 @@ bool Interp::call_builtin_module(const Stmt& s, const Args& args, const EnvPtr& 
     const Value& f = p.get("file");
     if (!f.is_string()) fail(p.pos("file"), "import(): file must be a string");
     if (!options_.allow_files) fail(s.pos, "import(): reading files is turned off");
-    const auto it = source_paths_.find(s.pos.file);
-    std::string base = it != source_paths_.end() ? it->second : std::string();
-    const std::size_t slash = base.find_last_of('/');
-    base = slash == std::string::npos ? std::string() : base.substr(0, slash + 1);
-    node->path =
-        (!f.as_string().empty() && f.as_string()[0] == '/') ? f.as_string() : base + f.as_string();
+    node->path = script_relative(f.as_string(), s.pos);
+    node->faceting = faceting(p, env);
+    const Value& layer = p.get("layer");
+    if (!layer.is_undef()) {
+      if (!layer.is_string()) fail(p.pos("layer"), "import(): layer must be a string");
+      node->layer = layer.as_string();
+    }
+    if (p.has("origin")) node->origin = vec(p, "origin", {0, 0, 0}, 0, true);
+    node->import_scale = number(p, "scale", 1);
+    for (const char* unsupported : {"width", "height", "center", "dpi", "id"}) {
+      if (p.has(unsupported))
+        fail(p.pos(unsupported), std::string("import(): ") + unsupported + " is not supported yet");
+    }
     return leaf(NodeKind::kImport);
   }
-  if (name == "text" || name == "surface" || name == "roof") {
-    fail(s.pos, name + "() is not supported yet");
-  }
+  if (name == "text") return text(s, args, env, out);
+  if (name == "surface") return surface(s, args, out);
+  if (name == "roof") fail(s.pos, name + "() is not supported yet");
   return false;
 }
 
