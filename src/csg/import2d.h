@@ -11,12 +11,15 @@
 // segments are then joined at shared points into closed paths; a path that branches
 // or stays open is an error naming a point on it.
 //
-// SVG: path (M L H V C S Q T A Z, absolute and relative), polygon, polyline, rect,
-// circle, ellipse and line elements, in groups, with transform attributes
-// (matrix, translate, scale, rotate, skewX, skewY); the y axis turned up and the user
-// units read as OpenSCAD 2021.01 reads them. Curves and arcs are flattened as
-// OpenSCAD's importer flattens them. Other elements that draw (text, image, use) are
-// errors naming FILE:LINE.
+// SVG: path (M L H V Z and the curves C S Q T, absolute and relative; curves in 20
+// equal parameter steps), polygon, rect and circle and ellipse (40 segments), in
+// groups, with transform attributes (matrix, translate, scale, rotate, skewX, skewY);
+// defs, clipPath, mask, symbol... are not drawn. Units as OpenSCAD 2021.01 reads them:
+// width and height in millimetres (a bare number is a point, 25.4/72 mm; px is 1/96
+// in); with a viewBox, x' = (x - vx) * width / vw and y' = height - (y + vy) * height
+// / vh (its y offset counted with that sign, as 2021.01 does), otherwise x' = x and
+// y' = height - y. Arcs (A), rounded rects, stroked shapes (fill none), polyline,
+// line, text, image, use and nested svg elements are errors naming FILE:LINE.
 #pragma once
 
 #include <string>
@@ -39,7 +42,9 @@ struct Import2DOptions {
 // kInvalidInput / kUnsupported with FILE:LINE.
 Result<std::vector<std::vector<Vec2>>> read_dxf(const std::string& path,
                                                 const Import2DOptions& options);
-Result<std::vector<std::vector<Vec2>>> read_svg(const std::string& path,
-                                                const Import2DOptions& options);
+// SVG: per drawn element (shape), its closed subpaths; OpenSCAD fills each shape's
+// subpaths even-odd and unites the shapes.
+Result<std::vector<std::vector<std::vector<Vec2>>>> read_svg(const std::string& path,
+                                                             const Import2DOptions& options);
 
 }  // namespace cellforge::csg

@@ -622,9 +622,27 @@ class Builder {
                               .faceting = n.faceting};
       std::string ext = n.path.substr(std::min(n.path.size(), n.path.find_last_of('.')));
       for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-      auto paths = ext == ".svg" ? read_svg(n.path, o) : read_dxf(n.path, o);
-      check(paths, n);
-      return paths_2d(*paths, t, n);
+      if (ext != ".svg") {
+        auto paths = read_dxf(n.path, o);
+        check(paths, n);
+        return paths_2d(*paths, t, n);
+      }
+      // SVG: each shape filled even-odd, the shapes united.
+      auto shapes = read_svg(n.path, o);
+      check(shapes, n);
+      Shape2 all;
+      std::vector<boolean::Expr> parts;
+      for (const auto& shape : *shapes) {
+        auto s = paths_2d(shape, t, n);
+        if (!s) continue;
+        shift(s->expr, static_cast<int>(all.regions.size()));
+        for (auto& r : s->regions) all.regions.push_back(std::move(r));
+        parts.push_back(std::move(s->expr));
+      }
+      if (parts.empty()) return std::nullopt;
+      all.expr = parts.size() == 1 ? std::move(parts[0])
+                                   : boolean::Expr::op(boolean::Op::kUnion, std::move(parts));
+      return all;
     }
     Result<shape::Region> region = Error{ErrorCode::kUnsupported, ""};
     switch (n.kind) {

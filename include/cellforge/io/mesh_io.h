@@ -137,7 +137,7 @@ struct WriteOptions {
   // each triangle's pid and p1. Faces without a color (or beyond the vector) take
   // OpenSCAD's default face color, #F9D72C. Empty: no materials are written. Other
   // formats ignore it.
-  std::vector<std::optional<std::array<double, 4>>> face_colors;
+  std::vector<std::optional<std::array<double, 4>>> face_colors = {};
 };
 
 // The bytes of m in a format. Mesh formats triangulate faces as needed and write
