@@ -2,14 +2,15 @@
 // filled even-odd as OpenSCAD fills them.
 //
 // DXF: the ENTITIES section's LINE, LWPOLYLINE (without bulges), POLYLINE with its
-// VERTEXes, CIRCLE and ARC, of one layer or all; DIMENSION, TEXT, MTEXT and POINT
-// entities carry no outline and are passed over; any other entity is an error naming
-// FILE:LINE. As OpenSCAD's reader does, every point is read as (p - origin) * scale
+// VERTEXes, CIRCLE, ARC and INSERT (a block of the BLOCKS section, scaled, turned and
+// moved), of one layer or all; DIMENSION, TEXT, MTEXT and POINT entities carry no
+// outline and are passed over; any other entity is an error naming FILE:LINE. As OpenSCAD's reader does, every point is read as (p - origin) * scale
 // and put on a grid of 1/1024 (a point next to one already on the grid joins it), so
 // that the ends of lines and arcs written separately meet; circles and arcs have
 // OpenSCAD's number of segments (fragments(r), an arc its share of them). The
-// segments are then joined at shared points into closed paths; a path that branches
-// or stays open is an error naming a point on it.
+// segments are then joined at shared points into paths; an open path is closed by a
+// segment from its end back to its start (as OpenSCAD closes it), and paths that
+// branch are an error naming the point.
 //
 // SVG: path (M L H V Z and the curves C S Q T, absolute and relative; curves in 20
 // equal parameter steps), polygon, rect and circle and ellipse (40 segments), in

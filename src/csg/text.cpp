@@ -198,7 +198,7 @@ Result<TextGlyphs> render_text(const TextParams& given) {
   if (!pattern) return Error{ErrorCode::kInvalidInput, "font \"" + name + "\" is not a font name"};
   FcPatternAddBool(pattern, FC_OUTLINE, FcTrue);
   FcPatternAddBool(pattern, FC_SCALABLE, FcTrue);
-  FcConfigSubstitute(f.config, pattern, FcMatchFont);
+  FcConfigSubstitute(f.config, pattern, FcMatchPattern);
   FcDefaultSubstitute(pattern);
   FcResult fr;
   FcPattern* match = FcFontMatch(f.config, pattern, &fr);
