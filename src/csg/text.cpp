@@ -314,6 +314,8 @@ Result<TextGlyphs> render_text(const TextParams& given) {
   }
 
   const double k = p.size / 100.0;
+  constexpr double kMaxPoints = 2e7;
+  double total_points = 0;
   double adv_x = 0, adv_y = 0;
   FT_Outline_Funcs funcs{};
   funcs.move_to = &Outliner::move_to;
@@ -325,6 +327,13 @@ Result<TextGlyphs> render_text(const TextParams& given) {
       Outliner o;
       o.segments = std::max(1, p.segments);
       FT_Outline outline = reinterpret_cast<FT_OutlineGlyph>(g.glyph)->outline;
+      // Every curve becomes `segments` points: refuse before the outlines fill memory.
+      total_points += static_cast<double>(outline.n_points) * o.segments;
+      if (total_points > kMaxPoints) {
+        return Error{ErrorCode::kInvalidInput,
+                     "more than 2*10^7 outline points (the text, $fn and the font make " +
+                         std::to_string(static_cast<long long>(total_points)) + " at least)"};
+      }
       FT_Outline_Decompose(&outline, &funcs, &o);
       const double ox = x0 + g.x_offset, oy = y0 + g.y_offset;
       std::vector<std::vector<Vec2>> contours;
