@@ -136,6 +136,11 @@ std::string read_png(const std::string& path, bool invert, HeightMap& map) {
   png_read_info(png, info);
   width = png_get_image_width(png, info);
   height = png_get_image_height(png, info);
+  if (static_cast<double>(width) * height > 25e6) {
+    png_destroy_read_struct(&png, &info, nullptr);
+    std::fclose(fp);
+    return path + ": more than 25 million pixels";
+  }
   png_set_expand(png);
   png_set_strip_16(png);
   png_set_gray_to_rgb(png);
