@@ -32,14 +32,16 @@ bool Interp::text(const Stmt& s, const Args& args, const EnvPtr& env, std::vecto
   auto string_arg = [&](const char* key, const char* fallback) {
     const Value& v = p.get(key);
     if (v.is_undef()) return std::string(fallback);
-    if (!v.is_string()) fail(p.pos(key), std::string("text(): ") + key + " must be a string, not " + v.to_echo());
+    if (!v.is_string())
+      fail(p.pos(key), std::string("text(): ") + key + " must be a string, not " + v.to_echo());
     return v.as_string();
   };
   auto number_arg = [&](const char* key, double fallback) {
     const Value& v = p.get(key);
     if (v.is_undef()) return fallback;
     if (!v.is_number() || !std::isfinite(v.as_number()))
-      fail(p.pos(key), std::string("text(): ") + key + " must be a finite number, not " + v.to_echo());
+      fail(p.pos(key),
+           std::string("text(): ") + key + " must be a finite number, not " + v.to_echo());
     return v.as_number();
   };
   TextParams t;
@@ -154,7 +156,8 @@ std::string read_png(const std::string& path, bool invert, HeightMap& map) {
   }
   pixels.resize(4 * static_cast<std::size_t>(width) * height);
   rows.resize(height);
-  for (png_uint_32 y = 0; y < height; ++y) rows[y] = pixels.data() + 4 * static_cast<std::size_t>(width) * y;
+  for (png_uint_32 y = 0; y < height; ++y)
+    rows[y] = pixels.data() + 4 * static_cast<std::size_t>(width) * y;
   png_read_image(png, rows.data());
   png_read_end(png, nullptr);
   png_destroy_read_struct(&png, &info, nullptr);
@@ -202,8 +205,7 @@ bool Interp::surface(const Stmt& s, const Args& args, std::vector<NodePtr>& out)
   }
   if (lines < 2 || columns < 2) {
     fail(p.pos("file"), "surface(): " + path + " has " + std::to_string(lines) + " rows and " +
-                            std::to_string(columns) +
-                            " columns; a solid needs at least 2 of each");
+                            std::to_string(columns) + " columns; a solid needs at least 2 of each");
   }
   if (static_cast<double>(lines) * columns > 25e6)
     fail(p.pos("file"), "surface(): more than 25 million heights in " + path);
@@ -228,7 +230,8 @@ bool Interp::surface(const Stmt& s, const Args& args, std::vector<NodePtr>& out)
   };
   for (int i = 1; i < lines; ++i) {
     for (int j = 1; j < columns; ++j) {
-      const double vx = (height(i - 1, j - 1) + height(i - 1, j) + height(i, j - 1) + height(i, j)) / 4;
+      const double vx =
+          (height(i - 1, j - 1) + height(i - 1, j) + height(i, j - 1) + height(i, j)) / 4;
       pts.push_back(Vec3{ox + j - 0.5, oy + i - 0.5, vx});
     }
   }

@@ -4,10 +4,10 @@
 // DXF: the ENTITIES section's LINE, LWPOLYLINE (without bulges), POLYLINE with its
 // VERTEXes, CIRCLE, ARC and INSERT (a block of the BLOCKS section, scaled, turned and
 // moved), of one layer or all; DIMENSION, TEXT, MTEXT and POINT entities carry no
-// outline and are passed over; any other entity is an error naming FILE:LINE. As OpenSCAD's reader does, every point is read as (p - origin) * scale
-// and put on a grid of 1/1024 (a point next to one already on the grid joins it), so
-// that the ends of lines and arcs written separately meet; circles and arcs have
-// OpenSCAD's number of segments (fragments(r), an arc its share of them). The
+// outline and are passed over; any other entity is an error naming FILE:LINE. As OpenSCAD's reader
+// does, every point is read as (p - origin) * scale and put on a grid of 1/1024 (a point next to
+// one already on the grid joins it), so that the ends of lines and arcs written separately meet;
+// circles and arcs have OpenSCAD's number of segments (fragments(r), an arc its share of them). The
 // segments are then joined at shared points into paths; an open path is closed by a
 // segment from its end back to its start (as OpenSCAD closes it), and paths that
 // branch are an error naming the point.

@@ -2,8 +2,8 @@
 #include <cmath>
 #include <fstream>
 #include <functional>
-#include <optional>
 #include <map>
+#include <optional>
 #include <set>
 
 #include "import2d.h"
@@ -60,8 +60,7 @@ std::string trim(const std::string& s) {
 
 }  // namespace
 
-Result<std::vector<std::vector<Vec2>>> read_dxf(const std::string& path,
-                                                const Import2DOptions& o) {
+Result<std::vector<std::vector<Vec2>>> read_dxf(const std::string& path, const Import2DOptions& o) {
   std::ifstream in(path, std::ios::binary);
   if (!in) return Error{ErrorCode::kIo, "cannot open " + path};
   auto at = [&](std::size_t line) { return path + ":" + std::to_string(line) + ": "; };
@@ -99,8 +98,9 @@ Result<std::vector<std::vector<Vec2>>> read_dxf(const std::string& path,
       const Group& head = groups[i];
       std::size_t j = i + 1;
       while (j < groups.size() && groups[j].code != 0) ++j;
-      Entity e{head.value, std::vector<Group>(groups.begin() + static_cast<long>(i) + 1,
-                                              groups.begin() + static_cast<long>(j)),
+      Entity e{head.value,
+               std::vector<Group>(groups.begin() + static_cast<long>(i) + 1,
+                                  groups.begin() + static_cast<long>(j)),
                head.line + 1};
       i = j;
       if (head.code != 0) continue;
@@ -193,9 +193,9 @@ Result<std::vector<std::vector<Vec2>>> read_dxf(const std::string& path,
           if (g.code == 10) vertices.push_back(Vec2{v, 0});
           if (g.code == 20 && !vertices.empty()) vertices.back().y = v;
           if (g.code == 42 && v != 0) {
-            return Error{ErrorCode::kUnsupported,
-                         at(g.line + 1) +
-                             "LWPOLYLINE with a bulge (an arc segment) is not supported yet"};
+            return Error{
+                ErrorCode::kUnsupported,
+                at(g.line + 1) + "LWPOLYLINE with a bulge (an arc segment) is not supported yet"};
           }
         }
       }
@@ -255,8 +255,8 @@ Result<std::vector<std::vector<Vec2>>> read_dxf(const std::string& path,
         // point (10, 20); an INSERT's layer does not filter the block's entities.
         const auto it = blocks.find(block_name);
         if (it == blocks.end())
-          return Error{ErrorCode::kInvalidInput, at(ent.line) + "INSERT of block \"" +
-                                                     block_name + "\", which the file does not define"};
+          return Error{ErrorCode::kInvalidInput, at(ent.line) + "INSERT of block \"" + block_name +
+                                                     "\", which the file does not define"};
         if (depth >= 16)
           return Error{ErrorCode::kInvalidInput, at(ent.line) + "blocks nested more than 16 deep"};
         if (get(70, 1) > 1 || get(71, 1) > 1)

@@ -16,8 +16,8 @@ namespace {
 struct Affine {
   double a = 1, b = 0, c = 0, d = 1, e = 0, f = 0;
   Affine then(const Affine& inner) const {  // this * inner
-    return Affine{a * inner.a + c * inner.b, b * inner.a + d * inner.b,
-                  a * inner.c + c * inner.d, b * inner.c + d * inner.d,
+    return Affine{a * inner.a + c * inner.b,     b * inner.a + d * inner.b,
+                  a * inner.c + c * inner.d,     b * inner.c + d * inner.d,
                   a * inner.e + c * inner.f + e, b * inner.e + d * inner.f + f};
   }
   Vec2 apply(Vec2 p) const { return Vec2{a * p.x + c * p.y + e, b * p.x + d * p.y + f}; }
@@ -31,13 +31,20 @@ bool length_mm(const char* text, double& out) {
   if (end == text || !std::isfinite(v)) return false;
   const std::string unit(end);
   double k = 0;
-  if (unit.empty() || unit == "pt") k = 25.4 / 72;
-  else if (unit == "mm") k = 1;
-  else if (unit == "cm") k = 10;
-  else if (unit == "in") k = 25.4;
-  else if (unit == "px") k = 25.4 / 96;
-  else if (unit == "pc") k = 25.4 / 6;
-  else return false;
+  if (unit.empty() || unit == "pt")
+    k = 25.4 / 72;
+  else if (unit == "mm")
+    k = 1;
+  else if (unit == "cm")
+    k = 10;
+  else if (unit == "in")
+    k = 25.4;
+  else if (unit == "px")
+    k = 25.4 / 96;
+  else if (unit == "pc")
+    k = 25.4 / 6;
+  else
+    return false;
   out = v * k;
   return true;
 }
@@ -68,9 +75,9 @@ struct State {
   std::string error;
   bool seen_root = false;
   double height_mm = 0;
-  Affine page;                 // user units of the root to OpenSCAD's millimetres
-  std::vector<Affine> stack;   // per open element: its transform, composed
-  int skip_depth = 0;          // inside defs, clipPath... (not drawn)
+  Affine page;                // user units of the root to OpenSCAD's millimetres
+  std::vector<Affine> stack;  // per open element: its transform, composed
+  int skip_depth = 0;         // inside defs, clipPath... (not drawn)
   std::vector<std::vector<std::vector<Vec2>>> shapes;
 
   std::string here() const {
@@ -212,8 +219,9 @@ bool parse_path(const std::string& d, std::vector<std::vector<Vec2>>& out, std::
         if (!point(c2) || !point(p)) goto bad;
         for (int k = 1; k <= kSteps; ++k) {
           const double t = static_cast<double>(k) / kSteps, s = 1 - t;
-          add(Vec2{s * s * s * p0.x + 3 * s * s * t * c1.x + 3 * s * t * t * c2.x + t * t * t * p.x,
-                   s * s * s * p0.y + 3 * s * s * t * c1.y + 3 * s * t * t * c2.y + t * t * t * p.y});
+          add(Vec2{
+              s * s * s * p0.x + 3 * s * s * t * c1.x + 3 * s * t * t * c2.x + t * t * t * p.x,
+              s * s * s * p0.y + 3 * s * s * t * c1.y + 3 * s * t * t * c2.y + t * t * t * p.y});
         }
         last_control = c2;
         break;
@@ -274,7 +282,8 @@ void on_start(void* data, const char* name, const char** atts) {
   Affine here = parent;
   if (const char* t = attr(atts, "transform")) {
     Affine m;
-    if (!parse_transform(t, m)) return st.fail("transform \"" + std::string(t) + "\" is not supported");
+    if (!parse_transform(t, m))
+      return st.fail("transform \"" + std::string(t) + "\" is not supported");
     here = parent.then(m);
   }
   st.stack.push_back(here);
@@ -290,7 +299,8 @@ void on_start(void* data, const char* name, const char** atts) {
     const char* vb = attr(atts, "viewBox");
     double wmm = 0, hmm = 0;
     if (w && !length_mm(w, wmm)) return st.fail("width \"" + std::string(w) + "\" is not a length");
-    if (h && !length_mm(h, hmm)) return st.fail("height \"" + std::string(h) + "\" is not a length");
+    if (h && !length_mm(h, hmm))
+      return st.fail("height \"" + std::string(h) + "\" is not a length");
     Affine page;  // OpenSCAD 2021.01: y turned up about the height in millimetres
     if (vb) {
       bool ok = true;
@@ -312,9 +322,9 @@ void on_start(void* data, const char* name, const char** atts) {
     return;
   }
   if (!st.seen_root) return st.fail("the root element is <" + tag + ">, not <svg>");
-  static const char* const kHidden[] = {"defs", "clipPath", "mask", "pattern", "symbol",
-                                        "marker", "title", "desc", "metadata", "style",
-                                        "linearGradient", "radialGradient", "filter"};
+  static const char* const kHidden[] = {
+      "defs", "clipPath", "mask",  "pattern",        "symbol",         "marker", "title",
+      "desc", "metadata", "style", "linearGradient", "radialGradient", "filter"};
   for (const char* h : kHidden) {
     if (tag == h) {
       st.skip_depth = 1;
@@ -379,7 +389,8 @@ void on_start(void* data, const char* name, const char** atts) {
     paths.emplace_back();
     for (std::size_t k = 0; k + 1 < v.size(); k += 2) paths.back().push_back(Vec2{v[k], v[k + 1]});
   } else {
-    return st.fail("<" + tag + "> is not supported yet (path, polygon, rect, circle and ellipse are)");
+    return st.fail("<" + tag +
+                   "> is not supported yet (path, polygon, rect, circle and ellipse are)");
   }
   for (auto& p : paths) {
     for (Vec2& q : p) q = here.apply(q);
@@ -409,7 +420,8 @@ Result<std::vector<std::vector<std::vector<Vec2>>>> read_svg(const std::string& 
   st.parser = parser;
   XML_SetUserData(parser, &st);
   XML_SetElementHandler(parser, on_start, on_end);
-  const bool ok = XML_Parse(parser, text.data(), static_cast<int>(text.size()), XML_TRUE) != XML_STATUS_ERROR;
+  const bool ok =
+      XML_Parse(parser, text.data(), static_cast<int>(text.size()), XML_TRUE) != XML_STATUS_ERROR;
   if (!ok && st.error.empty()) {
     st.error = path + ":" + std::to_string(XML_GetCurrentLineNumber(parser)) +
                ": not well-formed XML: " + XML_ErrorString(XML_GetErrorCode(parser));

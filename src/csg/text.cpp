@@ -83,8 +83,7 @@ struct Outliner {
     o->pen = p1;
     return 0;
   }
-  static int cubic_to(const FT_Vector* c1v, const FT_Vector* c2v, const FT_Vector* to,
-                      void* user) {
+  static int cubic_to(const FT_Vector* c1v, const FT_Vector* c2v, const FT_Vector* to, void* user) {
     auto* o = static_cast<Outliner*>(user);
     if (o->contours.empty()) o->contours.emplace_back();
     const Vec2 p0 = o->pen, c1 = at(c1v), c2 = at(c2v), p1 = at(to);
@@ -219,8 +218,9 @@ Result<TextGlyphs> render_text(const TextParams& given) {
     return Error{ErrorCode::kInvalidInput, "no font file matches \"" + name + "\""};
   if (!trim(p.font).empty() && !requested_family.empty() &&
       lower(requested_family) != lower(out.font_family)) {
-    out.warnings.push_back("font \"" + requested_family + "\" is not installed; fontconfig chose \"" +
-                           out.font_family + "\" (" + out.font_file + ")");
+    out.warnings.push_back("font \"" + requested_family +
+                           "\" is not installed; fontconfig chose \"" + out.font_family + "\" (" +
+                           out.font_file + ")");
   }
 
   FaceHolder face;

@@ -34,8 +34,8 @@ struct TextGlyphs {
   // One entry per glyph with an outline: its contours (closed, no repeated
   // consecutive vertex, the last not equal to the first), in the font's orientation.
   std::vector<std::vector<std::vector<Vec2>>> glyphs;
-  std::string font_file;     // the file fontconfig chose
-  std::string font_family;   // its family name
+  std::string font_file;    // the file fontconfig chose
+  std::string font_family;  // its family name
   std::vector<std::string> warnings;
 };
 
