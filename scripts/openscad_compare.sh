@@ -53,7 +53,10 @@ compare() {
   local cf_rc=$?
   local t2=$EPOCHREALTIME
   times=$(awk -v a="$t0" -v b="$t1" -v c="$t2" 'BEGIN { printf "openscad %.3f s, cellforge %.3f s", b - a, c - b }')
-  grep '^ECHO:' "$tmp/oc.out" > "$tmp/oc.echo"
+  # OpenSCAD may print other text without a newline before an echo line
+  # (examples/Old/example023.scad: "\\\\\\ECHO: ..."), so the echo is taken from where
+  # "ECHO: " starts.
+  grep -o 'ECHO: .*' "$tmp/oc.out" > "$tmp/oc.echo"
   grep '^ECHO:' "$tmp/cf.out" > "$tmp/cf.echo"
   grep '^{' "$tmp/cf.out" | tail -n 1 > "$tmp/cf.json"
   local oc_empty=0

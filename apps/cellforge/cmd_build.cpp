@@ -189,6 +189,13 @@ int run(const std::vector<std::string>& argv) {
   const auto t2 = Clock::now();
   io::WriteOptions w;
   w.stl_binary = !a.ascii;
+  // color(): written to 3MF (the other formats have no colors).
+  for (const auto& c : built->face_colors) {
+    if (c) {
+      w.face_colors = built->face_colors;
+      break;
+    }
+  }
   for (const std::string& o : a.outputs) {
     if (Status s = io::write_file(m, o, w); !s) {
       std::cerr << "cellforge build: " << s.error().message << '\n';

@@ -181,7 +181,11 @@ bool contains(const Loop2& o, const Loop2& h) {
 }
 
 // The regions bounded by the faces on z = 0 of a Boolean result over lifted prisms.
-Shape2D read_plane(const Model& m) {
+// The faces read are those on z = 0: all of whose points have z == 0, or, given the
+// Boolean's face sources, those whose source plane (three input points) lies in
+// z = 0 — a face made where a slanted edge crosses the plane has vertices whose z is
+// rounded (about 1e-15) although the exact face lies in the plane.
+Shape2D read_plane(const Model& m, const std::vector<FaceSource>* sources = nullptr) {
   // Vertices by position: rounding may bring two exact points onto one double, and
   // the boundary then passes that point twice (it is cut there below).
   std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> by_hash;
@@ -207,7 +211,12 @@ Shape2D read_plane(const Model& m) {
   auto key = [](std::uint32_t a, std::uint32_t b) { return (std::uint64_t{a} << 32) | b; };
   for (FaceId f : m.faces()) {
     bool flat = true;
-    for (const Vec3& q : m.loop_points(m.outer_loop(f))) flat &= q.z == 0;
+    if (sources) {
+      flat = f.value < sources->size();
+      for (int k = 0; flat && k < 3; ++k) flat = (*sources)[f.value].plane[k].z == 0;
+    } else {
+      for (const Vec3& q : m.loop_points(m.outer_loop(f))) flat &= q.z == 0;
+    }
     if (!flat) continue;
     for (LoopId l : m.loops_of(f)) {
       if (m.is_point_loop(l)) continue;
@@ -623,7 +632,7 @@ Result<Shape2D> projection(const Model& solid, const ProjectionOptions& options)
     const Model* ms[] = {&solid, &slab};
     auto r = evaluate(ms, Expr::over(Op::kIntersection, 2));
     if (!r) return r.error();
-    return read_plane(r->model);
+    return read_plane(r->model, &r->sources);
   }
   // The shadow: the union of the faces that look up (outward normal with z > 0).
   std::vector<Region> faces;

@@ -55,7 +55,7 @@ struct Named {
   unsigned rgb;
 };
 
-// The SVG color names OpenSCAD's color() knows (the common part of the list).
+// The SVG (CSS 3) color names OpenSCAD's color() knows.
 constexpr Named kColors[] = {
     {"black", 0x000000},        {"white", 0xFFFFFF},       {"red", 0xFF0000},
     {"green", 0x008000},        {"lime", 0x00FF00},        {"blue", 0x0000FF},
@@ -87,6 +87,26 @@ constexpr Named kColors[] = {
     {"hotpink", 0xFF69B4},      {"deeppink", 0xFF1493},    {"mediumpurple", 0x9370DB},
     {"darkviolet", 0x9400D3},   {"olivedrab", 0x6B8E23},   {"yellowgreen", 0x9ACD32},
     {"burlywood", 0xDEB887},    {"sandybrown", 0xF4A460},  {"rosybrown", 0xBC8F8F},
+    {"antiquewhite", 0xFAEBD7}, {"aquamarine", 0x7FFFD4},  {"bisque", 0xFFE4C4},
+    {"blanchedalmond", 0xFFEBCD}, {"blueviolet", 0x8A2BE2}, {"cornflowerblue", 0x6495ED},
+    {"darkcyan", 0x008B8B},     {"darkgoldenrod", 0xB8860B}, {"darkkhaki", 0xBDB76B},
+    {"darkmagenta", 0x8B008B},  {"darkolivegreen", 0x556B2F}, {"darkorchid", 0x9932CC},
+    {"darksalmon", 0xE9967A},   {"darkseagreen", 0x8FBC8F}, {"darkslateblue", 0x483D8B},
+    {"darkslategray", 0x2F4F4F}, {"darkslategrey", 0x2F4F4F}, {"darkturquoise", 0x00CED1},
+    {"floralwhite", 0xFFFAF0},  {"greenyellow", 0xADFF2F}, {"indianred", 0xCD5C5C},
+    {"lavenderblush", 0xFFF0F5}, {"lemonchiffon", 0xFFFACD}, {"lightcoral", 0xF08080},
+    {"lightcyan", 0xE0FFFF},    {"lightgoldenrodyellow", 0xFAFAD2}, {"lightpink", 0xFFB6C1},
+    {"lightsalmon", 0xFFA07A},  {"lightseagreen", 0x20B2AA}, {"lightskyblue", 0x87CEFA},
+    {"lightslategray", 0x778899}, {"lightslategrey", 0x778899}, {"lightsteelblue", 0xB0C4DE},
+    {"lightyellow", 0xFFFFE0},  {"limegreen", 0x32CD32},   {"mediumaquamarine", 0x66CDAA},
+    {"mediumblue", 0x0000CD},   {"mediumorchid", 0xBA55D3}, {"mediumseagreen", 0x3CB371},
+    {"mediumslateblue", 0x7B68EE}, {"mediumspringgreen", 0x00FA9A},
+    {"mediumturquoise", 0x48D1CC}, {"mediumvioletred", 0xC71585}, {"mistyrose", 0xFFE4E1},
+    {"moccasin", 0xFFE4B5},     {"navajowhite", 0xFFDEAD}, {"orangered", 0xFF4500},
+    {"palegoldenrod", 0xEEE8AA}, {"palegreen", 0x98FB98},  {"paleturquoise", 0xAFEEEE},
+    {"palevioletred", 0xDB7093}, {"papayawhip", 0xFFEFD5}, {"peachpuff", 0xFFDAB9},
+    {"powderblue", 0xB0E0E6},   {"saddlebrown", 0x8B4513}, {"slateblue", 0x6A5ACD},
+    {"thistle", 0xD8BFD8},
 };
 
 int hex_digit(char c) {
@@ -441,17 +461,24 @@ bool Interp::call_builtin_module(const Stmt& s, const Args& args, const EnvPtr& 
     const Value& f = p.get("file");
     if (!f.is_string()) fail(p.pos("file"), "import(): file must be a string");
     if (!options_.allow_files) fail(s.pos, "import(): reading files is turned off");
-    const auto it = source_paths_.find(s.pos.file);
-    std::string base = it != source_paths_.end() ? it->second : std::string();
-    const std::size_t slash = base.find_last_of('/');
-    base = slash == std::string::npos ? std::string() : base.substr(0, slash + 1);
-    node->path =
-        (!f.as_string().empty() && f.as_string()[0] == '/') ? f.as_string() : base + f.as_string();
+    node->path = script_relative(f.as_string(), s.pos);
+    node->faceting = faceting(p, env);
+    const Value& layer = p.get("layer");
+    if (!layer.is_undef()) {
+      if (!layer.is_string()) fail(p.pos("layer"), "import(): layer must be a string");
+      node->layer = layer.as_string();
+    }
+    if (p.has("origin")) node->origin = vec(p, "origin", {0, 0, 0}, 0, true);
+    node->import_scale = number(p, "scale", 1);
+    for (const char* unsupported : {"width", "height", "center", "dpi", "id"}) {
+      if (p.has(unsupported))
+        fail(p.pos(unsupported), std::string("import(): ") + unsupported + " is not supported yet");
+    }
     return leaf(NodeKind::kImport);
   }
-  if (name == "text" || name == "surface" || name == "roof") {
-    fail(s.pos, name + "() is not supported yet");
-  }
+  if (name == "text") return text(s, args, env, out);
+  if (name == "surface") return surface(s, args, out);
+  if (name == "roof") fail(s.pos, name + "() is not supported yet");
   return false;
 }
 

@@ -95,6 +95,13 @@ class Interp {
   bool call_builtin_module(const Stmt& s, const Args& args, const EnvPtr& env,
                            std::vector<NodePtr>& out);
 
+  // builtin_text.cpp: text() as one polygon per glyph; surface() as a polyhedron.
+  bool text(const Stmt& s, const Args& args, const EnvPtr& env, std::vector<NodePtr>& out);
+  bool surface(const Stmt& s, const Args& args, std::vector<NodePtr>& out);
+  // A file named by a script (import(), surface()): resolved against the folder of the
+  // script that names it, unless absolute.
+  std::string script_relative(const std::string& file, SourcePos from) const;
+
   // Shared helpers
   void step(SourcePos pos);
   void check_stack(SourcePos pos);

@@ -25,6 +25,8 @@
 #include "cellforge/shape/resize.h"
 #include "cellforge/shape/shape2d.h"
 #include "cellforge/topo/builder.h"
+#include "fill.h"
+#include "import2d.h"
 #include "tree_private.h"
 
 namespace cellforge::csg {
@@ -614,7 +616,33 @@ class Builder {
       return operation2(n, t);
     }
     if (n.kind == NodeKind::kImport) {
-      fail(n.pos, "import() of a 2D file (DXF, SVG) is not supported yet");
+      const Import2DOptions o{.layer = n.layer,
+                              .origin = Vec2{n.origin.x, n.origin.y},
+                              .scale = n.import_scale,
+                              .faceting = n.faceting};
+      std::string ext = n.path.substr(std::min(n.path.size(), n.path.find_last_of('.')));
+      for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+      if (ext != ".svg") {
+        auto paths = read_dxf(n.path, o);
+        check(paths, n);
+        return paths_2d(*paths, t, n);
+      }
+      // SVG: each shape filled even-odd, the shapes united.
+      auto shapes = read_svg(n.path, o);
+      check(shapes, n);
+      Shape2 all;
+      std::vector<boolean::Expr> parts;
+      for (const auto& shape : *shapes) {
+        auto s = paths_2d(shape, t, n);
+        if (!s) continue;
+        shift(s->expr, static_cast<int>(all.regions.size()));
+        for (auto& r : s->regions) all.regions.push_back(std::move(r));
+        parts.push_back(std::move(s->expr));
+      }
+      if (parts.empty()) return std::nullopt;
+      all.expr = parts.size() == 1 ? std::move(parts[0])
+                                   : boolean::Expr::op(boolean::Op::kUnion, std::move(parts));
+      return all;
     }
     Result<shape::Region> region = Error{ErrorCode::kUnsupported, ""};
     switch (n.kind) {
@@ -634,43 +662,16 @@ class Builder {
           for (std::uint32_t i = 0; i < n.points.size(); ++i) paths[0].push_back(i);
         }
         if (paths[0].size() < 3) return std::nullopt;
-        auto loop = [&](const std::vector<std::uint32_t>& p) {
-          std::vector<Vec2> out;
-          for (std::uint32_t i : p) out.push_back(Vec2{n.points[i].x, n.points[i].y});
-          return out;
-        };
-        std::vector<std::vector<Vec2>> holes;
-        for (std::size_t i = 1; i < paths.size(); ++i) holes.push_back(loop(paths[i]));
-        region = shape::polygon(loop(paths[0]), std::move(holes));
-        if (!region && paths.size() > 1) {
-          // Not an outline with holes inside it: OpenSCAD fills the paths even-odd,
-          // the symmetric difference of their polygons, one path at a time.
-          std::optional<shape::Shape2D> fill;
-          for (const auto& path : paths) {
-            if (path.size() < 3) continue;
-            auto one = shape::polygon(loop(path));
-            check(one, n);
-            if (!fill) {
-              fill = shape::shape_of(std::move(*one));
-              continue;
-            }
-            const shape::Shape2D pair[2] = {std::move(*fill), shape::shape_of(std::move(*one))};
-            using boolean::Expr;
-            const Expr either = Expr::op(boolean::Op::kUnion, {Expr::of(0), Expr::of(1)});
-            const Expr both = Expr::op(boolean::Op::kIntersection, {Expr::of(0), Expr::of(1)});
-            auto x = boolean::evaluate_2d(pair, Expr::op(boolean::Op::kDifference, {either, both}));
-            check(x, n);
-            fill = std::move(*x);
-          }
-          if (!fill) return std::nullopt;
-          if (!is_identity(t)) {
-            auto moved = shape::transformed(*fill, t);
-            check(moved, n);
-            fill = std::move(*moved);
-          }
-          return from_shape(std::move(*fill));
+        std::vector<std::vector<Vec2>> loops;
+        for (const auto& path : paths) {
+          loops.emplace_back();
+          for (std::uint32_t i : path) loops.back().push_back(Vec2{n.points[i].x, n.points[i].y});
         }
-        break;
+        if (loops.size() == 1) {
+          region = shape::polygon(loops[0]);
+          break;
+        }
+        return paths_2d(loops, t, n);
       }
       default:
         fail(n.pos, std::string(node_name(n.kind)) + "() is a 3D object where a 2D one is needed");
@@ -702,6 +703,53 @@ class Builder {
     s.regions.push_back(std::move(r));
     s.expr = boolean::Expr::of(0);
     return s;
+  }
+
+  // Closed paths filled even-odd, as OpenSCAD fills polygon() paths and imported
+  // outlines: read off the nesting when no two paths meet (fill.h), otherwise the
+  // symmetric difference of the paths' polygons, one path at a time (2D Booleans).
+  std::optional<Shape2> paths_2d(const std::vector<std::vector<Vec2>>& loops,
+                                 const shape::Transform& t, const Node& n) {
+    shape::Shape2D fill;
+    if (auto nested = fill_nested(loops)) {
+      fill.regions = std::move(*nested);
+    } else {
+      std::optional<shape::Shape2D> acc;
+      for (const auto& loop : loops) {
+        if (loop.size() < 3) continue;
+        auto one = shape::polygon(loop);
+        check(one, n);
+        if (!acc) {
+          acc = shape::shape_of(std::move(*one));
+          continue;
+        }
+        const shape::Shape2D pair[2] = {std::move(*acc), shape::shape_of(std::move(*one))};
+        using boolean::Expr;
+        const Expr either = Expr::op(boolean::Op::kUnion, {Expr::of(0), Expr::of(1)});
+        const Expr both = Expr::op(boolean::Op::kIntersection, {Expr::of(0), Expr::of(1)});
+        const auto start = Clock::now();
+        auto x = boolean::evaluate_2d(pair, Expr::op(boolean::Op::kDifference, {either, both}));
+        stats_.boolean_seconds += seconds_since(start);
+        ++stats_.booleans;
+        check(x, n);
+        acc = std::move(*x);
+      }
+      if (!acc) return std::nullopt;
+      fill = std::move(*acc);
+    }
+    if (fill.empty()) return std::nullopt;
+    if (!is_identity(t)) {
+      if (t.m[2][0] != 0 || t.m[2][1] != 0) {
+        fail(n.pos,
+             "a 2D object moved out of the xy plane (only transforms within it are "
+             "supported for 2D)");
+      }
+      if (t.m[0][0] * t.m[1][1] - t.m[0][1] * t.m[1][0] == 0) return std::nullopt;
+      auto moved = shape::transformed(fill, t);
+      check(moved, n);
+      fill = std::move(*moved);
+    }
+    return from_shape(std::move(fill));
   }
 
   // hull, minkowski, offset, projection and resize of 2D children (projection: of 3D

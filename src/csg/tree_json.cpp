@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <fstream>
 #include <map>
 
 #include "cellforge/shape/faceting.h"
@@ -99,6 +100,11 @@ void write(const Node& n, std::string& out, bool positions) {
     }
     case NodeKind::kImport:
       field("file", quote(n.path));
+      if (!n.layer.empty()) field("layer", quote(n.layer));
+      if (n.origin.x != 0 || n.origin.y != 0)
+        field("origin", "[" + num(n.origin.x) + ", " + num(n.origin.y) + "]");
+      if (n.import_scale != 1) field("scale", num(n.import_scale));
+      facets(n.faceting);
       break;
     case NodeKind::kMultmatrix: {
       std::string m = "[";
@@ -466,6 +472,17 @@ NodePtr read_node(const Json& j) {
       const Json* f = j.get("file");
       if (!f || f->type != Json::Type::kString) throw TreeError{j.offset, "import needs \"file\""};
       n->path = f->s;
+      if (const Json* l = j.get("layer")) {
+        if (l->type != Json::Type::kString) throw TreeError{l->offset, "layer must be a string"};
+        n->layer = l->s;
+      }
+      if (const Json* o = j.get("origin")) {
+        const std::vector<double> v = numbers(*o, "origin");
+        if (v.size() != 2) throw TreeError{o->offset, "origin must be [x, y]"};
+        n->origin = Vec3{v[0], v[1], 0};
+      }
+      n->import_scale = number(j, "scale", 1);
+      n->faceting = facets(j);
       break;
     }
     case NodeKind::kMultmatrix: {
@@ -574,16 +591,44 @@ Result<NodePtr> tree_from_json(std::string_view text) {
 
 namespace cellforge::csg {
 
-std::string content_key(const Node& node) {
-  // FNV-1a (64 bits) of the node's JSON form without positions, and its length.
-  const std::string text = node_json(node);
-  std::uint64_t h = 1469598103934665603ull;
-  for (unsigned char c : text) {
-    h ^= c;
+namespace {
+
+void fnv1a(std::uint64_t& h, const char* data, std::size_t size) {
+  for (std::size_t i = 0; i < size; ++i) {
+    h ^= static_cast<unsigned char>(data[i]);
     h *= 1099511628211ull;
   }
+}
+
+// Every imported file's path, size and bytes, in tree order.
+void hash_imports(const Node& n, std::uint64_t& h, std::size_t& length) {
+  if (n.kind == NodeKind::kImport) {
+    std::ifstream in(n.path, std::ios::binary);
+    std::string tag = in ? "\nfile " + n.path + "\n" : "\nunreadable " + n.path + "\n";
+    fnv1a(h, tag.data(), tag.size());
+    length += tag.size();
+    char buf[1 << 16];
+    while (in) {
+      in.read(buf, sizeof buf);
+      fnv1a(h, buf, static_cast<std::size_t>(in.gcount()));
+      length += static_cast<std::size_t>(in.gcount());
+    }
+  }
+  for (const NodePtr& c : n.children) hash_imports(*c, h, length);
+}
+
+}  // namespace
+
+std::string content_key(const Node& node) {
+  // FNV-1a (64 bits) of the node's JSON form without positions followed by the
+  // imported files' bytes, and the length of both.
+  const std::string text = node_json(node);
+  std::uint64_t h = 1469598103934665603ull;
+  fnv1a(h, text.data(), text.size());
+  std::size_t length = text.size();
+  hash_imports(node, h, length);
   char buf[40];
-  std::snprintf(buf, sizeof buf, "%016llx-%zx", static_cast<unsigned long long>(h), text.size());
+  std::snprintf(buf, sizeof buf, "%016llx-%zx", static_cast<unsigned long long>(h), length);
   return buf;
 }
 

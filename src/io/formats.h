@@ -37,7 +37,8 @@ Result<PolygonSoup> parse_off(std::string_view text);
 Result<std::string> write_off(const Model& m, const WriteOptions& options);
 // threemf.cpp
 Result<std::vector<PolygonSoup>> parse_3mf(std::span<const std::uint8_t> bytes);
-Result<std::string> write_3mf(const Model& m);
+Result<std::string> write_3mf(
+    const Model& m, const std::vector<std::optional<std::array<double, 4>>>& face_colors = {});
 // zip_size.cpp: an error when the entries of the ZIP archive in `bytes` declare more
 // than max_unpacked bytes in all (0: no limit), from its central directory alone.
 // An archive whose directory cannot be read passes, for the ZIP reader to refuse.

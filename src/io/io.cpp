@@ -314,7 +314,7 @@ Result<std::string> write_model(const Model& m, Format format, const WriteOption
     case Format::kOff:
       return write_off(m, options);
     case Format::k3mf:
-      return write_3mf(m);
+      return write_3mf(m, options.face_colors);
     case Format::kJson:
       // The reader validates what it restores: an invalid model would be written
       // but never read back, so it is refused here with the reader's reasons.

@@ -13,9 +13,11 @@
 // objects, which reads back as an empty model.
 #include <expat.h>
 
+#include <algorithm>
 #include <array>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <map>
 #include <optional>
@@ -294,7 +296,21 @@ Result<std::vector<PolygonSoup>> parse_3mf(std::span<const std::uint8_t> bytes) 
   return soups;
 }
 
-Result<std::string> write_3mf(const Model& m) {
+namespace {
+
+// A color as 3MF's sRGB "#RRGGBBAA".
+std::string display_color(const std::array<double, 4>& c) {
+  char buf[16];
+  int v[4];
+  for (int i = 0; i < 4; ++i) v[i] = static_cast<int>(std::lround(std::clamp(c[i], 0.0, 1.0) * 255));
+  std::snprintf(buf, sizeof buf, "#%02X%02X%02X%02X", v[0], v[1], v[2], v[3]);
+  return buf;
+}
+
+}  // namespace
+
+Result<std::string> write_3mf(const Model& m,
+                              const std::vector<std::optional<std::array<double, 4>>>& colors) {
   const TriangleMesh mesh = triangle_mesh(m);
   std::string xml =
       "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<model unit=\"millimeter\" xml:lang=\"en-US\" "
@@ -302,6 +318,31 @@ Result<std::string> write_3mf(const Model& m) {
       std::string(kCore) + "\">\n<resources>\n";
   std::string build = "<build>\n";
   std::uint32_t id = 0;
+  // Colors: one <basematerials> group (id 1), material 0 the default color, then
+  // one per distinct color in face order.
+  const bool colored = !colors.empty();
+  std::vector<std::string> materials;
+  std::map<std::string, std::size_t> material_of;
+  auto material = [&](FaceId f) -> std::size_t {
+    const std::string c = f.value < colors.size() && colors[f.value]
+                              ? display_color(*colors[f.value])
+                              : std::string("#F9D72CFF");
+    auto [it, fresh] = material_of.emplace(c, materials.size());
+    if (fresh) materials.push_back(c);
+    return it->second;
+  };
+  std::vector<std::size_t> triangle_material;
+  if (colored) {
+    material(FaceId{});  // the default first
+    for (FaceId f : mesh.face_of) triangle_material.push_back(material(f));
+    xml += "<basematerials id=\"1\">\n";
+    for (std::size_t i = 0; i < materials.size(); ++i) {
+      xml += "<base name=\"" + (i == 0 ? std::string("default") : "color " + std::to_string(i)) +
+             "\" displaycolor=\"" + materials[i] + "\"/>\n";
+    }
+    xml += "</basematerials>\n";
+    id = 1;
+  }
   std::vector<std::uint32_t> local(mesh.positions.size(), kInvalidIndex);
   for (GroupId g : m.groups()) {
     std::string vertices, triangles;
@@ -324,6 +365,8 @@ Result<std::string> write_3mf(const Model& m) {
                                           : " v3=\"") +
                      std::to_string(local[i]) + "\"";
       }
+      if (colored && triangle_material[t] != 0)
+        triangles += " pid=\"1\" p1=\"" + std::to_string(triangle_material[t]) + "\"";
       triangles += "/>\n";
     }
     for (std::uint32_t i : used) local[i] = kInvalidIndex;
@@ -331,6 +374,7 @@ Result<std::string> write_3mf(const Model& m) {
     ++id;
     std::string name;
     xml += "<object id=\"" + std::to_string(id) + "\" type=\"model\"";
+    if (colored) xml += " pid=\"1\" pindex=\"0\"";
     if (!m.name(g).empty() && attribute_text(m.name(g), name)) xml += " name=\"" + name + "\"";
     xml += ">\n<mesh>\n<vertices>\n" + vertices + "</vertices>\n<triangles>\n" + triangles +
            "</triangles>\n</mesh>\n</object>\n";

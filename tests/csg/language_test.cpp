@@ -221,6 +221,59 @@ TEST(Build, OneBooleanForARunOfSetOperations) {
   EXPECT_NEAR(shape::mass_properties(b->model).volume, 7 * 4 * 4 - 4 * 0.25 * 4, 1e-9);
 }
 
+// The cache key holds the bytes of the files a part imports: editing an imported OFF
+// file, a surface() heightmap or a DXF outline rebuilds the part that reads it (and
+// only it), with the new geometry; an unchanged file is a hit.
+TEST(Build, CacheKeyFollowsImportedFiles) {
+  const std::string dir = testing::TempDir() + "cf_cache_import_test";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir + "/in");
+  auto write = [&](const std::string& name, const std::string& text) {
+    std::ofstream(dir + "/in/" + name) << text;
+  };
+  auto cube_off = [](double a) {
+    const std::string s = std::to_string(a);
+    return "OFF\n8 6 0\n0 0 0\n" + s + " 0 0\n" + s + " " + s + " 0\n0 " + s + " 0\n0 0 " + s +
+           "\n" + s + " 0 " + s + "\n" + s + " " + s + " " + s + "\n0 " + s + " " + s +
+           "\n4 0 3 2 1\n4 4 5 6 7\n4 0 1 5 4\n4 1 2 6 5\n4 2 3 7 6\n4 3 0 4 7\n";
+  };
+  auto dxf_square = [](double a) {
+    const std::string s = std::to_string(a);
+    return "  0\nSECTION\n  2\nENTITIES\n  0\nLWPOLYLINE\n  8\n0\n 70\n1\n 10\n0\n 20\n0\n"
+           " 10\n" + s + "\n 20\n0\n 10\n" + s + "\n 20\n" + s + "\n 10\n0\n 20\n" + s +
+           "\n  0\nENDSEC\n  0\nEOF\n";
+  };
+  write("part.off", cube_off(1));
+  write("h.dat", "1 1\n1 1\n");
+  write("outline.dxf", dxf_square(2));
+  const std::string script = dir + "/in/main.scad";
+  std::ofstream(script) << "import(\"part.off\");\ntranslate([5, 0, 0]) surface(\"h.dat\");\n"
+                           "translate([10, 0, 0]) linear_extrude(1) import(\"outline.dxf\");\n";
+  BuildOptions o;
+  o.cache_dir = dir + "/cache";
+  auto volume_after = [&](std::size_t hits, std::size_t misses) {
+    auto e = evaluate_file(script);
+    EXPECT_TRUE(e) << e.error().message;
+    if (!e) return 0.0;
+    auto b = build(*e->root, o);
+    EXPECT_TRUE(b) << b.error().message;
+    if (!b) return 0.0;
+    EXPECT_EQ(b->stats.cache_hits, hits);
+    EXPECT_EQ(b->stats.cache_misses, misses);
+    return shape::mass_properties(b->model).volume;
+  };
+  // cube 1, surface 1 x 1 of height 1 over a bottom at 0, square 2 x 2 x 1
+  EXPECT_NEAR(volume_after(0, 3), 1 + 1 + 4, 1e-12);
+  EXPECT_NEAR(volume_after(3, 0), 1 + 1 + 4, 1e-12);
+  write("part.off", cube_off(2));
+  EXPECT_NEAR(volume_after(2, 1), 8 + 1 + 4, 1e-12);
+  write("h.dat", "3 3\n3 3\n");
+  EXPECT_NEAR(volume_after(2, 1), 8 + 3 + 4, 1e-12);
+  write("outline.dxf", dxf_square(3));
+  EXPECT_NEAR(volume_after(2, 1), 8 + 3 + 9, 1e-12);
+  EXPECT_NEAR(volume_after(3, 0), 8 + 3 + 9, 1e-12);
+}
+
 TEST(Build, CacheRebuildsOnlyTheEditedPart) {
   const std::string dir = testing::TempDir() + "cf_cache_test";
   std::filesystem::remove_all(dir);

@@ -6,8 +6,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <map>
 
 #include "cellforge/io/mesh_io.h"
+#include "io/formats.h"
 #include "io/zip.h"
 #include "io_test_util.h"
 #include "support/checks.h"
@@ -192,6 +194,74 @@ TEST(ThreeMf, Lib3mfReadsWhatIsWritten) {
   ASSERT_EQ(counts.size(), 1u);
   EXPECT_EQ(counts[0].first, m.num_vertices());
   EXPECT_EQ(counts[0].second, 12u + 16u * 7u * 2u - 0u);  // the cube's and the sphere's triangles
+}
+
+// Colors by face go out as <basematerials>, and lib3mf reads each triangle's material
+// back as the color of the face it came from; faces without a color get the default.
+TEST(ThreeMf, FaceColorsReadBackByLib3mf) {
+  using namespace NMR;
+  const Model m = read_fixture("nested/cube_sphere_cavity.stl");
+  io::WriteOptions w;
+  w.face_colors.resize(m.face_slots());
+  const std::array<double, 4> red{1, 0, 0, 1}, half_blue{0, 0, 1, 0.5};
+  std::map<std::array<int, 4>, std::size_t> want;  // color -> triangles
+  auto bytes_of_color = [](const std::array<double, 4>& c) {
+    std::array<int, 4> b{};
+    for (int i = 0; i < 4; ++i) b[i] = static_cast<int>(std::lround(c[i] * 255));
+    return b;
+  };
+  std::size_t k = 0;
+  for (FaceId f : m.faces()) {
+    const std::size_t mod = k++ % 3;
+    if (mod == 0) w.face_colors[f.value] = red;
+    if (mod == 1) w.face_colors[f.value] = half_blue;
+  }
+  for (FaceId f : io::triangle_mesh(m).face_of) {
+    const auto& c = w.face_colors[f.value];
+    want[c ? bytes_of_color(*c) : std::array<int, 4>{0xF9, 0xD7, 0x2C, 0xFF}] += 1;
+  }
+  ASSERT_EQ(want.size(), 3u);
+  auto bytes = io::write_model(m, io::Format::k3mf, w);
+  ASSERT_OK(bytes);
+  // io/'s own reader takes the package with its materials as before.
+  Model back;
+  ASSERT_OK(io::read_model(back, bytes_of(*bytes), io::Format::k3mf));
+  EXPECT_EQ(back.num_faces(), m.num_faces());
+
+  PLib3MFModel* model = nullptr;
+  PLib3MFModelReader* reader = nullptr;
+  PLib3MFModelResourceIterator* it = nullptr;
+  ASSERT_EQ(lib3mf_createmodel(&model), LIB3MF_OK);
+  ASSERT_EQ(lib3mf_model_queryreader(model, "3mf", &reader), LIB3MF_OK);
+  std::vector<BYTE> copy(bytes->begin(), bytes->end());
+  ASSERT_EQ(lib3mf_reader_readfrombuffer(reader, copy.data(), copy.size()), LIB3MF_OK);
+  ASSERT_EQ(lib3mf_model_getmeshobjects(model, &it), LIB3MF_OK);
+  std::map<std::array<int, 4>, std::size_t> got;
+  BOOL more = false;
+  while (lib3mf_resourceiterator_movenext(it, &more) == LIB3MF_OK && more) {
+    PLib3MFModelResource* mesh = nullptr;
+    lib3mf_resourceiterator_getcurrent(it, &mesh);
+    DWORD nt = 0;
+    lib3mf_meshobject_gettrianglecount(mesh, &nt);
+    PLib3MFPropertyHandler* props = nullptr;
+    ASSERT_EQ(lib3mf_meshobject_createpropertyhandler(mesh, &props), LIB3MF_OK);
+    for (DWORD t = 0; t < nt; ++t) {
+      DWORD group = 0, index = 0;
+      ASSERT_EQ(lib3mf_propertyhandler_getbasematerial(props, t, &group, &index), LIB3MF_OK);
+      PLib3MFModelBaseMaterial* mat = nullptr;
+      ASSERT_EQ(lib3mf_model_getbasematerialbyid(model, group, &mat), LIB3MF_OK);
+      BYTE r = 0, g = 0, b = 0, a = 0;
+      ASSERT_EQ(lib3mf_basematerial_getdisplaycolor(mat, index, &r, &g, &b, &a), LIB3MF_OK);
+      got[{r, g, b, a}] += 1;
+      lib3mf_release(mat);
+    }
+    lib3mf_release(props);
+    lib3mf_release(mesh);
+  }
+  lib3mf_release(it);
+  lib3mf_release(reader);
+  lib3mf_release(model);
+  EXPECT_EQ(got, want);
 }
 #endif
 

@@ -100,7 +100,13 @@ struct Node {
   bool chamfer = false;
   bool cut = false;
 
-  std::string path;  // import: the file (resolved against the script's folder)
+  // import: the file (resolved against the script's folder); for DXF also the layer
+  // ("" : every layer), origin and scale (points read as (p - origin) * scale), and
+  // the faceting of its circles and arcs.
+  std::string path;
+  std::string layer;
+  Vec3 origin{0, 0, 0};
+  double import_scale = 1;
 
   std::vector<NodePtr> children;
 };
@@ -133,7 +139,8 @@ struct BuildOutput {
 Result<BuildOutput> build(const Node& root, const BuildOptions& options = {});
 
 // A stable digest of a subtree's content (kinds, parameters, children; not the
-// source positions): the cache key.
+// source positions) and of the bytes of every file its import() nodes read: the
+// cache key, so that editing an imported file rebuilds the parts that import it.
 std::string content_key(const Node& node);
 
 }  // namespace cellforge::csg

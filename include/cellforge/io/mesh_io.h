@@ -132,6 +132,12 @@ struct WriteOptions {
   // OBJ and OFF keep polygons without holes as polygons; with `triangulate` every
   // face is written as triangles (faces with holes always are).
   bool triangulate = false;
+  // 3MF: the color of each face (by FaceId value; r, g, b, alpha in [0, 1]), written
+  // as the core specification's <basematerials>, one material per distinct color, and
+  // each triangle's pid and p1. Faces without a color (or beyond the vector) take
+  // OpenSCAD's default face color, #F9D72C. Empty: no materials are written. Other
+  // formats ignore it.
+  std::vector<std::optional<std::array<double, 4>>> face_colors = {};
 };
 
 // The bytes of m in a format. Mesh formats triangulate faces as needed and write
