@@ -4,21 +4,23 @@
 // are listed with it), so a stack of equal triangles costs one triangle, not the
 // square of their number.
 //
-// Planar convex fans. A faceted circle's cap, written as triangles, is a fan of
-// long thin triangles around one rim vertex (the hub): the boxes of any two of them
-// overlap, and each box holds much of the side wall too, so the pairs from boxes
-// grow with the square of the segments. The triangles of a fan all share the hub,
-// so no pair of them is tested; and when the fan's triangles tile a strictly convex
-// polygon Q (checked exactly: one plane, every turn of Q and every triangle of the
-// same orientation, all rim vertices on one side of the hub's first edge), a
-// triangle T that meets Q's plane only in vertices of Q, or in an edge of Q, can
-// meet no fan triangle except in a vertex it shares with it (a vertex of a strictly
-// convex polygon lies only in the fan triangles that have it, an edge of Q only in
-// the one that has it). Such a fan is one entry of the hierarchy, with Q's box; a
-// triangle T whose box meets it is settled by those exact signs, and any other case
-// (T crossing the plane, lying in it, touching it elsewhere; two fans) falls back
-// to the exact test of T against each fan triangle whose box meets T's. The pairs
-// reported are the same.
+// Planar fans. A faceted circle's cap, written as triangles, is a fan of long thin
+// triangles around one rim vertex (the hub): the boxes of any two of them overlap,
+// and each box holds much of the side wall too, so the pairs from boxes grow with
+// the square of the segments. The triangles of a fan all share the hub, so no pair
+// of them is tested. When they lie in one plane and follow one another around the
+// hub counterclockwise within a half-turn (checked exactly: each triangle (hub, v_i,
+// v_i+1) and each (hub, v_1, v_i+1) of one orientation; the rim need not be convex,
+// and after rounding to float a 16000-gon's is not), they fill disjoint sectors of
+// the polygon Q = hub, v_1, ..., v_k, and a vertex of Q lies in no fan triangle
+// but the ones that have it, an edge of Q in none but the one that has it and, at
+// its ends, the ones that have those. So a triangle T that stays on one side of Q's
+// plane, or meets it only in a vertex of Q or an edge of Q, meets no fan triangle
+// except in a vertex it shares with it: no pair. Such a fan is one entry of the
+// hierarchy, with Q's box; a triangle whose box meets it is settled by three
+// orient3d signs, and any other case (T crossing the plane, lying in it, touching
+// it elsewhere; two fans) falls back to the exact test of T against each fan
+// triangle whose box meets T's. The pairs reported are the same.
 #include "io/intersect.h"
 
 #include <algorithm>
@@ -48,8 +50,8 @@ struct Tri {
   std::vector<FaceId> faces;  // every face with a triangle on these three vertices
 };
 
-// A planar convex fan: Q = hub, rim[0], ..., rim.back(), counterclockwise in the
-// projection (sign `turn`), fanned into tris[k] = (hub, rim[k], rim[k + 1]).
+// A planar fan: Q = hub, rim[0], ..., rim.back(), counterclockwise around the hub in
+// the projection, fanned into tris[k] = (hub, rim[k], rim[k + 1]).
 struct Fan {
   VertexId hub;
   std::vector<VertexId> rim;
@@ -61,7 +63,7 @@ struct Fan {
 // Fans of at least kMinFan triangles around the vertices of highest degree.
 constexpr std::size_t kMinFan = 32;
 
-// The planar convex fan of `flat` (triangles at the hub, all in one plane), if
+// The planar fan of `flat` (triangles at the hub, all in one plane), if
 // they form one: each (hub, a, b) in its own order, chained a -> b from the one rim
 // vertex no triangle ends at.
 std::optional<Fan> make_fan(const Model& m, const std::vector<Tri>& tris, VertexId hub,
@@ -92,7 +94,7 @@ std::optional<Fan> make_fan(const Model& m, const std::vector<Tri>& tris, Vertex
     a = b;
   }
   if (fan.tris.size() != next.size()) return std::nullopt;
-  // Strictly convex, one orientation, no wrapping past the first edge.
+  // Each triangle of one orientation, and no wrapping past the first edge.
   const Vec3 h = m.position(hub);
   const Vec3 p0 = m.position(fan.rim[0]), p1 = m.position(fan.rim[1]);
   if (collinear3d(h, p0, p1)) return std::nullopt;
@@ -104,11 +106,9 @@ std::optional<Fan> make_fan(const Model& m, const std::vector<Tri>& tris, Vertex
   const std::size_t n = q.size();
   bool ok = true;
   for (std::size_t i = 0; ok && i + 1 < n; ++i) {
-    ok = orient2d(hh, q[i], q[i + 1]) == turn;                         // each triangle
-    if (ok && i > 0) ok = orient2d(hh, q[0], q[i + 1]) == turn;        // no wrapping
-    if (ok && i > 0) ok = orient2d(q[i - 1], q[i], q[i + 1]) == turn;  // Q turns one way
+    ok = orient2d(hh, q[i], q[i + 1]) == turn;                   // each triangle
+    if (ok && i > 0) ok = orient2d(hh, q[0], q[i + 1]) == turn;  // within a half-turn
   }
-  ok = ok && orient2d(q[n - 2], q[n - 1], hh) == turn && orient2d(q[n - 1], hh, q[0]) == turn;
   if (!ok) return std::nullopt;
   fan.plane[0] = h;
   fan.plane[1] = p0;

@@ -1,5 +1,5 @@
 // info's geometric findings (crossing loops, non-planar faces) with ids in text and
-// JSON; the self-intersection test's planar convex fans against every pair tested
+// JSON; the self-intersection test's planar fans against every pair tested
 // one by one; provenance and colour of imported faces as property tables.
 #include <gtest/gtest.h>
 
@@ -39,7 +39,11 @@ TEST(Findings, NonPlanarAndCrossingFacesAreReportedWithIds) {
   const std::string json = io::to_json(d);
   EXPECT_NE(json.find("\"non_planar_faces\": [\"f0\"]"), std::string::npos) << json;
   EXPECT_NE(json.find("\"self_crossing_faces\": [\"f1\"]"), std::string::npos) << json;
-  EXPECT_NE(json.find("\"geometry_findings\": [\"planarity: f0"), std::string::npos) << json;
+  EXPECT_NE(json.find("\"geometry_findings\": [\"crossing: l1 of f1 crosses itself"), std::string::npos)
+      << json;
+  EXPECT_NE(json.find("\"planarity: f0 is not planar: v3 lies off the plane of v0, v1, v2\"]"),
+            std::string::npos)
+      << json;
   io::DiagnoseOptions off;
   off.geometry = false;
   const io::Diagnosis skipped = io::diagnose(m, off);
@@ -86,7 +90,7 @@ std::set<std::pair<FaceId, FaceId>> brute_force_pairs(const Model& m) {
   return out;
 }
 
-TEST(SelfIntersections, ConvexFansGiveThePairsOfThePlainTest) {
+TEST(SelfIntersections, FansGiveThePairsOfThePlainTest) {
   // A cap of 96 thin triangles fanned from rim vertex 0 of a 98-gon at z = 0, and
   // triangles around it: piercing its interior, lying in its plane across it,
   // touching it with a vertex inside, on a rim vertex, along a rim edge, above it,
