@@ -184,8 +184,11 @@ TEST(Properties, FollowTheOperators) {
   EXPECT_EQ((*source)[split->face], kInvalidIndex);
   EXPECT_EQ((*colour)[top], (Colour{1, 0, 0, 1}));
   EXPECT_EQ((*colour)[split->face], Colour{});
-  for (FaceId f : m.faces())
-    if (f != split->face) EXPECT_EQ((*source)[f], 100 + f.value) << f.str();
+  for (FaceId f : m.faces()) {
+    if (f != split->face) {
+      EXPECT_EQ((*source)[f], 100 + f.value) << f.str();
+    }
+  }
   // semv: a new vertex with the default weight, the others keep theirs.
   auto mid = semv(m, split->edge, {0.5, 0.5, 1});
   ASSERT_OK(mid);
@@ -266,9 +269,10 @@ TEST(Parts, ExtractEachGroup) {
       EXPECT_EQ(p.back_volume(part->ids[f]), part->ids[m.back_volume(f)]);
     }
     // Nothing of the other groups is mapped.
-    for (GroupId h : m.groups())
-      if (h != g)
-        for (FaceId f : m.faces(h)) EXPECT_FALSE(part->ids[f].is_valid());
+    for (GroupId h : m.groups()) {
+      if (h == g) continue;
+      for (FaceId f : m.faces(h)) EXPECT_FALSE(part->ids[f].is_valid());
+    }
   }
   EXPECT_FALSE(extract(m, GroupId(17)).ok());
 }
