@@ -6,6 +6,7 @@
 
 #include "cellforge/io/mesh_io.h"
 #include "command.h"
+#include "progress.h"
 
 namespace cellforge::cli {
 namespace {
@@ -71,16 +72,22 @@ int run(const std::vector<std::string>& args) {
     return 2;
   }
   Model m;
+  Progress progress("cellforge convert");
+  progress.stage("reading " + in);
   auto r = io::read_file(m, in, read);
   if (!r) {
+    progress.finish();
     std::cerr << "cellforge convert: " << r.error().message << '\n';
     return 1;
   }
   const io::Format format = write.format ? *write.format : *io::format_from_path(out);
-  for (const std::string& loss : io::format_losses(m, format))
-    std::cerr << "cellforge convert: warning: " << loss << '\n';
-  if (Status s = io::write_file(m, out, write); !s) {
-    std::cerr << "cellforge convert: " << s.error().message << '\n';
+  progress.stage("writing " + out);
+  const auto losses = io::format_losses(m, format);
+  const Status written = io::write_file(m, out, write);
+  progress.finish();
+  for (const std::string& loss : losses) std::cerr << "cellforge convert: warning: " << loss << '\n';
+  if (!written) {
+    std::cerr << "cellforge convert: " << written.error().message << '\n';
     return 1;
   }
   // The summary goes to standard error when the model itself went to standard output.

@@ -7,6 +7,7 @@
 #include "cellforge/io/diagnose.h"
 #include "cellforge/io/mesh_io.h"
 #include "command.h"
+#include "progress.h"
 
 namespace cellforge::cli {
 namespace {
@@ -14,7 +15,7 @@ namespace {
 constexpr const char* kSummary =
     "read a model file and report counts, validity, defects and mass properties";
 constexpr const char* kUsage =
-    "usage: cellforge info FILE [--json] [--strict] [--no-self-intersections]\n"
+    "usage: cellforge info FILE [--json] [--strict] [--no-self-intersections] [--no-geometry]\n"
     "                      [--format F] [KEY=VALUE...]\n"
     "  FILE: .stl (ASCII or binary) .obj .off .3mf .json, or - for standard input\n"
     "  (with --format stl|obj|off|3mf|json).\n"
@@ -27,7 +28,10 @@ constexpr const char* kUsage =
     "  closed, manifold, volume, area, centroid, bbox, warnings and the detailed\n"
     "  findings (docs/io.md). Without cells (an open mesh) volume is the signed volume\n"
     "  of the surface, with a warning.\n"
-    "  --strict exits 1 when the model is not valid (after printing the report).";
+    "  --strict exits 1 when the model is not valid (after printing the report).\n"
+    "  The geometric findings (self_crossing_faces, non_planar_faces) are reported\n"
+    "  apart from validity. On a terminal a run longer than a second shows its stage\n"
+    "  on standard error.";
 
 std::string report_json(const io::ImportReport& r) {
   std::string s = "{\"input_positions\": " + std::to_string(r.input_positions) +
@@ -52,12 +56,15 @@ int run(const std::vector<std::string>& args) {
   app.add_flag("--json", json, "print one JSON object");
   app.add_flag("--strict", strict, "exit 1 when the model is not valid");
   app.add_flag("--no-self-intersections", no_self, "skip the self-intersection check");
+  bool no_geometry = false;
+  app.add_flag("--no-geometry", no_geometry, "skip the crossing-loop and planarity findings");
   app.add_option("--format", format, "the format of FILE (needed for -): stl obj off 3mf json");
   app.footer(kUsage);
   if (auto code = parse(app, args)) return *code;
   io::ReadOptions read;
   io::DiagnoseOptions diag;
   diag.self_intersections = !no_self;
+  diag.geometry = !no_geometry;
   for (const std::string& a : options) {
     std::string key, value;
     if (!split_key_value(a, key, value)) {
@@ -79,12 +86,17 @@ int run(const std::vector<std::string>& args) {
     read.format = *f;
   }
   Model m;
+  Progress progress("cellforge info");
+  progress.stage("reading " + file);
   auto r = io::read_file(m, file, read);
   if (!r) {
+    progress.finish();
     std::cerr << "cellforge info: " << r.error().message << '\n';
     return 1;
   }
+  diag.progress = [&](std::string_view stage) { progress.stage(std::string(stage)); };
   const io::Diagnosis d = io::diagnose(m, diag);
+  progress.finish();
   if (json) {
     std::string out = io::to_json(d);
     const std::size_t end = out.rfind('}');

@@ -139,6 +139,9 @@ std::string vec_json(Vec3 v) { return "[" + num(v.x) + ", " + num(v.y) + ", " + 
 }  // namespace
 
 Diagnosis diagnose(const Model& m, const DiagnoseOptions& options) {
+  const auto stage = [&](std::string_view name) {
+    if (options.progress) options.progress(name);
+  };
   Diagnosis d;
   d.vertices = m.num_vertices();
   d.edges = m.num_edges();
@@ -151,6 +154,7 @@ Diagnosis diagnose(const Model& m, const DiagnoseOptions& options) {
     d.euler_characteristic_surface = fig.v - fig.e + (fig.f - fig.r);
     d.euler_characteristic_solid = fig.lhs();
   }
+  stage("validating");
   const auto violations = validate(m);
   d.valid = violations.empty();
   for (std::size_t i = 0; i < violations.size() && i < 10; ++i)
@@ -195,13 +199,25 @@ Diagnosis diagnose(const Model& m, const DiagnoseOptions& options) {
   for (std::size_t i = 1; i < keys.size(); ++i)
     if (keys[i].first == keys[i - 1].first)
       d.duplicate_faces.push_back({keys[i - 1].second, keys[i].second});
+  if (options.geometry) {
+    stage("geometry");
+    GeometryFindings g = check_geometry(m);
+    d.self_crossing_faces = std::move(g.crossing_faces);
+    d.non_planar_faces = std::move(g.non_planar_faces);
+    for (const auto* list : {&g.crossings, &g.non_planar})
+      for (std::size_t i = 0; i < list->size() && i < 10; ++i)
+        d.geometry_findings.push_back((*list)[i].check + ": " + (*list)[i].message);
+    d.geometry_checked = true;
+  }
   if (options.self_intersections) {
+    stage("self-intersections");
     d.self_intersections = self_intersections(m);
     d.self_intersections_checked = true;
   }
   d.closed = d.faces > 0 && d.boundary_edges.empty();
   d.manifold = d.non_manifold_edges.empty() && d.non_manifold_vertices.empty() &&
                d.wire_edges == 0 && d.isolated_vertices == 0;
+  stage("mass properties");
   d.mass = shape::mass_properties(m);
   d.volume = d.mass.volume;
   if (!d.mass.solid && d.faces > 0) {
@@ -240,6 +256,9 @@ std::string to_text(const Diagnosis& d) {
   line("duplicate_faces", list_text(d.duplicate_faces));
   line("self_intersections",
        d.self_intersections_checked ? list_text(d.self_intersections) : "not checked");
+  line("self_crossing_faces", d.geometry_checked ? list_text(d.self_crossing_faces) : "not checked");
+  line("non_planar_faces", d.geometry_checked ? list_text(d.non_planar_faces) : "not checked");
+  for (const auto& g : d.geometry_findings) line("  finding", g);
   line("wire_edges", std::to_string(d.wire_edges));
   line("isolated_vertices", std::to_string(d.isolated_vertices));
   for (const auto& w : d.warnings) line("warning", w);
@@ -284,6 +303,13 @@ std::string to_json(const Diagnosis& d) {
     put_ids(s, "self_intersections", d.self_intersections);
   else
     field("self_intersections", "null");
+  if (d.geometry_checked) {
+    put_ids(s, "self_crossing_faces", d.self_crossing_faces);
+    put_ids(s, "non_planar_faces", d.non_planar_faces);
+  } else {
+    field("self_crossing_faces", "null");
+    field("non_planar_faces", "null");
+  }
   const auto strings = [](const std::vector<std::string>& list) {
     std::string v = "[";
     for (std::size_t i = 0; i < list.size(); ++i) {
@@ -299,6 +325,7 @@ std::string to_json(const Diagnosis& d) {
   };
   field("violations", strings(d.violations));
   field("warnings", strings(d.warnings));
+  field("geometry_findings", strings(d.geometry_findings));
   return s + "\n}\n";
 }
 

@@ -304,8 +304,10 @@ std::vector<Polygon> patch_boundary(const std::vector<Vec3>& pos, const std::vec
 }
 
 // Each merged patch becomes one face (its loops); other polygons stay as they are.
+// first[i] is the index in polys of the first polygon of face i.
 std::vector<std::vector<Polygon>> merge_coplanar(const std::vector<Vec3>& pos,
-                                                 const std::vector<Polygon>& polys) {
+                                                 const std::vector<Polygon>& polys,
+                                                 std::vector<std::uint32_t>& first) {
   const EdgeTable edges(polys);
   std::vector<bool> flat(polys.size());
   for (std::size_t p = 0; p < polys.size(); ++p)
@@ -327,8 +329,12 @@ std::vector<std::vector<Polygon>> merge_coplanar(const std::vector<Vec3>& pos,
     if (tris.size() > 1) loops = patch_boundary(pos, polys, edges, tris, patch);
     if (!loops.empty()) {
       faces.push_back(std::move(loops));
+      first.push_back(tris.front());
     } else {
-      for (std::uint32_t t : tris) faces.push_back({polys[t]});
+      for (std::uint32_t t : tris) {
+        faces.push_back({polys[t]});
+        first.push_back(t);
+      }
     }
   }
   return faces;
@@ -364,7 +370,9 @@ Result<ReadResult> import_soup(Model& m, const PolygonSoup& soup, const ImportOp
   report.welded_vertices = welded.size();
 
   std::vector<Polygon> polys;
+  std::vector<std::uint32_t> source;  // per entry of polys, its index in the soup
   polys.reserve(soup.polygons.size());
+  source.reserve(soup.polygons.size());
   for (std::size_t p = 0; p < soup.polygons.size(); ++p) {
     Polygon poly;
     for (std::uint32_t i : soup.polygons[p]) {
@@ -380,15 +388,20 @@ Result<ReadResult> import_soup(Model& m, const PolygonSoup& soup, const ImportOp
       continue;
     }
     polys.push_back(std::move(poly));
+    source.push_back(static_cast<std::uint32_t>(p));
   }
   if (options.repair_orientation) report.flipped_faces = repair_orientation(welded, polys);
 
   std::vector<std::vector<Polygon>> faces;
+  std::vector<std::uint32_t> face_source;  // per face, its polygon's index in the soup
   if (options.merge_coplanar) {
-    faces = merge_coplanar(welded, polys);
+    std::vector<std::uint32_t> first;
+    faces = merge_coplanar(welded, polys, first);
+    for (std::uint32_t i : first) face_source.push_back(source[i]);
   } else {
     faces.reserve(polys.size());
     for (Polygon& p : polys) faces.push_back({std::move(p)});
+    face_source = source;
   }
   report.merged_faces = faces.size();
 
@@ -440,6 +453,17 @@ Result<ReadResult> import_soup(Model& m, const PolygonSoup& soup, const ImportOp
   auto built = build_mesh(m, in);
   if (!built) return built.error();
   result.group = built->group;
+  // Provenance and colour, per face (mesh_io.h); the model may have the tables already.
+  auto from = add_property<FaceProperty<std::uint32_t>>(m, kSourcePolygonProperty, kInvalidIndex);
+  if (from) {
+    for (std::size_t f = 0; f < built->faces.size(); ++f) from->set(built->faces[f], face_source[f]);
+  }
+  if (!soup.colours.empty()) {
+    if (auto colour = add_property<FaceProperty<Colour>>(m, kColourProperty)) {
+      for (std::size_t f = 0; f < built->faces.size(); ++f)
+        colour->set(built->faces[f], soup.colours[face_source[f]]);
+    }
+  }
   if (options.volumes == VolumeMode::kAuto) {
     auto cells = make_region_volumes(m, built->group);
     if (!cells) return cells.error();

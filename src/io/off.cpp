@@ -1,8 +1,11 @@
 // OFF (Object File Format): "OFF", the counts "nv nf ne", nv vertex lines (x y z,
 // anything after the third number ignored, so COFF/NOFF colours and normals pass),
-// nf face lines "n i0 ... i(n-1)" (anything after the n indices ignored). Counts are
+// nf face lines "n i0 ... i(n-1)", optionally followed by the face's colour "r g b"
+// or "r g b a" (integers 0..255, or numbers 0..1 when one has a point or an
+// exponent; anything else after the indices is ignored). Counts are
 // checked against the file: a count larger than the lines that follow is an
 // error, and so are lines after the last face.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -105,7 +108,26 @@ Result<PolygonSoup> parse_off(std::string_view text) {
       poly.push_back(static_cast<std::uint32_t>(idx));
     }
     soup.polygons.push_back(std::move(poly));
+    if (line.size() >= static_cast<std::size_t>(n) + 4) {  // a colour
+      const std::size_t at = static_cast<std::size_t>(n) + 1, count = std::min<std::size_t>(4, line.size() - at);
+      float c[4] = {1, 1, 1, 1};
+      bool ok = true, fraction = false;
+      for (std::size_t k = 0; k < count; ++k) {
+        double x;
+        ok = ok && parse_double(line[at + k].first, x) && std::isfinite(x) && x >= 0;
+        if (ok) c[k] = static_cast<float>(x);
+        fraction = fraction || line[at + k].first.find_first_of(".eE") != std::string_view::npos;
+      }
+      if (ok) {
+        if (!fraction)
+          for (float& x : c) x = std::min(x, 255.0f) / 255.0f;
+        if (!fraction && count == 3) c[3] = 1;
+        soup.colours.resize(soup.polygons.size(), Colour{});
+        soup.colours.back() = {c[0], c[1], c[2], c[3]};
+      }
+    }
   }
+  if (!soup.colours.empty()) soup.colours.resize(soup.polygons.size(), Colour{});
   line = next_line(tok, pending);
   if (!line.empty())
     return parse_error("off", line[0].second,

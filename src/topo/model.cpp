@@ -17,13 +17,34 @@ LiveIds<IdT> live_range(const Model& m, std::uint32_t slots) {
   });
 }
 
+template <class IdT>
+GroupMembers<IdT> group_range(const Model& m, const std::vector<detail::GroupRun>& runs, GroupId g,
+                              std::uint32_t slots) {
+  return GroupMembers<IdT>(&m, runs, g.value, slots, [](const void* p, std::uint32_t i) {
+    return static_cast<const Model*>(p)->is_live(IdT(i));
+  });
+}
+
 }  // namespace
+
+GroupMembers<VertexId> Model::vertices(GroupId g) const {
+  return group_range<VertexId>(*this, vertex_groups_, g, vertex_slots());
+}
+GroupMembers<EdgeId> Model::edges(GroupId g) const {
+  return group_range<EdgeId>(*this, edge_groups_, g, edge_slots());
+}
+GroupMembers<FaceId> Model::faces(GroupId g) const {
+  return group_range<FaceId>(*this, face_groups_, g, face_slots());
+}
+GroupMembers<VolumeId> Model::volumes(GroupId g) const {
+  return group_range<VolumeId>(*this, volume_groups_, g, static_cast<std::uint32_t>(volumes_.size()));
+}
 
 GroupId Model::group_of(VertexId v) const {
   assert(is_live(v));
   const auto after = std::upper_bound(
       vertex_groups_.begin(), vertex_groups_.end(), v.value,
-      [](std::uint32_t x, const GroupRun& run) { return x < run.first_vertex; });
+      [](std::uint32_t x, const GroupRun& run) { return x < run.first; });
   return GroupId(std::prev(after)->group);
 }
 
@@ -135,7 +156,8 @@ std::size_t Model::topology_bytes() const {
   static_assert(sizeof(UseRec) + sizeof(std::uint32_t) == kUseRecordBytes);
   static_assert(sizeof(LoopRec) == kLoopRecordBytes);
   static_assert(sizeof(FaceRec) == kFaceRecordBytes);
-  return vertices_.size() * sizeof(VertexRec) + vertex_groups_.size() * sizeof(GroupRun) +
+  return vertices_.size() * sizeof(VertexRec) + group_runs() * sizeof(GroupRun) +
+         group_counts_.size() * sizeof(GroupCounts) +
          free_vertices_.size() * sizeof(std::uint32_t) + ends_.size() * sizeof(EndRec) +
          uses_.size() * sizeof(UseRec) + radial_.size() * sizeof(std::uint32_t) +
          loops_.size() * sizeof(LoopRec) +

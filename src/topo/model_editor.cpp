@@ -11,6 +11,54 @@
 
 namespace cellforge::inline topo {
 
+namespace {
+
+// Puts id (of a kind with `slots` slots, id among them) into a run of group g:
+// the runs, sorted by first, give every id the group of the run holding it.
+void assign_run(std::vector<detail::GroupRun>& runs, std::uint32_t id, std::uint32_t slots,
+                std::uint32_t g) {
+  using Run = detail::GroupRun;
+  if (!runs.empty() && id >= runs.back().first && runs.back().group == g) return;  // bulk case
+  auto after = std::upper_bound(runs.begin(), runs.end(), id,
+                                [](std::uint32_t x, const Run& r) { return x < r.first; });
+  if (after != runs.begin() && std::prev(after)->group == g) return;  // in a run of g
+  // Split the run holding id (if any) around it: [.., id) old, [id] g, [id+1, ..) old.
+  const bool has_run = after != runs.begin();
+  const std::uint32_t old = has_run ? std::prev(after)->group : kInvalidIndex;
+  const std::uint32_t end = after == runs.end() ? kInvalidIndex : after->first;
+  std::size_t at = static_cast<std::size_t>(after - runs.begin());
+  if (has_run && std::prev(after)->first == id) {
+    std::prev(after)->group = g;
+    --at;
+  } else {
+    runs.insert(runs.begin() + static_cast<std::ptrdiff_t>(at), Run{id, g});
+  }
+  // The id after this one goes back to the old group, unless this is the last of
+  // the ids so far (new slots extend the run of the last one made).
+  if (has_run && id + 1 < end && id + 1 < slots) {
+    runs.insert(runs.begin() + static_cast<std::ptrdiff_t>(at) + 1, Run{id + 1, old});
+  }
+  // Merge with neighbours of the same group.
+  if (at + 1 < runs.size() && runs[at + 1].group == g) {
+    runs.erase(runs.begin() + static_cast<std::ptrdiff_t>(at) + 1);
+  }
+  if (at > 0 && runs[at - 1].group == g) runs.erase(runs.begin() + static_cast<std::ptrdiff_t>(at));
+}
+
+// Drops the runs of group g (every slot of them is free: the group is empty); the
+// slots join the run before them.
+void drop_runs(std::vector<detail::GroupRun>& runs, std::uint32_t g) {
+  std::erase_if(runs, [g](const detail::GroupRun& r) { return r.group == g; });
+  for (std::size_t i = 1; i < runs.size();) {
+    if (runs[i].group == runs[i - 1].group)
+      runs.erase(runs.begin() + static_cast<std::ptrdiff_t>(i));
+    else
+      ++i;
+  }
+}
+
+}  // namespace
+
 // A slot from kind's free list (whose links `link(i)` reads), or a new one that
 // `grow()` appends.
 template <class LinkFn, class GrowFn>
@@ -39,11 +87,13 @@ GroupId ModelEditor::new_group(std::string name) {
   for (std::uint32_t i = 0; i < m_.groups_.size(); ++i) {
     if (!m_.groups_[i].live) {
       m_.groups_[i] = Model::GroupRec{true, std::move(name), {}};
+      m_.group_counts_[i] = {};
       ++m_.live_[Model::kGroup];
       return GroupId(i);
     }
   }
   m_.groups_.push_back(Model::GroupRec{true, std::move(name), {}});
+  m_.group_counts_.emplace_back();
   ++m_.live_[Model::kGroup];
   return GroupId(static_cast<std::uint32_t>(m_.groups_.size() - 1));
 }
@@ -60,6 +110,8 @@ VertexId ModelEditor::new_vertex(GroupId g, Vec3 p) {
   }
   m_.vertices_[i] = {kInvalidIndex};
   set_vertex_group(VertexId(i), g);
+  ++m_.group_counts_[g.value].vertices;
+  m_.properties_.reset(detail::kVertexProperty, i);
   if (m_.positions_.size() <= i) m_.positions_.resize(i + 1);
   m_.positions_[i] = p;
   return VertexId(i);
@@ -101,6 +153,10 @@ EdgeId ModelEditor::new_edge(VertexId a, VertexId b) {
   radial(2 * i) = radial(2 * i + 1) = kInvalidIndex;
   link_end(a, {EdgeId(i), 0});
   link_end(b, {EdgeId(i), 1});
+  const std::uint32_t g = group_of_new(a);
+  assign_run(m_.edge_groups_, i, m_.edge_slots(), g);
+  ++m_.group_counts_[g].edges;
+  m_.properties_.reset(detail::kEdgeProperty, i);
   return EdgeId(i);
 }
 
@@ -309,12 +365,19 @@ FaceId ModelEditor::new_face(std::uint32_t sides) {
   const std::uint32_t i = take_slot(m_.faces_, Model::kFace, &FaceRec::first);
   m_.faces_[i] = {kInvalidIndex, sides & ~Model::kFaceMarks};
   if (i < m_.face_surface_.size()) m_.face_surface_[i] = kInvalidIndex;
+  const std::uint32_t g = m_.sides_[sides & ~Model::kFaceMarks].group;
+  assign_run(m_.face_groups_, i, m_.face_slots(), g);
+  ++m_.group_counts_[g].faces;
+  m_.properties_.reset(detail::kFaceProperty, i);
   return FaceId(i);
 }
 
 VolumeId ModelEditor::new_volume(GroupId g) {
   const std::uint32_t i = take_slot(m_.volumes_, Model::kVolume, &Model::VolumeRec::next_free);
   m_.volumes_[i] = {g.value, kInvalidIndex};
+  assign_run(m_.volume_groups_, i, static_cast<std::uint32_t>(m_.volumes_.size()), g.value);
+  ++m_.group_counts_[g.value].volumes;
+  m_.properties_.reset(detail::kVolumeProperty, i);
   return VolumeId(i);
 }
 
@@ -328,33 +391,9 @@ std::uint32_t ModelEditor::intern_sides(VolumeId front, VolumeId back, GroupId g
   return static_cast<std::uint32_t>(m_.sides_.size() - 1);
 }
 
+
 void ModelEditor::set_vertex_group(VertexId v, GroupId g) {
-  auto& runs = m_.vertex_groups_;
-  using Run = Model::GroupRun;
-  auto after = std::upper_bound(runs.begin(), runs.end(), v.value,
-                                [](std::uint32_t x, const Run& r) { return x < r.first_vertex; });
-  if (after != runs.begin() && std::prev(after)->group == g.value) return;  // in a run of g
-  // Split the run holding v (if any) around it: [.., v) old, [v] g, [v+1, ..) old.
-  const bool has_run = after != runs.begin();
-  const std::uint32_t old = has_run ? std::prev(after)->group : kInvalidIndex;
-  const std::uint32_t end = after == runs.end() ? kInvalidIndex : after->first_vertex;
-  std::size_t at = static_cast<std::size_t>(after - runs.begin());
-  if (has_run && std::prev(after)->first_vertex == v.value) {
-    std::prev(after)->group = g.value;
-    --at;
-  } else {
-    runs.insert(runs.begin() + static_cast<std::ptrdiff_t>(at), Run{v.value, g.value});
-  }
-  // The vertex after v goes back to the old group, unless v is the last of the
-  // ids so far (new vertices extend the run of the last one made).
-  if (has_run && v.value + 1 < end && v.value + 1 < m_.vertices_.size()) {
-    runs.insert(runs.begin() + static_cast<std::ptrdiff_t>(at) + 1, Run{v.value + 1, old});
-  }
-  // Merge with neighbours of the same group.
-  if (at + 1 < runs.size() && runs[at + 1].group == g.value) {
-    runs.erase(runs.begin() + static_cast<std::ptrdiff_t>(at) + 1);
-  }
-  if (at > 0 && runs[at - 1].group == g.value) runs.erase(runs.begin() + static_cast<std::ptrdiff_t>(at));
+  assign_run(m_.vertex_groups_, v.value, m_.vertex_slots(), g.value);
 }
 
 namespace {
@@ -368,13 +407,17 @@ void push_free(std::uint32_t& head, std::uint32_t i, std::uint32_t& link) {
 }  // namespace
 
 void ModelEditor::free_vertex(VertexId v) {
+  --m_.group_counts_[m_.group_of(v).value].vertices;
   m_.vertices_[v.value].first_end = kDead;
+  m_.properties_.reset(detail::kVertexProperty, v.value);
   m_.free_vertices_.push_back(v.value);
   --m_.live_[Model::kVertex];
 }
 
 void ModelEditor::free_edge(EdgeId e) {
   assert(!m_.first_use(e).is_valid());
+  --m_.group_counts_[m_.group_of(e).value].edges;
+  m_.properties_.reset(detail::kEdgeProperty, e.value);
   unlink_end(m_.vertex_of(e, 0), {e, 0});
   unlink_end(m_.vertex_of(e, 1), {e, 1});
   end_rec({e, 0}).vertex = kDead;
@@ -427,6 +470,8 @@ void ModelEditor::free_loop(LoopId l) {
 }
 
 void ModelEditor::free_face(FaceId f) {
+  --m_.group_counts_[m_.group_of(f).value].faces;
+  m_.properties_.reset(detail::kFaceProperty, f.value);
   set_face_first(f, kInvalidIndex);
   rec(f).sides = kDead;
   if (f.value < m_.face_surface_.size()) m_.face_surface_[f.value] = kInvalidIndex;
@@ -435,12 +480,17 @@ void ModelEditor::free_face(FaceId f) {
 }
 
 void ModelEditor::free_volume(VolumeId c) {
+  --m_.group_counts_[m_.volumes_[c.value].group].volumes;
+  m_.properties_.reset(detail::kVolumeProperty, c.value);
   m_.volumes_[c.value].group = kDead;
   push_free(m_.free_[Model::kVolume], c.value, m_.volumes_[c.value].next_free);
   --m_.live_[Model::kVolume];
 }
 
 void ModelEditor::free_group(GroupId g) {
+  assert(m_.group_empty(g));
+  for (auto* runs : {&m_.vertex_groups_, &m_.edge_groups_, &m_.face_groups_, &m_.volume_groups_})
+    drop_runs(*runs, g.value);
   m_.groups_[g.value] = Model::GroupRec{false, {}, {}};
   --m_.live_[Model::kGroup];
 }

@@ -119,6 +119,11 @@ class ModelEditor {
   template <class Rec>
   std::uint32_t take_slot(std::vector<Rec>& recs, int kind, std::uint32_t Rec::*link);
   bool is_open(FaceId f) const;
+  // The group of vertex a, looked up in the last vertex run first (the bulk case).
+  std::uint32_t group_of_new(VertexId a) const {
+    const auto& runs = m_.vertex_groups_;
+    return a.value >= runs.back().first ? runs.back().group : m_.group_of(a).value;
+  }
   // The face marks (Model::kFaceMarks) that use u calls for.
   std::uint32_t mark_of(EdgeUseId u) const {
     return (m_.in_overflow_slot(u) ? Model::kOverflowFace : 0u) |

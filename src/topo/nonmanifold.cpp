@@ -19,18 +19,15 @@ GroupId make_group(Model& m, std::string name) { return ModelEditor(m).new_group
 
 Status can_kill_group(const Model& m, GroupId g) {
   CF_CHECK(require_live(m, g, "kill_group: group"));
-  for (VertexId v : m.vertices()) {
-    if (m.group_of(v) == g)
-      return precondition("kill_group: group " + g.str() + " holds " + v.str());
-  }
-  for (FaceId f : m.faces()) {
-    if (m.group_of(f) == g)
-      return precondition("kill_group: group " + g.str() + " holds " + f.str());
-  }
-  for (VolumeId c : m.volumes()) {
-    if (m.group_of(c) == g)
-      return precondition("kill_group: group " + g.str() + " holds " + c.str());
-  }
+  // The group index names what g holds without a scan of the model.
+  const auto holds = [&](auto range) -> Status {
+    for (auto id : range) return precondition("kill_group: group " + g.str() + " holds " + id.str());
+    return Status::Ok();
+  };
+  CF_CHECK(holds(m.vertices(g)));
+  CF_CHECK(holds(m.faces(g)));
+  CF_CHECK(holds(m.edges(g)));
+  CF_CHECK(holds(m.volumes(g)));
   return Status::Ok();
 }
 

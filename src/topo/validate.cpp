@@ -8,6 +8,7 @@ std::vector<Violation> validate(const Model& m) {
   std::vector<Violation> out;
   checks::records(m, out);
   if (!out.empty()) return out;  // the walks below would follow dangling references
+  checks::groups(m, out);
   checks::vertex_cycles(m, out);
   checks::radial_cycles(m, out);
   checks::loops(m, out);

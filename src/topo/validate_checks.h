@@ -17,6 +17,9 @@ void records(const Model& m, Violations& out);
 void vertex_cycles(const Model& m, Violations& out);
 void radial_cycles(const Model& m, Violations& out);
 void loops(const Model& m, Violations& out);
+// validate_groups.cpp: the group index lists every live element once, under the
+// group its records give it, and its counts agree.
+void groups(const Model& m, Violations& out);
 // validate_records.cpp, after the loops passed: each face mark is set where the
 // face's loops need it, and outside an edit only there.
 void face_marks(const Model& m, Violations& out);

@@ -238,10 +238,11 @@ TEST(Cellforge, StorageMatchesTheDocumentedRecordSizes) {
   EXPECT_EQ(s.bytes, m.topology_bytes());
   // Vertices 4 B, edges 16 and two use slots of 12 each, faces 8; no Loop
   // records (every face is one loop); one run of vertex groups (8), one side row
-  // (12), one volume (8), one group (4).
-  EXPECT_EQ(s.bytes, 8u * 4 + 12 * (16 + 2 * 12) + 6 * 8 + 8 + 12 + 8 + 4);
+  // (12), one volume (8), one group (4); the group index: one run each of edges,
+  // faces and volumes (8 each) and the group's counts (16).
+  EXPECT_EQ(s.bytes, 8u * 4 + 12 * (16 + 2 * 12) + 6 * 8 + 8 + 12 + 8 + 4 + 3 * 8 + 16);
   EXPECT_EQ(s.references, s.bytes / 4);
-  EXPECT_EQ(s.records, 8u + 1 + 12 + 24 + 6 + 1 + 1 + 1);
+  EXPECT_EQ(s.records, 8u + 1 + 12 + 24 + 6 + 1 + 1 + 1 + 3);
   // The book: three quads on one edge. Its nine boundary edges leave one use
   // slot each empty; the spine's third use takes an overflow slot of one spare
   // pair (an edge slot that is no edge). 8 vertices, 10 edges + 1 spare pair,
@@ -254,7 +255,8 @@ TEST(Cellforge, StorageMatchesTheDocumentedRecordSizes) {
   for (EdgeUseId u : book.edge_uses()) overflow += book.in_overflow_slot(u) ? 1 : 0;
   EXPECT_EQ(book.spare_pairs(), 1u);
   EXPECT_EQ(overflow, 1u);
-  EXPECT_EQ(cellforge_storage(book).bytes, 8u * 4 + 11 * (16 + 2 * 12) + 3 * 8 + 8 + 12 + 4);
+  EXPECT_EQ(cellforge_storage(book).bytes,
+            8u * 4 + 11 * (16 + 2 * 12) + 3 * 8 + 8 + 12 + 4 + 2 * 8 + 16);  // runs of edges, faces
   EXPECT_EQ(book.topology_bytes(), cellforge_storage(book).bytes);
   // The radial edge does not count the spare pair as an edge: model, region,
   // shell; 3 faces, 6 faceuses, 3 loops, 6 loopuses; 10 edges, 24 edgeuses, 24

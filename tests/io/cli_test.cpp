@@ -135,5 +135,37 @@ TEST(Cli, InfoToAFullDeviceFails) {
   }
 }
 
+// The progress line: on a terminal (script(1) gives the command one) it shows the
+// stages; into a pipe, never. CELLFORGE_PROGRESS_AFTER=0 draws from the first stage.
+TEST(Cli, ProgressOnlyOnATerminal) {
+  const std::string file = testing::data_path("cube_binary.stl");
+  const auto piped = testing::run_cli("info " + file);
+  EXPECT_EQ(piped.status, 0);
+  EXPECT_EQ(piped.out.find("self-intersections ("), std::string::npos) << piped.out;
+  const auto shell = [](const std::string& cmd) {
+    FILE* p = popen(cmd.c_str(), "r");
+    std::string out;
+    char buf[4096];
+    while (std::size_t n = std::fread(buf, 1, sizeof buf, p)) out.append(buf, n);
+    pclose(p);
+    return out;
+  };
+  const std::string forced_pipe =
+      shell("CELLFORGE_PROGRESS_AFTER=0 " + std::string(CELLFORGE_BIN) + " info " + file + " 2>&1");
+  EXPECT_EQ(forced_pipe.find("self-intersections ("), std::string::npos) << forced_pipe;
+  EXPECT_EQ(forced_pipe.find('\r'), std::string::npos);
+  // Under a pseudo-terminal, with standard output kept apart from it.
+  const std::string cmd = "CELLFORGE_PROGRESS_AFTER=0 script -qec '" + std::string(CELLFORGE_BIN) +
+                          " info " + file + " > /dev/null' /dev/null 2>&1";
+  FILE* p = popen(cmd.c_str(), "r");
+  ASSERT_NE(p, nullptr);
+  std::string tty;
+  char buf[4096];
+  while (std::size_t n = std::fread(buf, 1, sizeof buf, p)) tty.append(buf, n);
+  EXPECT_EQ(WEXITSTATUS(pclose(p)), 0);
+  EXPECT_NE(tty.find("cellforge info: self-intersections ("), std::string::npos) << tty;
+  EXPECT_NE(tty.find("\r\033[K"), std::string::npos);  // and the line is cleared at the end
+}
+
 }  // namespace
 }  // namespace cellforge

@@ -232,8 +232,9 @@ TEST(NonManifold, VertexGroupsSurviveSlotReuse) {
     const GroupId g = make_group(blocks);
     for (int i = 0; i < 100; ++i) ASSERT_OK(make_vertex(blocks, g, {double(i), double(k), 0}));
   }
-  // 300 vertices of 4 B, three runs of 8 B, three groups of 4 B.
-  EXPECT_EQ(blocks.topology_bytes(), 300u * 4 + 3 * 8 + 3 * 4);
+  // 300 vertices of 4 B, three runs of 8 B, three groups of 4 B and their counts
+  // in the group index (16 B each).
+  EXPECT_EQ(blocks.topology_bytes(), 300u * 4 + 3 * 8 + 3 * 4 + 3 * 16);
 }
 
 }  // namespace

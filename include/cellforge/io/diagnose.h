@@ -5,7 +5,9 @@
 #pragma once
 
 #include <array>
+#include <functional>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -21,6 +23,12 @@ struct DiagnoseOptions {
   // Exact triangle-triangle tests between faces that share no vertex, found
   // through a bounding-volume hierarchy over their bounding boxes.
   bool self_intersections = true;
+  // The faces' own geometry (topo/validate.h, check_geometry): loops that cross
+  // themselves and faces whose vertices are not exactly on one plane.
+  bool geometry = true;
+  // Called as each stage begins ("validating", "geometry", "self-intersections",
+  // "mass properties"), for a caller that shows progress; may be empty.
+  std::function<void(std::string_view stage)> progress;
 };
 
 struct Diagnosis {
@@ -43,6 +51,15 @@ struct Diagnosis {
   std::vector<std::pair<FaceId, FaceId>> duplicate_faces;  // same vertex set
   std::vector<std::pair<FaceId, FaceId>> self_intersections;
   bool self_intersections_checked = false;
+  // check_geometry's findings, apart from validity (which is the structure's): the
+  // faces with a loop that crosses or touches itself in its plane, and the faces
+  // whose vertices do not lie exactly on one plane (a finding, not a fault: the
+  // quads of faceted curved surfaces are planar only in exact arithmetic). The
+  // first few findings in words, naming the vertices.
+  std::vector<FaceId> self_crossing_faces;
+  std::vector<FaceId> non_planar_faces;
+  std::vector<std::string> geometry_findings;
+  bool geometry_checked = false;
   bool closed = false;    // faces present, no boundary edge
   bool manifold = false;  // no non-manifold edge or vertex, no wire edge or isolated vertex
   // mass.volume is the volume of the cells. Without cells (an open mesh, an inside-out
@@ -60,7 +77,7 @@ Diagnosis diagnose(const Model& m, const DiagnoseOptions& options = {});
 // The report as text (one "key: value" per line) and as a JSON object whose keys
 // include vertices, edges, faces, loops, volumes, groups, euler_characteristic_surface,
 // euler_characteristic_solid, valid, closed, manifold, volume, area, centroid, bbox,
-// warnings.
+// warnings, self_crossing_faces, non_planar_faces and geometry_findings.
 std::string to_text(const Diagnosis& d);
 std::string to_json(const Diagnosis& d);
 

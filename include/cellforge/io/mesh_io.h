@@ -22,6 +22,7 @@
 
 #include "cellforge/result.h"
 #include "cellforge/topo/model.h"
+#include "cellforge/topo/property.h"
 
 namespace cellforge::io {
 
@@ -44,7 +45,17 @@ struct PolygonSoup {
   std::vector<std::array<std::uint32_t, 2>> wires;
   std::vector<std::uint32_t> points;
   std::string name;  // a name the file gives its object, if any
+  // A colour per polygon when the file gives any (OFF's face colours; polygons
+  // without one are white), else empty.
+  std::vector<Colour> colours;
 };
+
+// The face properties import_soup fills (property.h): "source_polygon" (std::uint32_t)
+// is the index in the soup of the polygon a face was made from (the first one of a
+// merged coplanar patch); "colour" (Colour) that polygon's colour, when the soup has
+// colours.
+inline constexpr const char* kSourcePolygonProperty = "source_polygon";
+inline constexpr const char* kColourProperty = "colour";
 
 // How import() assigns 3-cells to the faces it builds.
 enum class VolumeMode {

@@ -28,6 +28,7 @@
 // in debug builds (assert) that the handle names a live entity.
 #pragma once
 
+#include <algorithm>
 #include <cassert>
 #include <cstddef>
 #include <cstdint>
@@ -39,6 +40,7 @@
 #include "cellforge/geom/vec.h"
 #include "cellforge/ids.h"
 #include "cellforge/topo/detail/model_records.h"
+#include "cellforge/topo/detail/property_store.h"
 #include "cellforge/topo/types.h"
 
 namespace cellforge::inline topo {
@@ -77,6 +79,76 @@ class LiveIds {
  private:
   const void* model_;
   std::uint32_t size_;
+  AliveFn alive_;
+};
+
+// Iterates the live ids of one kind in one group, in increasing order: the ids of
+// the group's runs (detail/model_records.h, the group index) that are live. Costs
+// the number of runs of that kind plus the slots of the group's runs, not the
+// size of the model.
+template <class IdT>
+class GroupMembers {
+ public:
+  using AliveFn = bool (*)(const void*, std::uint32_t);
+  class iterator {
+   public:
+    using value_type = IdT;
+    using difference_type = std::ptrdiff_t;
+    using iterator_category = std::input_iterator_tag;
+    using reference = IdT;
+    using pointer = void;
+    iterator() = default;
+    iterator(const GroupMembers* range, std::size_t run, std::uint32_t i)
+        : range_(range), run_(run), i_(i) {
+      skip();
+    }
+    IdT operator*() const { return IdT(i_); }
+    iterator& operator++() {
+      ++i_;
+      skip();
+      return *this;
+    }
+    iterator operator++(int) {
+      iterator old = *this;
+      ++*this;
+      return old;
+    }
+    friend bool operator==(const iterator& a, const iterator& b) {
+      return a.run_ == b.run_ && a.i_ == b.i_;
+    }
+
+   private:
+    void skip() {
+      const auto& runs = range_->runs_;
+      while (run_ < runs.size()) {
+        const std::uint32_t end =
+            run_ + 1 < runs.size() ? std::min(runs[run_ + 1].first, range_->slots_) : range_->slots_;
+        if (runs[run_].group == range_->group_) {
+          if (i_ < runs[run_].first) i_ = runs[run_].first;
+          while (i_ < end && !range_->alive_(range_->model_, i_)) ++i_;
+          if (i_ < end) return;
+        }
+        ++run_;
+        i_ = 0;
+      }
+      i_ = 0;
+    }
+    const GroupMembers* range_ = nullptr;
+    std::size_t run_ = 0;
+    std::uint32_t i_ = 0;
+  };
+
+  GroupMembers(const void* model, std::span<const detail::GroupRun> runs, std::uint32_t group,
+               std::uint32_t slots, AliveFn alive)
+      : model_(model), runs_(runs), group_(group), slots_(slots), alive_(alive) {}
+  iterator begin() const { return iterator(this, 0, 0); }
+  iterator end() const { return iterator(this, runs_.size(), 0); }
+
+ private:
+  const void* model_;
+  std::span<const detail::GroupRun> runs_;
+  std::uint32_t group_;
+  std::uint32_t slots_;
   AliveFn alive_;
 };
 
@@ -369,6 +441,27 @@ class Model : private detail::ModelRecords {
 
   // ---- volumes and groups
   GroupId group_of(VolumeId c) const { return GroupId(volumes_[c.value].group); }
+  // A group's own elements, through the group index (detail/model_records.h): its
+  // live vertices, edges, faces and volumes in increasing id order, and how many
+  // of each it holds, without reading the rest of the model.
+  //   for (FaceId f : m.faces(g)) ...
+  GroupMembers<VertexId> vertices(GroupId g) const;
+  GroupMembers<EdgeId> edges(GroupId g) const;
+  GroupMembers<FaceId> faces(GroupId g) const;
+  GroupMembers<VolumeId> volumes(GroupId g) const;
+  std::size_t num_vertices(GroupId g) const { return group_counts_[g.value].vertices; }
+  std::size_t num_edges(GroupId g) const { return group_counts_[g.value].edges; }
+  std::size_t num_faces(GroupId g) const { return group_counts_[g.value].faces; }
+  std::size_t num_volumes(GroupId g) const { return group_counts_[g.value].volumes; }
+  // True when g holds no vertex, edge, face or volume.
+  bool group_empty(GroupId g) const {
+    const detail::GroupCounts& c = group_counts_[g.value];
+    return c.vertices == 0 && c.edges == 0 && c.faces == 0 && c.volumes == 0;
+  }
+  // Runs of the group index, for the validator and the storage figures.
+  std::size_t group_runs() const {
+    return vertex_groups_.size() + edge_groups_.size() + face_groups_.size() + volume_groups_.size();
+  }
   const std::string& name(GroupId g) const { return groups_[g.value].name; }
   void set_name(GroupId g, std::string name) { groups_[g.value].name = std::move(name); }
   const std::vector<Attribute>& attributes(GroupId g) const { return groups_[g.value].attributes; }
@@ -390,8 +483,9 @@ class Model : private detail::ModelRecords {
   bool is_smooth(EdgeId e) const;
 
   // ---- memory
-  // Bytes held by the topology arrays (records of every slot, live or free, and
-  // the interned side table); positions and names are geometry and not counted.
+  // Bytes held by the topology arrays (records of every slot, live or free, the
+  // interned side table and the group index); positions and names are geometry and
+  // not counted.
   std::size_t topology_bytes() const;
   std::size_t geometry_bytes() const { return positions_.size() * sizeof(Vec3); }
 
@@ -425,8 +519,13 @@ class Model : private detail::ModelRecords {
   std::uint32_t loop_slots() const { return static_cast<std::uint32_t>(loops_.size()); }  // records
   std::uint32_t face_slots() const { return static_cast<std::uint32_t>(faces_.size()); }
 
+  // The per-element property tables (property.h, which is their API).
+  detail::PropertyStore& property_store() { return properties_; }
+  const detail::PropertyStore& property_store() const { return properties_; }
+
  private:
   friend class ModelEditor;
+  detail::PropertyStore properties_;  // beside the records, not in them
 };
 
 }  // namespace cellforge::inline topo

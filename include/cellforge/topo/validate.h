@@ -52,9 +52,13 @@ EulerFigures euler_figures(const Model& m);
 // naming a vertex off the plane of three others; the quads of a faceted curved
 // primitive are planar in real numbers but seldom in doubles, so this is a finding
 // (the Booleans split such faces), not a fault. Exact predicates decide both.
+// crossing_faces and non_planar_faces name the face of each finding, in the same
+// order (a face with two crossing loops is named twice).
 struct GeometryFindings {
   std::vector<Violation> crossings;
   std::vector<Violation> non_planar;
+  std::vector<FaceId> crossing_faces;
+  std::vector<FaceId> non_planar_faces;
 };
 GeometryFindings check_geometry(const Model& m);
 

@@ -17,7 +17,8 @@
 //   Sides    front volume, back volume, group (shared by all faces with
 //            the same three values; a closed solid's faces share one)
 //   Groups of vertices: runs of consecutive vertex ids in one group (a model
-//            built group by group has one run per group)
+//            built group by group has one run per group); the group index
+//            keeps such runs for edges, faces and volumes too, beside the records
 //
 // Use ids are slots that belong to edges: edge e owns use slots 2e and 2e+1,
 // the same numbers as its two end records. So a use names its edge by its id
@@ -64,6 +65,18 @@
 
 namespace cellforge::inline topo::detail {
 
+// A run of consecutive ids of one kind made in one group: the run holds the ids
+// from `first` up to the next run's first (the group index, below).
+struct GroupRun {
+  std::uint32_t first;
+  std::uint32_t group;
+};
+
+// A group's live elements of each kind (the group index, below).
+struct GroupCounts {
+  std::uint32_t vertices = 0, edges = 0, faces = 0, volumes = 0;
+};
+
 class ModelRecords {
  protected:
   // LoopId(f) is face f's outer loop; LoopId(kInnerLoopBit | r) an inner loop.
@@ -94,10 +107,8 @@ class ModelRecords {
     // vertex; kDead when the slot is free (free slots are kept in free_vertices_).
     std::uint32_t first_end;
   };
-  struct GroupRun {
-    std::uint32_t first_vertex;  // the run holds vertex ids from here to the next run
-    std::uint32_t group;
-  };
+  using GroupRun = detail::GroupRun;
+  using GroupCounts = detail::GroupCounts;
   // One end of an edge, at index 2*edge + end of ends_ (the encoded end). In a
   // spare pair each record serves the overflow use slot of the same index.
   struct EndRec {
@@ -153,7 +164,7 @@ class ModelRecords {
   enum Kind { kVertex, kEdge, kUse, kLoop, kFace, kVolume, kGroup, kKinds };
 
   std::vector<VertexRec> vertices_;
-  std::vector<GroupRun> vertex_groups_;  // sorted by first_vertex
+  std::vector<GroupRun> vertex_groups_;  // sorted by first: the group of every vertex
   std::vector<std::uint32_t> free_vertices_;
   std::vector<Vec3> positions_;
   std::vector<EndRec> ends_;  // two per edge slot
@@ -252,6 +263,17 @@ class ModelRecords {
     return (rec.face_dir & kOverflowBit) ? spare : own;
   }
   std::vector<std::uint32_t> face_surface_;  // per face slot, kInvalidIndex = plane
+  // The group index, a side table beside the records (which hold each element's
+  // group already: a vertex by vertex_groups_, an edge by its start vertex, a face
+  // by its side row, a volume in its record): for edges, faces and volumes the
+  // runs of consecutive slot ids made in one group, sorted by first, as
+  // vertex_groups_ is for vertices, so that a group lists its own elements by
+  // its runs without reading the other groups' records; and the live counts of
+  // each group slot. Slots freed stay in their run (iteration skips dead ones)
+  // until a creation in another group takes them. A model built group by group
+  // has one run per group and kind.
+  std::vector<GroupRun> edge_groups_, face_groups_, volume_groups_;
+  std::vector<GroupCounts> group_counts_;  // per group slot
   std::uint32_t free_[kKinds] = {kInvalidIndex, kInvalidIndex, kInvalidIndex, kInvalidIndex,
                                  kInvalidIndex, kInvalidIndex, kInvalidIndex};
   std::size_t live_[kKinds] = {};
