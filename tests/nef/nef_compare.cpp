@@ -352,7 +352,7 @@ Outcome compare(const Case& c) {
 
   std::vector<Nef> operands;
   for (const Model* m : c.operands) operands.push_back(operand_nef(*m));
-  Nef nef = evaluate_nef(operands, c.expr);
+  Nef nef = evaluate_nef(operands, c.nef_expr ? *c.nef_expr : c.expr);
   if (c.regularized) nef = nef.regularization();
 
   const ResultLocator mine(res);
@@ -364,6 +364,7 @@ Outcome compare(const Case& c) {
     }
     ++out.compared;
     const Where a = mine.where(p), b = nef_where(nef, p);
+    ++out.nef_dims[b.dim];
     // Regularized sets are closed, and their boundary is what lies on an element.
     const bool agree = a.in == b.in && (!c.regularized || (a.dim < 3) == (b.dim < 3));
     if (agree) continue;

@@ -28,7 +28,9 @@
 // The margin only chooses which points are compared; no membership is decided by it.
 #pragma once
 
+#include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -66,6 +68,9 @@ struct Case {
   double grid_step = 0;
   std::size_t grid_points = 200;
   std::uint64_t seed = 1;
+  // The expression Nef evaluates when it is not `expr`: only for the test that the
+  // comparison notices a wrong answer.
+  std::optional<boolean::Expr> nef_expr = {};
 };
 
 struct Outcome {
@@ -74,6 +79,8 @@ struct Outcome {
   std::size_t skipped = 0;      // points near a rounded element
   std::size_t disagreements = 0;
   std::size_t rounded_vertices = 0;
+  std::array<std::size_t, 4> nef_dims{};  // compared points Nef located on a vertex,
+                                          // an edge, a facet, in a volume
   LowerDim cellforge, nef;      // lower-dimensional parts of either result
   std::string first_disagreement;  // operands, expression, point, both answers
 };
