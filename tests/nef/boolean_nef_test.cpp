@@ -223,6 +223,23 @@ TEST(BooleanNefOpen, LowerDimensionalPartsOfTouchingCubes) {
   }
 }
 
+// Options::cells keeps the faces between the operands' cells inside the result; the
+// point set is the same as without it, regularized or not.
+TEST(BooleanNefOpen, CellComplexesHoldTheSamePoints) {
+  Tally tally;
+  const Model corner = box_model({0.5, 0.5, 0.5}, {1.5, 1.5, 1.5});
+  const Model face = box_model({0, 0, 1}, {1, 1, 2});
+  const Model big = box_model({-1, -1, -1}, {2, 2, 2});
+  for (bool regularized : {true, false}) {
+    for (const Model* b : {&corner, &face, &big}) {
+      for (const Expr& e : {binary(Op::kUnion, 0, 1), binary(Op::kIntersection, 0, 1), binary(Op::kDifference, 1, 0)}) {
+        tally.add(nef::compare({.name = "two boxes", .operands = {&unit_box(), b}, .expr = e,
+                                .regularized = regularized, .cells = true, .grid_step = 0.25}));
+      }
+    }
+  }
+}
+
 // ---- seeded random cases
 
 struct RandomCase {

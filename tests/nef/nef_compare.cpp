@@ -155,6 +155,18 @@ LowerDim nef_lower_dim(const Nef& n) {
   return out;
 }
 
+// The vertices of n whose coordinates are doubles exactly (the others have no double
+// to sample them at).
+std::vector<Vec3> nef_vertices(const Nef& n) {
+  std::vector<Vec3> out;
+  for (auto v = n.vertices_begin(); v != n.vertices_end(); ++v) {
+    const Point& q = v->point();
+    const Vec3 p{CGAL::to_double(q.x()), CGAL::to_double(q.y()), CGAL::to_double(q.z())};
+    if (point(p) == q) out.push_back(p);
+  }
+  return out;
+}
+
 // ---- the cellforge result, located exactly
 
 bool marked(const std::vector<bool>& marks, std::uint32_t id) {
@@ -298,14 +310,15 @@ void add_model_points(const Model& m, std::vector<Vec3>& out) {
   }
 }
 
-std::vector<Vec3> sample_points(const Case& c, const boolean::BooleanResult* r) {
+std::vector<Vec3> sample_points(const Case& c, const boolean::BooleanResult& r, const Nef& n) {
   std::vector<Vec3> pts = c.points;
+  for (const Vec3& p : nef_vertices(n)) pts.push_back(p);
   Box box;
   for (const Model* m : c.operands) {
     add_model_points(*m, pts);
     for (VertexId v : m->vertices()) box.add(m->position(v));
   }
-  if (r) add_model_points(r->model, pts);
+  add_model_points(r.model, pts);
   const Vec3 size = box.hi - box.lo;
   const double step = c.grid_step > 0 ? c.grid_step : std::max({size.x, size.y, size.z}) / 8;
   std::mt19937_64 rng(c.seed);
@@ -328,6 +341,10 @@ std::string where_text(Where w) {
 
 }  // namespace
 
+std::ostream& operator<<(std::ostream& os, const LowerDim& d) {
+  return os << d.sheets << " sheets, " << d.wires << " wires, " << d.points << " points";
+}
+
 std::string describe(const boolean::Expr& e) {
   if (e.kind == Kind::kOperand) return "#" + std::to_string(e.operand);
   const char* op = e.kind == Kind::kUnion ? " u " : (e.kind == Kind::kIntersection ? " n " : " - ");
@@ -340,8 +357,10 @@ Outcome compare(const Case& c) {
   Outcome out;
   boolean::Options options;
   options.keep_lower_dim = !c.regularized;
+  options.cells = c.cells;
   auto r = boolean::evaluate(c.operands, c.expr, options);
-  const std::string title = c.name + ": " + describe(c.expr) + (c.regularized ? "" : " (not regularized)");
+  const std::string title = c.name + ": " + describe(c.expr) + (c.regularized ? "" : " (not regularized)") +
+                            (c.cells ? " (cells)" : "");
   EXPECT_TRUE(r.ok()) << title << ": " << (r.ok() ? "" : r.error().message);
   if (!r.ok()) return out;
   out.evaluated = true;
@@ -357,7 +376,7 @@ Outcome compare(const Case& c) {
 
   const ResultLocator mine(res);
   std::ostringstream first;
-  for (const Vec3& p : sample_points(c, &res)) {
+  for (const Vec3& p : sample_points(c, res, nef)) {
     if (mine.unsure(p)) {
       ++out.skipped;
       continue;
@@ -366,7 +385,7 @@ Outcome compare(const Case& c) {
     const Where a = mine.where(p), b = nef_where(nef, p);
     ++out.nef_dims[b.dim];
     // Regularized sets are closed, and their boundary is what lies on an element.
-    const bool agree = a.in == b.in && (!c.regularized || (a.dim < 3) == (b.dim < 3));
+    const bool agree = a.in == b.in && (!c.regularized || c.cells || (a.dim < 3) == (b.dim < 3));
     if (agree) continue;
     if (out.disagreements++ < 5) {
       first.precision(17);
@@ -377,6 +396,14 @@ Outcome compare(const Case& c) {
   out.cellforge = cellforge_lower_dim(res);
   out.nef = nef_lower_dim(nef);
   out.first_disagreement = first.str();
+  if (c.regularized) {
+    EXPECT_EQ(out.nef, LowerDim{}) << title << ": Nef";
+    EXPECT_EQ(out.cellforge, LowerDim{}) << title << ": cellforge";
+  } else {
+    EXPECT_EQ(out.cellforge.points, out.nef.points) << title << ": isolated points";
+    EXPECT_EQ(out.cellforge.sheets > 0, out.nef.sheets > 0) << title << ": " << out.cellforge << " against " << out.nef;
+    EXPECT_EQ(out.cellforge.wires > 0, out.nef.wires > 0) << title << ": " << out.cellforge << " against " << out.nef;
+  }
   EXPECT_EQ(out.disagreements, 0u) << title << " (" << out.compared << " points compared)"
                                    << out.first_disagreement;
   return out;

@@ -31,6 +31,7 @@
 #include <array>
 #include <cstdint>
 #include <optional>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -52,6 +53,7 @@ struct LowerDim {
   std::size_t sheets = 0, wires = 0, points = 0;
   friend bool operator==(const LowerDim&, const LowerDim&) = default;
 };
+std::ostream& operator<<(std::ostream& os, const LowerDim& d);
 
 std::string describe(const boolean::Expr& e);
 
@@ -61,6 +63,9 @@ struct Case {
   std::vector<const Model*> operands = {};
   boolean::Expr expr = {};
   bool regularized = true;
+  // Options::cells: inner faces between the operands' cells stay. They lie inside the
+  // set, so only membership is compared, not which points lie on the boundary.
+  bool cells = false;
   // Extra points to compare besides the generated ones.
   std::vector<Vec3> points = {};
   // Step of the grid of sampled points inside the operands' box (0: the box's
@@ -87,6 +92,10 @@ struct Outcome {
 
 // Evaluates the case with cellforge and with Nef and compares them; records a
 // gtest failure (with the first disagreements) when they differ or cellforge fails.
+// Regularized results must have no lower-dimensional part on either side; for the
+// others both must have the same number of isolated points, and sheets and wires on
+// both sides or on neither (their numbers may differ where one side splits a sheet or
+// a wire that the other keeps whole; named tests compare the numbers).
 Outcome compare(const Case& c);
 
 }  // namespace cellforge::testing::nef
