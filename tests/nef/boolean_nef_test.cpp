@@ -6,6 +6,7 @@
 //
 // BooleanNef.* are regularized; BooleanNefOpen.* are the same comparisons without
 // regularization (Options::keep_lower_dim against Nef's plain set operations).
+// CELLFORGE_NEF_SEEDS=N (or A-B) runs other seeds than 1 to 240.
 //
 // The random operands are boxes and boxes with a box cavity with corners on the grid
 // of halves in [0, 3]^3, some turned by quarter turns about the grid's centre, and
@@ -17,6 +18,7 @@
 
 #include <array>
 #include <cstdio>
+#include <cstdlib>
 #include <random>
 #include <string>
 #include <vector>
@@ -331,12 +333,22 @@ RandomCase random_case(std::uint64_t seed) {
   return c;
 }
 
-constexpr std::uint64_t kRandomCases = 240;
+// Seeds 1 to 240, or as CELLFORGE_NEF_SEEDS says ("N": 1 to N; "A-B": A to B), for a
+// longer search or one case by hand.
+std::pair<std::uint64_t, std::uint64_t> random_seeds() {
+  const char* n = std::getenv("CELLFORGE_NEF_SEEDS");
+  if (!n) return {1, 240};
+  char* rest = nullptr;
+  const std::uint64_t a = std::strtoull(n, &rest, 10);
+  if (*rest != '-') return {1, a};
+  return {a, std::strtoull(rest + 1, nullptr, 10)};
+}
 
 void random_cases(bool regularized) {
   Tally tally;
   std::size_t exact_results = 0;
-  for (std::uint64_t seed = 1; seed <= kRandomCases; ++seed) {
+  const auto [first, last] = random_seeds();
+  for (std::uint64_t seed = first; seed <= last; ++seed) {
     const RandomCase rc = random_case(seed);
     std::vector<const Model*> ops;
     for (const Model& m : rc.models) ops.push_back(&m);
@@ -351,7 +363,7 @@ void random_cases(bool regularized) {
     exact_results += o.rounded_vertices == 0;
   }
   std::printf("nef: %zu of %llu random results have no rounded vertex\n", exact_results,
-              static_cast<unsigned long long>(kRandomCases));
+              static_cast<unsigned long long>(last - first + 1));
 }
 
 TEST(BooleanNef, RandomBoxesAndPyramids) { random_cases(true); }

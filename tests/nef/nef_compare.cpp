@@ -311,8 +311,7 @@ void add_model_points(const Model& m, std::vector<Vec3>& out) {
 }
 
 std::vector<Vec3> sample_points(const Case& c, const boolean::BooleanResult& r, const Nef& n) {
-  std::vector<Vec3> pts = c.points;
-  for (const Vec3& p : nef_vertices(n)) pts.push_back(p);
+  std::vector<Vec3> pts = nef_vertices(n);
   Box box;
   for (const Model* m : c.operands) {
     add_model_points(*m, pts);
@@ -339,6 +338,42 @@ std::string where_text(Where w) {
   return std::string(w.in ? "in, on " : "out, on ") + kDims[w.dim];
 }
 
+bool agree(const Case& c, Where a, Where b) {
+  // Regularized sets are closed, and their boundary is what lies on an element.
+  return a.in == b.in && (!c.regularized || c.cells || (a.dim < 3) == (b.dim < 3));
+}
+
+// The deepest subexpression of e whose results disagree at p, both answers told (or
+// "" when they agree there, or when rounding leaves p unsure): the smallest part of a
+// failing case to look at.
+std::string deepest_disagreement(const Case& c, const boolean::Expr& e, const std::vector<Nef>& operands,
+                                 Vec3 p, const boolean::Options& options) {
+  for (const boolean::Expr& child : e.children) {
+    std::string s = deepest_disagreement(c, child, operands, p, options);
+    if (!s.empty()) return s;
+  }
+  auto r = boolean::evaluate(c.operands, e, options);
+  if (!r.ok()) return describe(e) + ": cellforge fails: " + r.error().message;
+  const ResultLocator mine(r.value());
+  if (mine.unsure(p)) return "";
+  Nef n = evaluate_nef(operands, e);
+  if (c.regularized) n = n.regularization();
+  const Where a = mine.where(p), b = nef_where(n, p);
+  if (agree(c, a, b)) return "";
+  std::string s = describe(e) + ": cellforge " + where_text(a) + "; Nef " + where_text(b);
+  if (!validate(r.value().model).empty()) s += " (cellforge's result does not validate)";
+  if (!n.is_valid()) s += " (Nef's result is not valid)";
+  if (e.kind != Kind::kDifference && e.children.size() > 1) {
+    // Union and intersection commute: Nef's answer folding the other way round.
+    boolean::Expr reversed = e;
+    std::reverse(reversed.children.begin(), reversed.children.end());
+    Nef m = evaluate_nef(operands, reversed);
+    if (c.regularized) m = m.regularization();
+    s += "; Nef folding the other way: " + where_text(nef_where(m, p));
+  }
+  return s;
+}
+
 }  // namespace
 
 std::ostream& operator<<(std::ostream& os, const LowerDim& d) {
@@ -363,7 +398,6 @@ Outcome compare(const Case& c) {
                             (c.cells ? " (cells)" : "");
   EXPECT_TRUE(r.ok()) << title << ": " << (r.ok() ? "" : r.error().message);
   if (!r.ok()) return out;
-  out.evaluated = true;
   const boolean::BooleanResult& res = r.value();
   const auto violations = validate(res.model);
   EXPECT_TRUE(violations.empty()) << title << ": " << to_string(violations);
@@ -384,11 +418,13 @@ Outcome compare(const Case& c) {
     ++out.compared;
     const Where a = mine.where(p), b = nef_where(nef, p);
     ++out.nef_dims[b.dim];
-    // Regularized sets are closed, and their boundary is what lies on an element.
-    const bool agree = a.in == b.in && (!c.regularized || c.cells || (a.dim < 3) == (b.dim < 3));
-    if (agree) continue;
+    if (agree(c, a, b)) continue;
+    first.precision(17);
+    if (out.disagreements == 0 && c.expr.kind != Kind::kOperand) {
+      first << "\n  first where (" << p.x << ", " << p.y << ", " << p.z
+            << ") has different answers: " << deepest_disagreement(c, c.expr, operands, p, options);
+    }
     if (out.disagreements++ < 5) {
-      first.precision(17);
       first << "\n  at (" << p.x << ", " << p.y << ", " << p.z << "): cellforge " << where_text(a)
             << "; Nef " << where_text(b);
     }

@@ -66,8 +66,6 @@ struct Case {
   // Options::cells: inner faces between the operands' cells stay. They lie inside the
   // set, so only membership is compared, not which points lie on the boundary.
   bool cells = false;
-  // Extra points to compare besides the generated ones.
-  std::vector<Vec3> points = {};
   // Step of the grid of sampled points inside the operands' box (0: the box's
   // extent / 8), and how many grid points at most.
   double grid_step = 0;
@@ -79,7 +77,6 @@ struct Case {
 };
 
 struct Outcome {
-  bool evaluated = false;       // cellforge returned a result
   std::size_t compared = 0;     // points compared
   std::size_t skipped = 0;      // points near a rounded element
   std::size_t disagreements = 0;
