@@ -12,6 +12,10 @@
 //
 //   bench_boolean [--max-fn N] [--menger4] [--case SUBSTR] [--runs N] [--threads N]
 //                 [--timeout S] [--peers coref,nef,manifold|none] [--peer-timeout S]
+//                 [--keep-lower-dim]
+//
+// --keep-lower-dim times cellforge's non-regularized operations (Nef's results are
+// not regularized either).
 #include <fcntl.h>
 #include <malloc.h>
 #include <poll.h>
@@ -358,6 +362,7 @@ struct Settings {
   std::string only;
   int runs = 0;  // 0: by the first run's time
   int threads = 1;
+  bool keep_lower_dim = false;  // non-regularized, as CGAL Nef computes it
   double timeout = 1800, peer_timeout = 60, budget = 20;
   bool coref = true, nef = true, manifold = true;
 };
@@ -369,7 +374,7 @@ Outcome run_cellforge(const Case& c, const Settings& s) {
         Operands ops = c.make();
         std::vector<const Model*> ptrs;
         for (const Model& m : ops.models) ptrs.push_back(&m);
-        const boolean::Options options{.threads = s.threads};
+        const boolean::Options options{.threads = s.threads, .keep_lower_dim = s.keep_lower_dim};
         const long base = reset_peak();
         std::vector<double> times;
         std::vector<boolean::Report> reports;
@@ -697,6 +702,7 @@ Settings parse(int argc, char** argv) {
     else if (a == "--case") s.only = next();
     else if (a == "--runs") s.runs = std::stoi(next());
     else if (a == "--threads") s.threads = std::stoi(next());
+    else if (a == "--keep-lower-dim") s.keep_lower_dim = true;
     else if (a == "--timeout") s.timeout = std::stod(next());
     else if (a == "--peer-timeout") s.peer_timeout = std::stod(next());
     else if (a == "--peers") {
@@ -708,7 +714,7 @@ Settings parse(int argc, char** argv) {
       std::fprintf(stderr,
                    "usage: bench_boolean [--max-fn N (512; 2048 for the full set)] [--menger4] [--case SUBSTR]\n"
                    "                     [--runs N] [--threads N] [--timeout S] [--peers coref,nef,manifold|none]\n"
-                   "                     [--peer-timeout S (60)]\n");
+                   "                     [--peer-timeout S (60)] [--keep-lower-dim]\n");
       std::exit(a == "--help" ? 0 : 2);
     }
   }

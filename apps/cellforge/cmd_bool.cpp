@@ -1,5 +1,6 @@
-// `cellforge bool OP A B [C ...] -o OUT`: the regularized union, intersection or
-// difference (the first minus the others) of solids read from files, written to OUT
+// `cellforge bool OP A B [C ...] -o OUT`: the union, intersection or difference (the
+// first minus the others) of solids and sheets read from files, regularized unless
+// --keep-lower-dim, written to OUT
 // (boolean/boolean.h). --report json prints the counts, validity, volume and the
 // time of each stage.
 #include <filesystem>
@@ -17,9 +18,14 @@ namespace {
 
 constexpr const char* kUsage =
     "usage: cellforge bool union|intersection|difference A B [C ...] -o OUT\n"
-    "                      [--threads N] [--report json] [--ascii] [KEY=VALUE...]\n"
-    "  A, B, ...: solids in any format `info` reads (.stl .obj .off .3mf .json); each\n"
-    "  file is one operand, the union of its cells. difference is A minus all others.\n"
+    "                      [--threads N] [--report json] [--ascii] [--keep-lower-dim]\n"
+    "                      [--cells] [KEY=VALUE...]\n"
+    "  A, B, ...: solids and sheets in any format `info` reads (.stl .obj .off .3mf\n"
+    "  .json); each file is one operand, the union of its cells and sheets. difference\n"
+    "  is A minus all others. Regularized unless --keep-lower-dim: then faces, edges and\n"
+    "  points of no volume stay (cubes sharing a face intersect in it), and the boundary\n"
+    "  the set does not hold is counted as \"excluded\". --cells keeps the faces between\n"
+    "  cells of different operands (one group, several volumes).\n"
     "  OUT: .stl .obj .off .3mf .json by extension. --report json prints counts,\n"
     "  validity, volume, the rounding check and seconds per stage as one JSON object.\n"
     "  KEY=VALUE import options as for `cellforge info` (weld_tolerance=T, ...).";
@@ -42,13 +48,18 @@ std::string report_json(const boolean::BooleanResult& r, bool valid, double volu
          ", \"implicit_points\": " + std::to_string(p.implicit_points) +
          ", \"exact_fallbacks\": " + std::to_string(p.exact_fallbacks) +
          ", \"rounding_self_intersections\": " + std::to_string(p.rounding_self_intersections) +
+         ", \"sheet_faces\": " + std::to_string(p.sheet_faces) +
+         ", \"inner_faces\": " + std::to_string(p.inner_faces) +
+         ", \"wire_edges\": " + std::to_string(p.wire_edges) +
+         ", \"isolated_points\": " + std::to_string(p.isolated_points) +
+         ", \"excluded\": " + std::to_string(p.excluded) +
          ", \"seconds\": {\"soup\": " + number(t.soup) + ", \"intersect\": " + number(t.intersect) +
          ", \"split\": " + number(t.split) + ", \"classify\": " + number(t.classify) +
          ", \"output\": " + number(t.output) + ", \"check\": " + number(t.check) + "}}";
 }
 
 int run(const std::vector<std::string>& args) {
-  CLI::App app{"regularized union, intersection or difference of solids, exactly",
+  CLI::App app{"union, intersection or difference of solids and sheets, exactly",
                "cellforge bool"};
   std::string operation, out, report;
   std::vector<std::string> words;
@@ -60,6 +71,9 @@ int run(const std::vector<std::string>& args) {
   add_count(app, "--threads", options.threads, 1, "threads for the intersection stage");
   app.add_option("--report", report, "json: print counts, validity and stage times");
   app.add_flag("--ascii", ascii, "write ASCII STL");
+  app.add_flag("--keep-lower-dim", options.keep_lower_dim,
+               "not regularized: keep the faces, edges and points of no volume");
+  app.add_flag("--cells", options.cells, "keep the faces between cells of different operands");
   app.footer(kUsage);
   if (auto code = parse(app, args)) return *code;
   boolean::Op op;
@@ -126,10 +140,17 @@ int run(const std::vector<std::string>& args) {
   if (json) {
     std::cout << report_json(*r, violations.empty(), volume) << '\n';
   } else {
-    std::cout << boolean::to_string(op) << " of " << inputs.size() << " solids -> " << out << ": "
+    std::cout << boolean::to_string(op) << " of " << inputs.size() << " operands -> " << out << ": "
               << r->model.num_vertices() << " vertices, " << r->model.num_edges() << " edges, "
               << r->model.num_faces() << " faces, " << r->model.num_volumes() << " volumes, volume "
-              << volume << (violations.empty() ? ", valid" : ", INVALID") << '\n';
+              << volume;
+    if (options.keep_lower_dim || options.cells) {
+      const boolean::Report& p = r->report;
+      std::cout << "; " << p.sheet_faces << " sheet faces, " << p.inner_faces << " inner faces, "
+                << p.wire_edges << " wire edges, " << p.isolated_points << " isolated points, "
+                << p.excluded << " excluded";
+    }
+    std::cout << (violations.empty() ? ", valid" : ", INVALID") << '\n';
   }
   if (!violations.empty()) {
     std::cerr << "cellforge bool: the result is invalid (" << violations.size() << " findings):\n";
@@ -141,7 +162,7 @@ int run(const std::vector<std::string>& args) {
 }
 
 const CommandRegistration kBool{
-    Command{"bool", "union, intersection or difference of solids, exactly", kUsage, run, true}};
+    Command{"bool", "union, intersection or difference of solids and sheets, exactly", kUsage, run, true}};
 
 }  // namespace
 }  // namespace cellforge::cli

@@ -193,52 +193,109 @@ std::vector<std::string> unique_keys(const std::vector<std::string>& columns) {
   return out;
 }
 
-void print_json(const QueryResult& r) {
-  const std::vector<std::string> keys = unique_keys(r.columns);
-  std::cout << "[";
-  for (std::size_t k = 0; k < r.rows.size(); ++k) {
-    std::cout << (k ? ",\n " : "\n ") << "{";
-    for (std::size_t c = 0; c < r.columns.size(); ++c) {
-      const auto& v = r.rows[k][c];
-      const ValueKind kind =
-          k < r.kinds.size() && c < r.kinds[k].size() ? r.kinds[k][c] : ValueKind::kText;
-      std::string value;
-      if (!v) {
-        value = "null";
-      } else if (kind == ValueKind::kInteger || kind == ValueKind::kReal) {
-        // Infinity and NaN have no JSON number: null.
-        value = is_json_number(*v) ? *v : "null";
-      } else {
-        value = json_string(*v);  // text, and blobs as \x and hex digits
-      }
-      std::cout << (c ? ", " : "") << json_string(keys[c]) << ": " << value;
-    }
-    std::cout << "}";
+// The JSON value of one answer value.
+std::string json_value(const std::optional<std::string>& v, ValueKind kind) {
+  if (!v) return "null";
+  if (kind == ValueKind::kInteger || kind == ValueKind::kReal) {
+    return is_json_number(*v) ? *v : "null";  // Infinity and NaN have no JSON number
   }
-  std::cout << (r.rows.empty() ? "]\n" : "\n]\n");
+  return json_string(*v);  // text, and blobs as \x and hex digits
 }
 
-void print_table(const QueryResult& r) {
-  std::vector<std::size_t> width(r.columns.size());
-  for (std::size_t c = 0; c < r.columns.size(); ++c) width[c] = r.columns[c].size();
-  for (const auto& row : r.rows) {
-    for (std::size_t c = 0; c < row.size(); ++c) {
-      width[c] = std::max(width[c], row[c] ? row[c]->size() : 4);
-    }
+// Prints an answer as it streams in (Store::query_each), as a JSON array of
+// objects or as an aligned table. The table's columns are as wide as the header
+// and the first kAligned rows, which are held until then (or the end); a later,
+// wider value widens its column from there on. Each row callback returns false
+// once standard output has failed, which stops the query.
+class AnswerPrinter {
+ public:
+  explicit AnswerPrinter(bool json) : json_(json) {}
+  QueryCallbacks callbacks() {
+    QueryCallbacks c;
+    c.columns = [this](const std::vector<std::string>& columns) { start(columns); };
+    c.row = [this](const QueryRow& row) { return add(row); };
+    return c;
   }
-  auto line = [&](auto cell) {
-    for (std::size_t c = 0; c < r.columns.size(); ++c) {
+  // After the last row, or after an error (`complete` false): the rows read
+  // before it are printed, without the end of the array or the row count.
+  void finish(bool complete) {
+    if (!started_) return;
+    if (json_) {
+      if (complete) std::cout << (rows_ == 0 ? "]\n" : "\n]\n");
+      return;
+    }
+    flush_held();
+    if (complete) std::cout << "(" << rows_ << (rows_ == 1 ? " row)\n" : " rows)\n");
+  }
+
+ private:
+  static constexpr std::size_t kAligned = 1000;
+
+  void start(const std::vector<std::string>& columns) {
+    started_ = true;
+    columns_ = columns;
+    keys_ = unique_keys(columns);
+    width_.assign(columns.size(), 0);
+    for (std::size_t c = 0; c < columns.size(); ++c) width_[c] = columns[c].size();
+    if (json_) std::cout << "[";
+  }
+
+  bool add(const QueryRow& row) {
+    ++rows_;
+    if (json_) {
+      std::cout << (rows_ > 1 ? ",\n " : "\n ") << "{";
+      for (std::size_t c = 0; c < columns_.size(); ++c) {
+        const ValueKind kind = c < row.kinds.size() ? row.kinds[c] : ValueKind::kText;
+        std::cout << (c ? ", " : "") << json_string(keys_[c]) << ": "
+                  << json_value(row.values[c], kind);
+      }
+      std::cout << "}";
+    } else if (!header_printed_) {
+      held_.push_back(row.values);
+      if (held_.size() == kAligned) flush_held();
+    } else {
+      line(row.values);
+    }
+    return static_cast<bool>(std::cout);
+  }
+
+  void flush_held() {
+    if (header_printed_) return;
+    for (const auto& row : held_) {
+      for (std::size_t c = 0; c < row.size() && c < width_.size(); ++c) {
+        width_[c] = std::max(width_[c], row[c] ? row[c]->size() : 4);
+      }
+    }
+    print_line([&](std::size_t c) { return columns_[c]; });
+    print_line([&](std::size_t c) { return std::string(width_[c], '-'); });
+    header_printed_ = true;
+    for (const auto& row : held_) line(row);
+    held_.clear();
+    held_.shrink_to_fit();
+  }
+
+  void line(const std::vector<std::optional<std::string>>& row) {
+    print_line([&](std::size_t c) { return row[c] ? *row[c] : std::string("NULL"); });
+  }
+
+  template <class Cell>
+  void print_line(Cell cell) {
+    for (std::size_t c = 0; c < columns_.size(); ++c) {
       const std::string s = cell(c);
+      width_[c] = std::max(width_[c], s.size());
       std::cout << (c ? "  " : "") << s
-                << std::string(c + 1 < r.columns.size() ? width[c] - s.size() : 0, ' ');
+                << std::string(c + 1 < columns_.size() ? width_[c] - s.size() : 0, ' ');
     }
     std::cout << '\n';
-  };
-  line([&](std::size_t c) { return r.columns[c]; });
-  line([&](std::size_t c) { return std::string(width[c], '-'); });
-  for (const auto& row : r.rows) line([&](std::size_t c) { return row[c] ? *row[c] : "NULL"; });
-  std::cout << "(" << r.rows.size() << (r.rows.size() == 1 ? " row)\n" : " rows)\n");
-}
+  }
+
+  bool json_;
+  std::vector<std::string> columns_, keys_;
+  std::vector<std::size_t> width_;
+  std::vector<std::vector<std::optional<std::string>>> held_;
+  bool started_ = false, header_printed_ = false;
+  std::size_t rows_ = 0;
+};
 
 std::string stem_of(const std::string& in) {
   if (in.rfind("example:", 0) == 0) return in.substr(8);
@@ -384,10 +441,11 @@ int run(const std::vector<std::string>& argv) {
   QueryOptions q;
   q.timeout = timeout;
   q.max_rows = limit;
-  auto r = store.query(sql, q);
+  AnswerPrinter printer(json);
+  auto r = store.query_each(sql, q, printer.callbacks());
+  printer.finish(r.ok());
   if (!r) return fail(r.error().message);
-  json ? print_json(r.value()) : print_table(r.value());
-  if (r->truncated) {
+  if (r.value()) {
     std::cerr << "cellforge db: only the first " << q.max_rows
               << " rows are printed (--limit N for more, 0 for all)\n";
   }

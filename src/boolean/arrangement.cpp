@@ -142,6 +142,21 @@ H3<T> compute3(const Arrangement& A, const PointDef& d) {
       const H2<T> h = cross2(line_coeffs<T>(A, c, c.lines[d.b]), line_coeffs<T>(A, c, c.lines[d.c]));
       return lift(A, c, h);
     }
+    case PointKind::kMeet: {
+      // X = s + tau (t - s) on line pq: with u = q - p, v = t - s in the projection
+      // along k, tau = cross(u, p - s) / cross(u, v).
+      const auto [si, ti, k] = A.meets[d.c];
+      const int i = (static_cast<int>(k) + 1) % 3, j = (static_cast<int>(k) + 2) % 3;
+      const V3<T> p = vec<T>(A.pos[d.a]), q = vec<T>(A.pos[d.b]);
+      const V3<T> s = vec<T>(A.pos[si]), t = vec<T>(A.pos[ti]);
+      const V3<T> u = sub(q, p), v = sub(t, s), ps = sub(p, s);
+      const T den = u[i] * v[j] - u[j] * v[i];
+      const T num = u[i] * ps[j] - u[j] * ps[i];
+      H3<T> out;
+      for (int a = 0; a < 3; ++a) out.c[a] = s[a] * den + v[a] * num;
+      out.c[3] = den;
+      return out;
+    }
   }
   return {};
 }
@@ -438,15 +453,23 @@ void Arrangement::line_union(std::uint32_t a, std::uint32_t b) {
 // ---------------------------------------------------------------- construction
 
 Arrangement::Arrangement(std::vector<Vec3> positions, std::vector<Tri> triangles,
-                         std::vector<SoupFace> soup_faces, std::uint32_t n_operands)
+                         std::vector<SoupFace> soup_faces, std::uint32_t n_operands,
+                         std::vector<WireSeg> wire_list)
     : pos(std::move(positions)),
       tris(std::move(triangles)),
       faces(std::move(soup_faces)),
+      wires(std::move(wire_list)),
       operands(n_operands) {
   tri_boxes.resize(tris.size());
   for (std::size_t t = 0; t < tris.size(); ++t)
     for (std::uint32_t v : tris[t].v) tri_boxes[t].add(pos[v]);
   bvh = Bvh(tri_boxes);
+  wire_boxes.resize(wires.size());
+  for (std::size_t w = 0; w < wires.size(); ++w) {
+    wire_boxes[w].add(pos[wires[w].p]);
+    wire_boxes[w].add(pos[wires[w].q]);
+  }
+  if (!wires.empty()) wire_bvh = Bvh(wire_boxes);
 }
 
 std::uint32_t Arrangement::new_point(PointDef def, const Cluster* home) {
@@ -783,12 +806,139 @@ void Arrangement::add_pair(std::uint32_t t, std::uint32_t b) {
 
 // ---------------------------------------------------------------- stage 2
 
+// ---------------------------------------------------------------- wires
+
+namespace {
+
+// An axis along which the projection of triangle abc has area (-1: none).
+int projection_axis(Vec3 a, Vec3 b, Vec3 c) {
+  const int k = dominant_axis(cross(b - a, c - a));
+  for (int d = 0; d < 3; ++d)
+    if (orient2d_projected(a, b, c, (k + d) % 3) != 0) return (k + d) % 3;
+  return -1;
+}
+
+// Whether v lies strictly inside segment pq (all input points; exact).
+bool strictly_inside(Vec3 p, Vec3 q, Vec3 v) {
+  if (v == p || v == q || !collinear3d(p, q, v)) return false;
+  for (int d = 0; d < 3; ++d)
+    if (p[d] != q[d]) return (p[d] < v[d]) == (v[d] < q[d]) && v[d] != p[d] && v[d] != q[d];
+  return false;
+}
+
+}  // namespace
+
+void Arrangement::split_wires() {
+  // Records point x on input edge st when it lies strictly inside it, so that the
+  // faces along that edge take it as a vertex (output.cpp's T-junction step).
+  auto along_inside = [&](std::uint32_t s, std::uint32_t t, std::uint32_t x) {
+    const int ax = dominant_axis(pos[t] - pos[s]);
+    return compare3(s, x, ax) * compare3(x, t, ax) > 0;
+  };
+  auto on_edge = [&](std::uint32_t s, std::uint32_t t, std::uint32_t x) {
+    if (x == s || x == t) return;
+    const bool inside = x < pos.size() ? strictly_inside(pos[s], pos[t], pos[x])
+                                       : collinear3(s, t, x) && along_inside(s, t, x);
+    if (inside) edge_points.push_back({edge_key(s, t), x});
+  };
+  for (const WireSeg& w : wires) {
+    if (w.p == w.q) {
+      // An isolated point on a triangle's edge becomes that edge's vertex.
+      Box b;
+      b.add(pos[w.p]);
+      bvh.query([&](const Box& x) { return x.overlaps(b); }, [&](std::uint32_t t) {
+        for (int e = 0; e < 3; ++e) on_edge(tris[t].v[e], tris[t].v[(e + 1) % 3], w.p);
+      });
+      wire_pieces.push_back(w);
+      continue;
+    }
+    const Vec3 p = pos[w.p], q = pos[w.q];
+    std::vector<std::uint32_t> cuts;
+    Box box;
+    box.add(p);
+    box.add(q);
+    bvh.query([&](const Box& x) { return x.overlaps(box); }, [&](std::uint32_t ti) {
+      const Tri& t = tris[ti];
+      const Vec3 a = pos[t.v[0]], b = pos[t.v[1]], c = pos[t.v[2]];
+      const int sp = orient3d(a, b, c, p), sq = orient3d(a, b, c, q);
+      for (int e = 0; e < 3; ++e) {
+        const std::uint32_t v = t.v[e];
+        if (strictly_inside(p, q, pos[v])) cuts.push_back(v);  // through a vertex
+        on_edge(t.v[e], t.v[(e + 1) % 3], w.p);                 // an end on an edge
+        on_edge(t.v[e], t.v[(e + 1) % 3], w.q);
+      }
+      if (sp * sq < 0) {
+        // Through the plane: where it meets the plane, if inside the closed triangle.
+        const std::uint32_t ci = cluster_of[ti];
+        const Cluster& cl = clusters[ci];
+        const int o = orient2(cl, t.v[0], t.v[1], t.v[2]);
+        const std::uint32_t x = lpi_point(w.p, w.q, ci);
+        bool inside = true;
+        for (int e = 0; e < 3 && inside; ++e) inside = orient2(cl, t.v[e], t.v[(e + 1) % 3], x) * o >= 0;
+        if (!inside) return;
+        cuts.push_back(x);
+        for (int e = 0; e < 3; ++e)
+          if (orient2(cl, t.v[e], t.v[(e + 1) % 3], x) == 0) on_edge(t.v[e], t.v[(e + 1) % 3], x);
+      } else if (sp == 0 && sq == 0) {
+        // In the plane: where it crosses the triangle's edges.
+        const int k = projection_axis(a, b, c);
+        if (k < 0) return;
+        for (int e = 0; e < 3; ++e) {
+          const std::uint32_t s = t.v[e], u = t.v[(e + 1) % 3];
+          const Vec3 ps = pos[s], pu = pos[u];
+          if (orient2d_projected(p, q, ps, k) * orient2d_projected(p, q, pu, k) < 0 &&
+              orient2d_projected(ps, pu, p, k) * orient2d_projected(ps, pu, q, k) < 0) {
+            meets.push_back({s, u, static_cast<std::uint32_t>(k)});
+            const std::uint32_t x =
+                new_point({PointKind::kMeet, w.p, w.q, static_cast<std::uint32_t>(meets.size() - 1)}, nullptr);
+            cuts.push_back(x);
+            edge_points.push_back({edge_key(s, u), x});
+          }
+        }
+      }
+    });
+    // Other wires and points: an end or a point inside it, or a crossing in one plane.
+    wire_bvh.query([&](const Box& x) { return x.overlaps(box); }, [&](std::uint32_t oi) {
+      const WireSeg& o = wires[oi];
+      if (&o == &w) return;
+      const Vec3 a = pos[o.p], b = pos[o.q];
+      if (strictly_inside(p, q, a)) cuts.push_back(o.p);
+      if (o.q != o.p && strictly_inside(p, q, b)) cuts.push_back(o.q);
+      if (o.p == o.q || orient3d(p, q, a, b) != 0) return;
+      for (int k = 0; k < 3; ++k) {
+        const int s1 = orient2d_projected(p, q, a, k), s2 = orient2d_projected(p, q, b, k);
+        const int s3 = orient2d_projected(a, b, p, k), s4 = orient2d_projected(a, b, q, k);
+        if (s1 == 0 && s2 == 0) continue;  // on one line in this projection: try another
+        if (s1 * s2 < 0 && s3 * s4 < 0) {
+          meets.push_back({o.p, o.q, static_cast<std::uint32_t>(k)});
+          cuts.push_back(new_point({PointKind::kMeet, w.p, w.q, static_cast<std::uint32_t>(meets.size() - 1)}, nullptr));
+        }
+        return;
+      }
+    });
+    // In order along the wire, each point once.
+    const int axis = dominant_axis(q - p);
+    std::sort(cuts.begin(), cuts.end(), [&](std::uint32_t x, std::uint32_t y) {
+      return compare3(x, y, axis) * (p[axis] < q[axis] ? 1 : -1) < 0;
+    });
+    cuts.erase(std::unique(cuts.begin(), cuts.end(),
+                           [&](std::uint32_t x, std::uint32_t y) { return compare3(x, y, axis) == 0; }),
+               cuts.end());
+    std::uint32_t from = w.p;
+    for (std::uint32_t x : cuts) {
+      wire_pieces.push_back({from, x, w.operand});
+      from = x;
+    }
+    wire_pieces.push_back({from, w.q, w.operand});
+  }
+}
+
 void Arrangement::split() {
   for (std::uint32_t ci = 0; ci < clusters.size(); ++ci)
     if (clusters[ci].touched) split_cluster(ci);
 }
 
-void Arrangement::release_pieces() {
+void Arrangement::release_pieces(bool keep_tree) {
   for (Cluster& c : clusters) {
     std::vector<Piece>().swap(c.pieces);
     std::vector<Constraint>().swap(c.constraints);
@@ -798,9 +948,10 @@ void Arrangement::release_pieces() {
     std::vector<std::vector<std::uint32_t>>().swap(f.loops);
     std::vector<std::uint32_t>().swap(f.tris);
   }
+  lpi_ids_ = {};
+  if (keep_tree) return;
   std::vector<Box>().swap(tri_boxes);
   bvh = Bvh();
-  lpi_ids_ = {};
 }
 
 void Arrangement::piece_box(const Cluster& c, Piece& p) const {

@@ -57,6 +57,8 @@ struct SoupFace {
   std::vector<std::vector<std::uint32_t>> loops;
   std::vector<std::uint32_t> tris;
   bool flipped = false;  // the model's face points into its cell: reversed here
+  bool sheet = false;    // a face with no cell on either side: it bounds nothing, and
+                         // its points are the operand's (non-regularized operations)
 };
 
 enum class LineKind : std::uint8_t { kThrough, kTrace, kAxisU, kAxisV };
@@ -78,11 +80,17 @@ struct Line {
   }
 };
 
-enum class PointKind : std::uint8_t { kVertex, kLpi, kCross };
+enum class PointKind : std::uint8_t { kVertex, kLpi, kCross, kMeet };
 struct PointDef {
   PointKind kind = PointKind::kVertex;
   std::uint32_t a = 0, b = 0, c = 0;  // vertex a | lpi p=a q=b plane of triangle c |
-                                      // cross: cluster a, lines b, c
+                                      // cross: cluster a, lines b, c |
+                                      // meet: segment ab and Arrangement::meets[c]
+};
+
+// A wire edge of an operand (p != q), or an isolated point (p == q): input vertices.
+struct WireSeg {
+  std::uint32_t p = 0, q = 0, operand = 0;
 };
 
 struct Piece {
@@ -120,21 +128,32 @@ struct RepPoint {
 class Arrangement {
  public:
   Arrangement(std::vector<Vec3> positions, std::vector<Tri> tris, std::vector<SoupFace> faces,
-              std::uint32_t operands);
+              std::uint32_t operands, std::vector<WireSeg> wires = {});
 
   // Stage 1: candidate pairs, exact tests, clusters and their constraints.
   // Stage 1 on `threads` threads (0: all); the same result at any count.
   void intersect(int threads = 1);
   // Stage 2: each cluster cut into convex pieces.
   void split();
+  // The operands' wire edges cut where they cross a face, an edge or another wire, or
+  // pass through a vertex (wire_pieces); points on input edges are recorded there.
+  void split_wires();
   // Frees what only stages 1 to 4 read (the pieces, the constraints, the triangles'
-  // boxes and tree, the input faces' loops), before the result is built.
-  void release_pieces();
+  // boxes and tree, the input faces' loops), before the result is built; with
+  // keep_tree, the triangles' boxes and tree stay (for classify_sites).
+  void release_pieces(bool keep_tree = false);
 
   // ---- data
   std::vector<Vec3> pos;
   std::vector<Tri> tris;
   std::vector<SoupFace> faces;
+  std::vector<WireSeg> wires;        // the operands' wire edges and isolated points
+  std::vector<WireSeg> wire_pieces;  // after split_wires: points (p == q) stay
+  std::vector<Box> wire_boxes;
+  Bvh wire_bvh;
+  // kMeet points: where segment (a, b) of the point meets segment (s, t) lying in one
+  // plane with it, computed in the projection along axis k: {s, t, k}.
+  std::vector<std::array<std::uint32_t, 3>> meets;
   std::uint32_t operands = 0;
   std::vector<Box> tri_boxes;
   Bvh bvh;

@@ -115,12 +115,14 @@ std::vector<std::vector<std::array<VertexId, 3>>> triangulate_faces(const Model&
   return all;
 }
 
-// The operands' faces that bound a cell on one side, as outward triangles.
+// The operands' faces that bound a cell on one side, as outward triangles, and their
+// sheets (faces with no cell on either side) as they are.
 Result<Arrangement> make_soup(std::span<const Model* const> operands, int threads) {
   std::vector<Vec3> pos;
   std::unordered_map<Vec3, std::uint32_t, VecHash> ids;
   std::vector<Tri> tris;
   std::vector<SoupFace> faces;
+  std::vector<WireSeg> wires;
   for (std::uint32_t k = 0; k < operands.size(); ++k) {
     const Model& m = *operands[k];
     std::unordered_map<std::uint32_t, std::uint32_t> vmap;
@@ -139,17 +141,18 @@ Result<Arrangement> make_soup(std::span<const Model* const> operands, int thread
     const std::vector<FaceId> face_ids = face_list(m);
     const std::vector<std::vector<std::array<VertexId, 3>>> tiled =
         triangulate_faces(m, face_ids, threads, [&](FaceId f) {
-          return m.front_volume(f).is_valid() != m.back_volume(f).is_valid();
+          return !(m.front_volume(f).is_valid() && m.back_volume(f).is_valid());
         });
     for (std::size_t fi = 0; fi < face_ids.size(); ++fi) {
       const FaceId f = face_ids[fi];
       const auto& triangles = tiled[fi];
       const bool front = m.front_volume(f).is_valid(), back = m.back_volume(f).is_valid();
-      if (front == back) continue;  // a sheet, or a face between two of its cells
+      if (front && back) continue;  // a face between two of its cells: inside it
       SoupFace sf;
       sf.operand = k;
       sf.face = f.value;
       sf.flipped = front;
+      sf.sheet = !front && !back;
       for (LoopId l = m.outer_loop(f); l.is_valid(); l = m.next_loop(l)) {
         if (m.is_point_loop(l)) continue;
         std::vector<std::uint32_t> loop;
@@ -167,12 +170,18 @@ Result<Arrangement> make_soup(std::span<const Model* const> operands, int thread
       }
       faces.push_back(std::move(sf));
     }
-    if (tris.size() == before)
+    // Wire edges, and vertices on nothing (not a face's point loop either).
+    const std::size_t wires_before = wires.size();
+    for (EdgeId e : m.edges())
+      if (m.is_wire(e)) wires.push_back({vid(m.start_of(e)), vid(m.end_of(e)), k});
+    for (VertexId v : m.vertices())
+      if (!m.first_end(v).edge.is_valid() && !m.point_loop(v).is_valid()) wires.push_back({vid(v), vid(v), k});
+    if (tris.size() == before && wires.size() == wires_before)
       return Error{ErrorCode::kInvalidInput,
-                   "boolean: operand " + std::to_string(k) + " holds no solid (no face bounds a cell)"};
+                   "boolean: operand " + std::to_string(k) + " is empty (no face, edge or point)"};
   }
   return Arrangement(std::move(pos), std::move(tris), std::move(faces),
-                     static_cast<std::uint32_t>(operands.size()));
+                     static_cast<std::uint32_t>(operands.size()), std::move(wires));
 }
 
 // ---------------------------------------------------------------- the rounding check
@@ -245,16 +254,18 @@ Result<BooleanResult> evaluate(std::span<const Model* const> operands, const Exp
 
   t = Clock::now();
   a.split();
+  a.split_wires();
   report.seconds.split = seconds_since(t);
 
   t = Clock::now();
-  std::vector<OutPoly> polys = classify_and_select(a, expr, report, options.threads);
+  Selection selection = classify_and_select(a, expr, options, report);
   report.seconds.classify = seconds_since(t);
-  a.release_pieces();
+  // A non-regularized result classifies points and edges after merging: the tree stays.
+  a.release_pieces(/*keep_tree=*/options.keep_lower_dim);
   report.implicit_points = a.points.size();
 
   t = Clock::now();
-  auto result = build_result(a, std::move(polys), report, options.threads);
+  auto result = build_result(a, std::move(selection), expr, options, report);
   report.seconds.output = seconds_since(t);
   if (!result) return result.error();
 

@@ -14,7 +14,9 @@
 // Triangles that nothing cuts are classified a patch at a time: the triangles of one
 // operand joined across manifold edges, consistently oriented, that touch nothing.
 #include <algorithm>
+#include <array>
 #include <optional>
+#include <type_traits>
 
 #include "boolean/parallel.h"
 #include "boolean/stages.h"
@@ -40,17 +42,42 @@ int sgn(double x) { return x > 0 ? 1 : (x < 0 ? -1 : 0); }
 
 // Winding numbers by operand on the two sides of a point; `touched` lists the
 // operands a ray met (with repeats), so that a ray over many operands costs what it
-// crosses, not the operand count.
+// crosses, not the operand count. `on` marks the operands whose closed point set
+// holds the point itself (found for free starts only, RayCaster::cast_free).
 struct Windings {
   std::vector<int> front, back;
+  std::vector<char> on;
   std::vector<std::uint32_t> touched;
   void reset(std::size_t operands) {
     if (front.size() != operands) {
       front.assign(operands, 0);
       back.assign(operands, 0);
+      on.assign(operands, 0);
     }
-    for (std::uint32_t o : touched) front[o] = back[o] = 0;
+    for (std::uint32_t o : touched) front[o] = back[o] = on[o] = 0;
     touched.clear();
+  }
+};
+
+// Where a ray starts: a point strictly inside a piece, on its cluster's plane, with
+// the piece's two sides; or a free point, an arrangement point p or the point
+// (p + 2q) / 3 strictly inside the segment pq, with no plane.
+struct PieceStart {
+  const Arrangement& a;
+  RepPoint r;
+  template <class T>
+  H3<T> get() const { return a.rep3<T>(r); }
+};
+struct FreeStart {
+  const Arrangement& a;
+  std::uint32_t p, q;
+  template <class T>
+  H3<T> get() const {
+    const H3<T> x = a.point3<T>(p);
+    if (p == q) return x;
+    const H3<T> y = a.point3<T>(q);
+    return {{x.c[0] * y.c[3] + T(2.0) * y.c[0] * x.c[3], x.c[1] * y.c[3] + T(2.0) * y.c[1] * x.c[3],
+             x.c[2] * y.c[3] + T(2.0) * y.c[2] * x.c[3], T(3.0) * x.c[3] * y.c[3]}};
   }
 };
 
@@ -59,19 +86,37 @@ class RayCaster {
   explicit RayCaster(const Arrangement& a) : a_(a) {}
 
   void cast(const RepPoint& r, Windings& w) const {
-    ++rays;
-    w.reset(a_.operands);
     // Along the axis closest to the piece's normal: the ray leaves the piece's plane
     // at once, so the edges lying in that plane are not met edge-on.
-    k_ = a_.clusters[r.cluster].k;
+    const Cluster& c = a_.clusters[r.cluster];
+    run(PieceStart{a_, r}, c.k, &a_.tris[c.ref], r.cluster, w);
+  }
+  // At a free point, its two sides are one: the point is shifted by an infinitesimal
+  // along the ray's axis (`axis`, towards `dir` = +1 or -1). The operands whose closed
+  // set holds the point are marked in w.on (their windings are those of a point next
+  // to it).
+  void cast_free(std::uint32_t p, std::uint32_t q, Windings& w, int axis = 2, int dir = 1) const {
+    dir_ = dir;
+    run(FreeStart{a_, p, q}, axis, nullptr, kInvalidIndex, w);
+    dir_ = 1;
+  }
+
+  mutable std::size_t rays = 0;
+
+ private:
+  template <class Start>
+  void run(const Start& start, int k, const Tri* ref, std::uint32_t cluster, Windings& w) const {
+    ++rays;
+    w.reset(a_.operands);
+    k_ = k;
     i_ = (k_ + 1) % 3;
     j_ = (k_ + 2) % 3;
     exact_x_.reset();
-    const H3<Fp> h = a_.rep3<Fp>(r);
+    const H3<Fp> h = start.template get<Fp>();
     double e[3], x[3];
     // Doubles are good enough when W is known to a relative 2^-20; else exactly.
     const bool rounded_ok = std::abs(h.c[3].v) > h.c[3].e * 0x1p20;
-    if (!rounded_ok) exact_x_ = a_.rep3<Dyadic>(r);  // too close to call in doubles
+    if (!rounded_ok) exact_x_ = start.template get<Dyadic>();  // too close to call in doubles
     for (int i = 0; i < 3; ++i) {
       if (rounded_ok) {
         x[i] = h.c[i].v / h.c[3].v;
@@ -83,31 +128,150 @@ class RayCaster {
       }
       x_[i] = Fp(x[i], e[i]);
     }
-    const int ws = decide([&]<class T>() { return a_.rep3<T>(r).c[3]; });
-    const Tri& ref = a_.tris[a_.clusters[r.cluster].ref];
+    const int ws = decide([&]<class T>() { return start.template get<T>().c[3]; });
     auto accept = [&](const Box& b) {
       return b.hi[k_] >= x[k_] - e[k_] && b.lo[i_] <= x[i_] + e[i_] && b.hi[i_] >= x[i_] - e[i_] &&
              b.lo[j_] <= x[j_] + e[j_] && b.hi[j_] >= x[j_] - e[j_];
     };
-    a_.bvh.query(accept, [&](std::uint32_t t) { contribute(r, ws, ref, t, w); });
+    a_.bvh.query(accept, [&](std::uint32_t t) {
+      if (!ref) {
+        const Box& b = a_.tri_boxes[t];
+        bool near = true;
+        for (int d = 0; d < 3; ++d) near &= b.lo[d] <= x[d] + e[d] && b.hi[d] >= x[d] - e[d];
+        if (near && on_triangle(start, ws, t)) {
+          w.on[a_.tris[t].operand] = 1;
+          w.touched.push_back(a_.tris[t].operand);
+        }
+      }
+      if (!a_.faces[a_.tris[t].input_face].sheet) contribute(start, ws, ref, cluster, t, w);
+    });
+    if (ref || a_.wires.empty()) return;
+    a_.wire_bvh.query(
+        [&](const Box& b) {
+          bool near = true;
+          for (int d = 0; d < 3; ++d) near &= b.lo[d] <= x[d] + e[d] && b.hi[d] >= x[d] - e[d];
+          return near;
+        },
+        [&](std::uint32_t wi) {
+          const WireSeg& s = a_.wires[wi];
+          if (on_segment(start, ws, a_.pos[s.p], a_.pos[s.q])) {
+            w.on[s.operand] = 1;
+            w.touched.push_back(s.operand);
+          }
+        });
   }
 
-  mutable std::size_t rays = 0;
-
- private:
   // The sign of a polynomial that is affine in the point: first on the point's
   // rounded coordinates with their error bounds (tight, unlike the homogeneous form),
   // then exactly on its homogeneous coordinates (with W's sign ws).
-  template <class Affine>
-  int affine_sign(const RepPoint& r, int ws, Affine f) const {
+  template <class Start, class Affine>
+  int affine_sign(const Start& start, int ws, Affine f) const {
     const int s = sign_of(f(H3<Fp>{{x_[0], x_[1], x_[2], Fp(1.0)}}));
     if (s != kUncertain) return s;
+    if constexpr (std::is_same_v<Start, FreeStart>) {
+      // Between two input vertices, f is (f(p) + 2 f(q)) / 3: their signs, on doubles,
+      // decide unless they differ.
+      if (start.p < a_.pos.size() && start.q < a_.pos.size()) {
+        auto at = [&](std::uint32_t v) {
+          const Vec3 x = a_.pos[v];
+          return decide([&]<class T>() { return f(H3<T>{{T(x.x), T(x.y), T(x.z), T(1.0)}}); });
+        };
+        const int sp = at(start.p), sq = start.q == start.p ? sp : at(start.q);
+        if (sp == sq || sq == 0) return sp;
+        if (sp == 0) return sq;
+      }
+    }
     ++exact_evaluations();
-    if (!exact_x_) exact_x_ = a_.rep3<Dyadic>(r);
+    if (!exact_x_) exact_x_ = start.template get<Dyadic>();
     return ws * sign_of(f(*exact_x_));
   }
 
-  void contribute(const RepPoint& r, int ws, const Tri& ref, std::uint32_t ti, Windings& w) const {
+  // The side of the start of triangle ti's plane (0: on it). A free start between two
+  // points whose sides are known without arithmetic (input vertices by orient3d on
+  // doubles, implicit points made on that plane by construction) is on the side they
+  // share; otherwise, and for a piece's start, exactly.
+  template <class Start>
+  int plane_sign(const Start& start, int ws, std::uint32_t ti) const {
+    if constexpr (std::is_same_v<Start, FreeStart>) {
+      const int sp = known_side(start.p, ti);
+      const int sq = start.q == start.p ? sp : known_side(start.q, ti);
+      if (sp != kUncertain && sq != kUncertain) {
+        if (sp == sq || sq == 0) return sp;
+        if (sp == 0) return sq;
+      }
+    }
+    const Tri& t = a_.tris[ti];
+    const Vec3 p0 = a_.pos[t.v[0]];
+    return affine_sign(start, ws, [&]<class T>(const H3<T>& x) {
+      const V3<T> n = normal_t<T>(a_, t);
+      return n[0] * (x.c[0] - T(p0.x) * x.c[3]) + n[1] * (x.c[1] - T(p0.y) * x.c[3]) +
+             n[2] * (x.c[2] - T(p0.z) * x.c[3]);
+    });
+  }
+  int known_side(std::uint32_t p, std::uint32_t ti) const {
+    const Tri& t = a_.tris[ti];
+    if (p < a_.pos.size()) return orient3d(a_.pos[t.v[0]], a_.pos[t.v[1]], a_.pos[t.v[2]], a_.pos[p]);
+    const std::uint32_t plane = a_.plane_of[a_.cluster_of[ti]];
+    const PointDef& d = a_.points[p - a_.pos.size()];
+    if (d.kind == PointKind::kLpi && a_.plane_of[a_.cluster_of[d.c]] == plane) return 0;
+    if (d.kind == PointKind::kCross && a_.plane_of[d.a] == plane) return 0;
+    return kUncertain;
+  }
+
+  // Whether the start lies on the closed triangle t: on its plane, and inside or on
+  // its sides in the projection along its normal's largest component.
+  template <class Start>
+  bool on_triangle(const Start& start, int ws, std::uint32_t ti) const {
+    const Tri& t = a_.tris[ti];
+    const Vec3 p[3] = {a_.pos[t.v[0]], a_.pos[t.v[1]], a_.pos[t.v[2]]};
+    int k = 0, mk = 0;
+    for (int axis = 0; axis < 3 && mk == 0; ++axis) {
+      mk = orient2d_projected(p[0], p[1], p[2], axis);
+      k = axis;
+    }
+    if (mk == 0) return false;
+    const int i = (k + 1) % 3, j = (k + 2) % 3;
+    for (int q = 0; q < 3; ++q) {
+      const Vec3 s = p[q], u = p[(q + 1) % 3];
+      const int o = affine_sign(start, ws, [&]<class T>(const H3<T>& x) {
+        return (T(u[i]) - T(s[i])) * (x.c[j] - T(s[j]) * x.c[3]) -
+               (T(u[j]) - T(s[j])) * (x.c[i] - T(s[i]) * x.c[3]);
+      });
+      if (o == -mk) return false;
+    }
+    return plane_sign(start, ws, ti) == 0;
+  }
+
+  // Whether the start lies on the closed segment pq (a point where p == q).
+  template <class Start>
+  bool on_segment(const Start& start, int ws, Vec3 p, Vec3 q) const {
+    for (int i = 0; i < 3; ++i) {
+      // The components of d x (X - p) vanish (X - p itself where p == q).
+      const int j = (i + 1) % 3, k = (i + 2) % 3;
+      const int s = affine_sign(start, ws, [&]<class T>(const H3<T>& x) {
+        if (p == q) return x.c[i] - T(p[i]) * x.c[3];
+        return (T(q[j]) - T(p[j])) * (x.c[k] - T(p[k]) * x.c[3]) -
+               (T(q[k]) - T(p[k])) * (x.c[j] - T(p[j]) * x.c[3]);
+      });
+      if (s != 0) return false;
+    }
+    if (p == q) return true;
+    for (const Vec3 from : {p, q}) {
+      const Vec3 to = from == p ? q : p;
+      const int s = affine_sign(start, ws, [&]<class T>(const H3<T>& x) {
+        T sum = T(0.0);
+        for (int i = 0; i < 3; ++i) sum = sum + (T(to[i]) - T(from[i])) * (x.c[i] - T(from[i]) * x.c[3]);
+        return sum;
+      });
+      if (s < 0) return false;
+    }
+    return true;
+  }
+
+  // ref: the piece's reference triangle (its plane and sides), null for a free start.
+  template <class Start>
+  void contribute(const Start& start, int ws, const Tri* ref, std::uint32_t cluster, std::uint32_t ti,
+                  Windings& w) const {
     const Tri& t = a_.tris[ti];
     const Vec3 p[3] = {a_.pos[t.v[0]], a_.pos[t.v[1]], a_.pos[t.v[2]]};
     const int k = k_, i = i_, j = j_;
@@ -116,7 +280,7 @@ class RayCaster {
     bool in_front = true, in_back = true;
     for (int q = 0; q < 3; ++q) {
       const Vec3 s = p[q], u = p[(q + 1) % 3];
-      const int o = affine_sign(r, ws, [&]<class T>(const H3<T>& x) {
+      const int o = affine_sign(start, ws, [&]<class T>(const H3<T>& x) {
         return (T(u[i]) - T(s[i])) * (x.c[j] - T(s[j]) * x.c[3]) -
                (T(u[j]) - T(s[j])) * (x.c[i] - T(s[i]) * x.c[3]);
       });
@@ -124,10 +288,12 @@ class RayCaster {
         if (o != mk) return;
         continue;
       }
-      const int d = decide([&]<class T>() {
-        const V3<T> n = normal_t<T>(a_, ref);
+      // Shifted off the line by the side (for a free start, along the ray: no shift
+      // across it), else across the ray by (e, e^2).
+      const int d = ref ? decide([&]<class T>() {
+        const V3<T> n = normal_t<T>(a_, *ref);
         return (T(u[i]) - T(s[i])) * n[j] - (T(u[j]) - T(s[j])) * n[i];
-      });
+      }) : 0;
       const int eps = s[j] != u[j] ? sgn(s[j] - u[j]) : sgn(u[i] - s[i]);
       in_front &= (d != 0 ? d : eps) == mk;
       in_back &= (d != 0 ? -d : eps) == mk;
@@ -135,21 +301,21 @@ class RayCaster {
     if (!in_front && !in_back) return;
     // A triangle on the piece's plane has the point on its plane: known without
     // arithmetic (the exact test would be of degree 30).
-    const Vec3 r0 = a_.pos[ref.v[0]], r1 = a_.pos[ref.v[1]], r2 = a_.pos[ref.v[2]];
-    const bool coplanar = a_.cluster_of[ti] == r.cluster ||
-                          (orient3d(r0, r1, r2, p[0]) == 0 && orient3d(r0, r1, r2, p[1]) == 0 &&
-                           orient3d(r0, r1, r2, p[2]) == 0);
-    const int s = coplanar ? 0 : affine_sign(r, ws, [&]<class T>(const H3<T>& x) {
-      const V3<T> n = normal_t<T>(a_, t);
-      return n[0] * (x.c[0] - T(p[0].x) * x.c[3]) + n[1] * (x.c[1] - T(p[0].y) * x.c[3]) +
-             n[2] * (x.c[2] - T(p[0].z) * x.c[3]);
-    });
+    bool coplanar = false;
+    if (ref) {
+      const Vec3 r0 = a_.pos[ref->v[0]], r1 = a_.pos[ref->v[1]], r2 = a_.pos[ref->v[2]];
+      coplanar = a_.cluster_of[ti] == cluster ||
+                 (orient3d(r0, r1, r2, p[0]) == 0 && orient3d(r0, r1, r2, p[1]) == 0 &&
+                  orient3d(r0, r1, r2, p[2]) == 0);
+    }
+    const int s = coplanar ? 0 : plane_sign(start, ws, ti);
     int sf = s, sb = s;
     if (s == 0) {
-      const int d = decide([&]<class T>() {
-        const V3<T> n = normal_t<T>(a_, t), m = normal_t<T>(a_, ref);
+      // On the triangle's plane: shifted by the side (a free start: up the ray's axis).
+      const int d = ref ? decide([&]<class T>() {
+        const V3<T> n = normal_t<T>(a_, t), m = normal_t<T>(a_, *ref);
         return n[0] * m[0] + n[1] * m[1] + n[2] * m[2];
-      });
+      }) : dir_ * mk;
       if (d != 0) {
         sf = d;
         sb = -d;
@@ -165,6 +331,7 @@ class RayCaster {
 
   const Arrangement& a_;
   mutable int k_ = 0, i_ = 1, j_ = 2;  // the ray's axis and the two across it
+  mutable int dir_ = 1;                // a free start's shift along the axis
   mutable Fp x_[3];  // the point of the current ray, rounded, with error bounds
   mutable std::optional<H3<Dyadic>> exact_x_;  // and exactly, once needed
 };
@@ -190,6 +357,30 @@ class Selector {
     const bool f = contains(w, w.front), b = contains(w, w.back);
     if (f == b) return 0;
     return b ? 1 : -1;
+  }
+
+  // The point set on a piece and on its two sides: `on` lists the operands whose
+  // faces hold the piece (closed sets hold their boundary), the others are inside
+  // where their winding is positive.
+  struct Sides {
+    bool front, back, on;
+  };
+  Sides sides(const Windings& w, const std::vector<std::uint32_t>& on) {
+    Sides s{contains(w, w.front), contains(w, w.back), false};
+    inside_.assign(w.front.size(), false);
+    for (std::uint32_t o : w.touched) inside_[o] = w.front[o] > 0 && w.back[o] > 0;
+    for (std::uint32_t o : on) inside_[o] = true;
+    s.on = expr_.contains(inside_);
+    return s;
+  }
+
+  // At a free point: whether the point is in the set, and whether the points next to
+  // it (where its ray starts) are.
+  std::pair<bool, bool> at_point(const Windings& w) {
+    const bool around = contains(w, w.front);
+    inside_.assign(w.front.size(), false);
+    for (std::uint32_t o : w.touched) inside_[o] = w.on[o] || w.front[o] > 0;
+    return {expr_.contains(inside_), around};
   }
 
  private:
@@ -264,28 +455,54 @@ bool covers(const Arrangement& a, std::uint32_t t, const RepPoint& r) {
 
 }  // namespace
 
-std::vector<OutPoly> classify_and_select(const Arrangement& a, const Expr& expr, Report& report,
-                                         int threads) {
-  std::vector<OutPoly> out;
+Selection classify_and_select(const Arrangement& a, const Expr& expr, const Options& options,
+                              Report& report) {
+  const int threads = options.threads;
+  const bool closed = options.keep_lower_dim || options.cells;
+  Selection selection;
+  std::vector<OutPoly>& out = selection.polys;
   // A ray per job on threads, each range with its own caster; verdicts read in order.
   struct Verdict {
     std::uint32_t source = kInvalidIndex;  // the input triangle it lies on; none: skip it
     int keep = 0;
+    FaceKind kind = FaceKind::kBoundary;
+    bool mark = true;
   };
   struct Part {
     std::vector<Verdict> verdicts;
     std::size_t rays = 0;
+  };
+  // The verdict on a face of the arrangement from its two sides and its own points.
+  auto judge = [&](Selector& selector, const Windings& w, const std::vector<std::uint32_t>& on, Verdict& v) {
+    if (!closed) {
+      v.keep = selector.select(w);
+      return;
+    }
+    const Selector::Sides s = selector.sides(w, on);
+    v.mark = s.on;
+    if (s.front != s.back) {
+      v.keep = s.back ? 1 : -1;
+    } else if (!s.front && s.on && options.keep_lower_dim) {
+      v.keep = 1;
+      v.kind = FaceKind::kSheet;
+    } else if (s.front && (options.cells || (!s.on && options.keep_lower_dim))) {
+      v.keep = 1;
+      v.kind = FaceKind::kInner;
+    }
+    if (!options.keep_lower_dim) v.mark = true;
   };
   auto classify = [&](std::size_t n, auto&& job) {
     std::vector<Part> parts = parallel_ranges<Part>(n, threads, [&](std::size_t lo, std::size_t hi, Part& part) {
       RayCaster rays(a);
       Windings w;
       Selector selector(expr, a.operands);
+      std::vector<std::uint32_t> on;
       for (std::size_t k = lo; k < hi; ++k) {
         Verdict v;
-        if (std::optional<RepPoint> r = job(k, v.source)) {
+        on.clear();
+        if (std::optional<RepPoint> r = job(k, v.source, on)) {
           rays.cast(*r, w);
-          v.keep = selector.select(w);
+          judge(selector, w, on, v);
         }
         part.verdicts.push_back(v);
       }
@@ -307,17 +524,20 @@ std::vector<OutPoly> classify_and_select(const Arrangement& a, const Expr& expr,
     report.touched_triangles += c.tris.size();
     for (std::uint32_t pi = 0; pi < c.pieces.size(); ++pi) jobs.push_back({ci, pi});
   }
-  const std::vector<Verdict> pieces = classify(jobs.size(), [&](std::size_t k, std::uint32_t& source) {
+  const std::vector<Verdict> pieces = classify(jobs.size(), [&](std::size_t k, std::uint32_t& source,
+                                                                 std::vector<std::uint32_t>& on) {
     const auto [ci, pi] = jobs[k];
     const Cluster& c = a.clusters[ci];
     const RepPoint r = rep_of(a, ci, c.pieces[pi]);
     if (c.tris.size() == 1) {
       source = c.tris[0];
+      on.push_back(a.tris[source].operand);
       return std::optional<RepPoint>(r);
     }
     int source_sign = 0;
     for (std::size_t t = 0; t < c.tris.size(); ++t) {
       if (!covers(a, c.tris[t], r)) continue;
+      on.push_back(a.tris[c.tris[t]].operand);
       if (source == kInvalidIndex || (source_sign < 0 && c.tri_sign[t] > 0)) {
         source = c.tris[t];
         source_sign = c.tri_sign[t];
@@ -337,6 +557,8 @@ std::vector<OutPoly> classify_and_select(const Arrangement& a, const Expr& expr,
     poly.cluster = jobs[k][0];
     poly.normal_sign = v.keep;
     poly.tri = v.source;
+    poly.kind = v.kind;
+    poly.mark = v.mark;
     std::vector<std::uint32_t> pts = p.pts, keys(p.lines.size());
     for (std::size_t i = 0; i < p.lines.size(); ++i) keys[i] = c.lines[p.lines[i]].key;
     if (c.nk_sign * v.keep < 0) reverse_loop(pts, keys);
@@ -391,16 +613,33 @@ std::vector<OutPoly> classify_and_select(const Arrangement& a, const Expr& expr,
     if (!is_root[root]) roots.push_back(root);
     is_root[root] = 1;
   }
-  const std::vector<Verdict> patch = classify(roots.size(), [&](std::size_t k, std::uint32_t& source) {
+  const std::vector<Verdict> patch = classify(roots.size(), [&](std::size_t k, std::uint32_t& source,
+                                                                std::vector<std::uint32_t>& on) {
     const Tri& rt = a.tris[roots[k]];
     source = roots[k];
+    on.push_back(rt.operand);
     return std::optional<RepPoint>(RepPoint{a.cluster_of[roots[k]], {rt.v[0], rt.v[1], rt.v[2]}});
   });
   std::vector<int> patch_keep(a.tris.size(), 0);
-  for (std::size_t k = 0; k < roots.size(); ++k) patch_keep[roots[k]] = patch[k].keep;
+  std::vector<std::uint32_t> patch_of(a.tris.size(), kInvalidIndex);
+  for (std::size_t k = 0; k < roots.size(); ++k) {
+    patch_keep[roots[k]] = patch[k].keep;
+    patch_of[roots[k]] = static_cast<std::uint32_t>(k);
+  }
   std::vector<int> tri_keep(a.tris.size(), 0);
   for (std::uint32_t t = 0; t < a.tris.size(); ++t)
     if (untouched(t)) tri_keep[t] = patch_keep[patches.find(t)];
+  // The whole verdict on an untouched triangle, and whether two agree.
+  auto verdict_of = [&](std::uint32_t t) -> const Verdict& { return patch[patch_of[patches.find(t)]]; };
+  auto same_verdict = [&](std::uint32_t t, std::uint32_t u) {
+    if (!untouched(t) || !untouched(u)) return false;
+    const Verdict &x = verdict_of(t), &y = verdict_of(u);
+    return x.keep == y.keep && x.kind == y.kind && x.mark == y.mark;
+  };
+  auto set_verdict = [&](OutPoly& poly, std::uint32_t t) {
+    poly.kind = verdict_of(t).kind;
+    poly.mark = verdict_of(t).mark;
+  };
   auto edge_keys = [&](const std::vector<std::uint32_t>& loop) {
     std::vector<std::uint32_t> keys(loop.size());
     for (std::size_t k = 0; k < loop.size(); ++k)
@@ -410,7 +649,7 @@ std::vector<OutPoly> classify_and_select(const Arrangement& a, const Expr& expr,
   for (const SoupFace& f : a.faces) {
     bool whole = !f.tris.empty();
     for (std::uint32_t t : f.tris)
-      whole &= untouched(t) && tri_keep[t] != 0 && tri_keep[t] == tri_keep[f.tris[0]];
+      whole &= untouched(t) && tri_keep[t] != 0 && same_verdict(t, f.tris[0]);
     // Not when something touches a diagonal inside it (the face must take the point).
     if (whole && f.tris.size() > 1) {
       std::vector<std::uint64_t> rim;
@@ -432,6 +671,7 @@ std::vector<OutPoly> classify_and_select(const Arrangement& a, const Expr& expr,
       OutPoly poly;
       poly.tri = f.tris[0];
       poly.normal_sign = keep;
+      set_verdict(poly, f.tris[0]);
       const Tri& t0 = a.tris[f.tris[0]];
       bool planar = true;
       for (const auto& loop : f.loops)
@@ -452,6 +692,7 @@ std::vector<OutPoly> classify_and_select(const Arrangement& a, const Expr& expr,
       poly.tri = t;
       poly.cluster = a.cluster_of[t];
       poly.normal_sign = tri_keep[t];
+      set_verdict(poly, t);
       std::vector<std::uint32_t> loop(a.tris[t].v.begin(), a.tris[t].v.end());
       if (tri_keep[t] < 0) std::reverse(loop.begin(), loop.end());
       poly.keys.push_back(edge_keys(loop));
@@ -459,7 +700,54 @@ std::vector<OutPoly> classify_and_select(const Arrangement& a, const Expr& expr,
       out.push_back(std::move(poly));
     }
   }
-  return out;
+  // The edges of the arrangement's faces that were dropped: where lower-dimensional
+  // parts may lie (an edge of a kept face is held by it).
+  if (options.keep_lower_dim) {
+    for (std::size_t k = 0; k < jobs.size(); ++k) {
+      if (pieces[k].source == kInvalidIndex || pieces[k].keep != 0) continue;
+      const Cluster& c = a.clusters[jobs[k][0]];
+      const Piece& p = c.pieces[jobs[k][1]];
+      for (std::size_t i = 0; i < p.pts.size(); ++i)
+        selection.sides.push_back({p.pts[i], p.pts[(i + 1) % p.pts.size()], c.lines[p.lines[i]].key});
+    }
+    for (std::uint32_t t = 0; t < a.tris.size(); ++t) {
+      if (!untouched(t) || tri_keep[t] != 0) continue;
+      for (int e = 0; e < 3; ++e) {
+        const std::uint32_t p = a.tris[t].v[e], q = a.tris[t].v[(e + 1) % 3];
+        selection.sides.push_back({p, q, a.find_edge_key(p, q)});
+      }
+    }
+  }
+  return selection;
+}
+
+std::vector<SiteVerdict> classify_sites(const Arrangement& a, const Expr& expr,
+                                        const std::vector<std::array<std::uint32_t, 2>>& sites,
+                                        int threads, bool both_sides) {
+  std::vector<std::vector<SiteVerdict>> parts = parallel_ranges<std::vector<SiteVerdict>>(
+      sites.size(), threads, [&](std::size_t lo, std::size_t hi, std::vector<SiteVerdict>& part) {
+        RayCaster rays(a);
+        Windings w;
+        Selector selector(expr, a.operands);
+        for (std::size_t k = lo; k < hi; ++k) {
+          rays.cast_free(sites[k][0], sites[k][1], w);
+          const auto [in, around] = selector.at_point(w);
+          SiteVerdict v{in, around, false};
+          // Shifted both ways along each axis: two sides that differ are the two
+          // sides of a face of the result through the point.
+          for (int axis = 0; axis < 3 && both_sides && !v.on_face; ++axis)
+            for (int dir : {1, -1}) {
+              if (axis == 2 && dir == 1) continue;
+              rays.cast_free(sites[k][0], sites[k][1], w, axis, dir);
+              v.on_face |= selector.at_point(w).second != around;
+            }
+          part.push_back(v);
+        }
+      });
+  std::vector<SiteVerdict> all;
+  all.reserve(sites.size());
+  for (auto& p : parts) all.insert(all.end(), p.begin(), p.end());
+  return all;
 }
 
 }  // namespace cellforge::boolean

@@ -18,12 +18,14 @@
 #include <map>
 #include <numeric>
 #include <unordered_map>
+#include <unordered_set>
 
 #include "boolean/stages.h"
 #include "cellforge/geom/predicates.h"
 #include "cellforge/geom/winding.h"
 #include "cellforge/geom/union_find.h"
 #include "cellforge/topo/builder.h"
+#include "cellforge/io/volumes.h"
 
 namespace cellforge::boolean {
 
@@ -183,6 +185,167 @@ void insert_between(const Arrangement& a, const LineClasses& lc, std::uint32_t r
   }
 }
 
+// Non-regularized results mark each edge in or out of the set as a whole, so an edge
+// must have a vertex wherever another operand's vertex (or a wire's end or point)
+// lies inside it: the set may change there (a - b for boxes touching along part of an
+// edge).
+void split_at_vertices(const Arrangement& a, const std::vector<std::uint32_t>& canon,
+                       std::vector<OutPoly>& polys) {
+  std::vector<std::uint32_t> found;
+  auto strictly_inside = [&](std::uint32_t x, std::uint32_t y, std::uint32_t v, int ax) {
+    return v != x && v != y && a.compare3(x, v, ax) * a.compare3(v, y, ax) > 0 && a.collinear3(x, y, v);
+  };
+  for (OutPoly& poly : polys)
+    for (auto& loop : poly.loops) {
+      std::vector<std::uint32_t> out;
+      for (std::size_t i = 0; i < loop.size(); ++i) {
+        const std::uint32_t x = loop[i], y = loop[(i + 1) % loop.size()];
+        out.push_back(x);
+        double ex = 0, ey = 0;
+        const Vec3 px = a.approx3(x, &ex), py = a.approx3(y, &ey);
+        Box box;
+        box.add(px - Vec3{ex, ex, ex});
+        box.add(px + Vec3{ex, ex, ex});
+        box.add(py - Vec3{ey, ey, ey});
+        box.add(py + Vec3{ey, ey, ey});
+        const Vec3 d = py - px;
+        const int ax = std::abs(d.x) >= std::abs(d.y) && std::abs(d.x) >= std::abs(d.z) ? 0 : (std::abs(d.y) >= std::abs(d.z) ? 1 : 2);
+        found.clear();
+        auto test = [&](std::uint32_t v) {
+          v = canon[v];
+          const Vec3 pv = a.pos[v];
+          if (pv.x < box.lo.x || pv.x > box.hi.x || pv.y < box.lo.y || pv.y > box.hi.y || pv.z < box.lo.z || pv.z > box.hi.z)
+            return;
+          if (strictly_inside(x, y, v, ax)) found.push_back(v);
+        };
+        a.bvh.query([&](const Box& b) { return b.overlaps(box); }, [&](std::uint32_t t) {
+          for (std::uint32_t v : a.tris[t].v) test(v);
+        });
+        if (!a.wires.empty())
+          a.wire_bvh.query([&](const Box& b) { return b.overlaps(box); }, [&](std::uint32_t w) {
+            test(a.wires[w].p);
+            test(a.wires[w].q);
+          });
+        if (found.empty()) continue;
+        const int dir = a.compare3(x, y, ax);
+        std::sort(found.begin(), found.end(), [&](std::uint32_t u, std::uint32_t v) {
+          return a.compare3(u, v, ax) * dir < 0;
+        });
+        found.erase(std::unique(found.begin(), found.end()), found.end());
+        out.insert(out.end(), found.begin(), found.end());
+      }
+      loop = std::move(out);
+    }
+}
+
+// The lower-dimensional parts of a non-regularized result: the edges of the
+// arrangement's faces and the operands' wire pieces that no kept face holds, in the
+// set with the points around them not, or out of it inside a volume (a cut), as
+// wires; and the points no kept face or wire holds that are likewise alone (isolated
+// points). All in canonical ids.
+struct LowerParts {
+  std::vector<std::array<std::uint32_t, 2>> wires;
+  std::vector<std::uint32_t> points;
+  std::unordered_set<std::uint32_t> ends;  // the wires' ends: no face loop drops them
+};
+
+LowerParts lower_parts(Arrangement& a, const LineClasses& lc, const std::vector<std::uint32_t>& canon,
+                       const std::vector<OutPoly>& polys, const std::vector<OutSide>& sides,
+                       const Expr& expr, int threads) {
+  std::unordered_set<std::uint64_t> held_edges, seen;
+  std::unordered_set<std::uint32_t> held_points;
+  for (const OutPoly& p : polys)
+    for (const auto& loop : p.loops)
+      for (std::size_t i = 0; i < loop.size(); ++i) {
+        held_edges.insert(ordered(loop[i], loop[(i + 1) % loop.size()]));
+        held_points.insert(loop[i]);
+      }
+  std::vector<std::array<std::uint32_t, 2>> edges;
+  std::vector<std::uint32_t> corners, chain;
+  for (const OutSide& side : sides) {
+    const std::uint32_t p = canon[side.p], q = canon[side.q];
+    if (p == q) continue;
+    chain.assign(1, p);
+    if (side.key != kInvalidIndex) insert_between(a, lc, a.line_root(side.key), p, q, chain);
+    chain.push_back(q);
+    for (std::size_t i = 0; i + 1 < chain.size(); ++i) {
+      const std::uint32_t x = chain[i], y = chain[i + 1];
+      corners.push_back(x);
+      if (x == y || held_edges.count(ordered(x, y)) || !seen.insert(ordered(x, y)).second) continue;
+      edges.push_back({x, y});
+    }
+    corners.push_back(q);
+  }
+  // The operands' wires, cut at every crossing, and their isolated points: these may
+  // also lie on a kept face (held by it).
+  std::vector<std::array<std::uint32_t, 2>> wire_edges;
+  for (const WireSeg& w : a.wire_pieces) {
+    const std::uint32_t p = canon[w.p], q = canon[w.q];
+    if (p == q || held_edges.count(ordered(p, q)) || !seen.insert(ordered(p, q)).second) continue;
+    wire_edges.push_back({p, q});
+  }
+  LowerParts out;
+  std::vector<char> kept_in;  // by out.wires: in the set (else a cut)
+  auto keep = [&](const std::vector<std::array<std::uint32_t, 2>>& list, bool both_sides) {
+    const std::vector<SiteVerdict> v = classify_sites(a, expr, list, threads, both_sides);
+    for (std::size_t i = 0; i < list.size(); ++i)
+      if (v[i].in != v[i].around && !v[i].on_face) {
+        out.wires.push_back(list[i]);
+        kept_in.push_back(v[i].in);
+      }
+  };
+  keep(edges, false);
+  keep(wire_edges, true);
+  // A vertex between two collinear wires of one verdict, and on nothing else, goes.
+  std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> at;  // point -> wires
+  for (std::uint32_t i = 0; i < out.wires.size(); ++i)
+    for (std::uint32_t e : out.wires[i]) at[e].push_back(i);
+  std::vector<char> gone(out.wires.size(), 0);
+  std::unordered_set<std::uint32_t> inside_wires;  // the vertices merged away
+  for (auto& [v, list] : at) {
+    if (list.size() != 2 || held_points.count(v)) continue;
+    const std::uint32_t i = list[0], j = list[1];
+    if (i == j || gone[i] || gone[j] || kept_in[i] != kept_in[j]) continue;
+    const std::uint32_t x = out.wires[i][0] == v ? out.wires[i][1] : out.wires[i][0];
+    const std::uint32_t y = out.wires[j][0] == v ? out.wires[j][1] : out.wires[j][0];
+    if (x == y || !a.collinear3(x, v, y)) continue;
+    out.wires[i] = {x, y};
+    gone[j] = 1;
+    inside_wires.insert(v);
+    for (std::uint32_t end : {y}) std::replace(at[end].begin(), at[end].end(), j, i);
+  }
+  std::vector<std::array<std::uint32_t, 2>> merged;
+  for (std::size_t i = 0; i < out.wires.size(); ++i)
+    if (!gone[i]) merged.push_back(out.wires[i]);
+  out.wires = std::move(merged);
+  for (const auto& w : out.wires) {
+    out.ends.insert(w[0]);
+    out.ends.insert(w[1]);
+  }
+  // Corners of dropped faces, then the operands' points and wire ends (which, like
+  // their wires, may lie on a kept face).
+  std::sort(corners.begin(), corners.end());
+  corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
+  std::vector<std::uint32_t> loose;
+  for (const WireSeg& w : a.wire_pieces) {
+    loose.push_back(canon[w.p]);
+    loose.push_back(canon[w.q]);
+  }
+  std::sort(loose.begin(), loose.end());
+  loose.erase(std::unique(loose.begin(), loose.end()), loose.end());
+  for (bool both_sides : {false, true}) {
+    std::vector<std::array<std::uint32_t, 2>> sites;
+    for (std::uint32_t p : both_sides ? loose : corners)
+      if (!held_points.count(p) && !out.ends.count(p) && !inside_wires.count(p) &&
+          (both_sides || !std::binary_search(loose.begin(), loose.end(), p)))
+        sites.push_back({p, p});
+    const std::vector<SiteVerdict> on_points = classify_sites(a, expr, sites, threads, both_sides);
+    for (std::size_t i = 0; i < sites.size(); ++i)
+      if (on_points[i].in != on_points[i].around && !on_points[i].on_face) out.points.push_back(sites[i][0]);
+  }
+  return out;
+}
+
 bool lex_greater(const Arrangement& a, std::uint32_t p, std::uint32_t q) {
   for (int ax = 0; ax < 3; ++ax) {
     const int c = a.compare3(p, q, ax);
@@ -194,6 +357,7 @@ bool lex_greater(const Arrangement& a, std::uint32_t p, std::uint32_t q) {
 // Whether two faces' planes and orientations agree (they share an edge).
 bool same_plane(const Arrangement& a, const OutPoly& x, const OutPoly& y) {
   if (x.cluster == kInvalidIndex || y.cluster == kInvalidIndex) return false;
+  if (x.kind != y.kind || x.mark != y.mark) return false;
   if (x.cluster == y.cluster) return x.normal_sign == y.normal_sign;
   const Cluster& cx = a.clusters[x.cluster];
   const Tri& rx = a.tris[cx.ref];
@@ -339,12 +503,22 @@ double loop_volume6(const std::vector<Vec3>& pos, const std::vector<std::uint32_
 
 }  // namespace
 
-Result<BooleanResult> build_result(Arrangement& a, std::vector<OutPoly> polys, Report& report,
-                                   int threads) {
+Result<BooleanResult> build_result(Arrangement& a, Selection selection, const Expr& expr,
+                                   const Options& options, Report& report) {
+  const int threads = options.threads;
+  std::vector<OutPoly>& polys = selection.polys;
   // 1. One id per exact position, among the points a face or a line holds.
   std::vector<std::uint32_t> used;
   for (const OutPoly& p : polys)
     for (const auto& loop : p.loops) used.insert(used.end(), loop.begin(), loop.end());
+  for (const OutSide& side : selection.sides) {
+    used.push_back(side.p);
+    used.push_back(side.q);
+  }
+  for (const WireSeg& w : a.wire_pieces) {
+    used.push_back(w.p);
+    used.push_back(w.q);
+  }
   for (const Cluster& c : a.clusters)
     for (const Line& l : c.lines) used.insert(used.end(), l.points.begin(), l.points.end());
   for (auto [key, p] : a.edge_points) used.push_back(p);
@@ -385,6 +559,14 @@ Result<BooleanResult> build_result(Arrangement& a, std::vector<OutPoly> polys, R
       }
       p.loops[l] = std::move(out);
     }
+
+  // 2b. Non-regularized: the edges and points of the arrangement that are in the set
+  // while no face holds them and the points around them are not: wires and points.
+  LowerParts lower;
+  if (options.keep_lower_dim) {
+    split_at_vertices(a, canon, polys);
+    lower = lower_parts(a, lc, canon, polys, selection.sides, expr, threads);
+  }
 
   // 3. Merge coplanar neighbours.
   struct Use {
@@ -483,10 +665,30 @@ Result<BooleanResult> build_result(Arrangement& a, std::vector<OutPoly> polys, R
     for (std::size_t i = 0; i < nb.size();) {
       std::size_t j = i;
       while (j < nb.size() && nb[j].first == nb[i].first) ++j;
-      if (j - i == 2 && (on_one_line(nb[i].second, nb[i].first, nb[i + 1].second) ||
+      if (j - i == 2 && !lower.ends.count(nb[i].first) &&
+          (on_one_line(nb[i].second, nb[i].first, nb[i + 1].second) ||
                          a.collinear3(nb[i].second, nb[i].first, nb[i + 1].second)))
         drop[nb[i].first] = 1;
       i = j;
+    }
+    // Non-regularized: only where the set is the same on both edges and the vertex.
+    if (options.keep_lower_dim && !drop.empty()) {
+      std::vector<std::uint32_t> candidates;
+      std::vector<std::array<std::uint32_t, 2>> sites;
+      for (std::size_t i = 0; i < nb.size();) {
+        std::size_t j = i;
+        while (j < nb.size() && nb[j].first == nb[i].first) ++j;
+        if (drop.count(nb[i].first)) {
+          candidates.push_back(nb[i].first);
+          sites.push_back({nb[i].second, nb[i].first});
+          sites.push_back({nb[i].first, nb[i + 1].second});
+          sites.push_back({nb[i].first, nb[i].first});
+        }
+        i = j;
+      }
+      const std::vector<SiteVerdict> v = classify_sites(a, expr, sites, threads);
+      for (std::size_t k = 0; k < candidates.size(); ++k)
+        if (v[3 * k].in != v[3 * k + 1].in || v[3 * k].in != v[3 * k + 2].in) drop.erase(candidates[k]);
     }
     std::vector<OutPoly> kept;
     for (OutPoly& p : polys) {
@@ -508,36 +710,72 @@ Result<BooleanResult> build_result(Arrangement& a, std::vector<OutPoly> polys, R
     polys = std::move(kept);
   }
 
+  // Face-connected shells (across edges two faces use), each of positive volume a
+  // cell, each of negative volume a cavity of the innermost cell around it, by the
+  // exact nesting of the shells (geom/winding.h) on their rounded triangles.
+  auto assign_shell_cells = [&](MeshInput& in, const std::vector<OutPoly>& polys, int) {
+    const std::vector<Use> uses = edge_uses(polys);
+    UnionFind shells(polys.size());
+    for (std::size_t i = 0; i < uses.size();) {
+      std::size_t j = i;
+      while (j < uses.size() && uses[j].key == uses[i].key) ++j;
+      if (j - i == 2) shells.unite(uses[i].poly, uses[i + 1].poly);
+      i = j;
+    }
+    std::vector<double> volume(polys.size(), 0);
+    for (std::uint32_t f = 0; f < polys.size(); ++f) {
+      const std::uint32_t s = shells.find(f);
+      for (const auto& loop : in.faces[f].loops) volume[s] += loop_volume6(in.positions, loop);
+    }
+    std::vector<int> cell(polys.size(), -1);
+    for (std::uint32_t s = 0; s < polys.size(); ++s)
+      if (shells.find(s) == s && volume[s] > 0) cell[s] = in.volumes++;
+    std::vector<std::uint32_t> surface(polys.size(), kInvalidIndex), root_of;
+    bool any_cavity = false;
+    for (std::uint32_t s = 0; s < polys.size(); ++s) {
+      if (shells.find(s) != s) continue;
+      surface[s] = static_cast<std::uint32_t>(root_of.size());
+      root_of.push_back(s);
+      any_cavity |= volume[s] < 0;
+    }
+    if (any_cavity) {
+      std::vector<std::array<std::uint32_t, 3>> tris;
+      std::vector<std::uint32_t> surface_of;
+      for (std::uint32_t f = 0; f < polys.size(); ++f)
+        for (const auto& t : tile_face(in, in.faces[f])) {
+          tris.push_back(t);
+          surface_of.push_back(surface[shells.find(f)]);
+        }
+      std::vector<bool> container(root_of.size());
+      for (std::size_t k = 0; k < root_of.size(); ++k) container[k] = volume[root_of[k]] > 0;
+      const Nesting nest = nest_surfaces(in.positions, tris, surface_of,
+                                         static_cast<std::uint32_t>(root_of.size()), container);
+      for (std::size_t k = 0; k < root_of.size(); ++k)
+        if (volume[root_of[k]] < 0 && nest.parent[k] != Nesting::kNone)
+          cell[root_of[k]] = cell[root_of[nest.parent[k]]];
+    }
+    for (std::uint32_t f = 0; f < polys.size(); ++f) in.faces[f].back = cell[shells.find(f)];
+  };
+
   // 4. Round, find shells and cells, build.
+  const bool closed = options.keep_lower_dim || options.cells;
   BooleanResult result;
   MeshInput in;
   in.group_name = "boolean";
   std::unordered_map<std::uint32_t, std::uint32_t> index;
+  auto add_point = [&](std::uint32_t v) {
+    if (index.try_emplace(v, static_cast<std::uint32_t>(in.positions.size())).second)
+      in.positions.push_back(a.approx3(v));
+  };
   for (const OutPoly& p : polys)
     for (const auto& loop : p.loops)
-      for (std::uint32_t v : loop)
-        if (index.try_emplace(v, static_cast<std::uint32_t>(in.positions.size())).second)
-          in.positions.push_back(a.approx3(v));
-  const std::vector<Use> uses = edge_uses(polys);
-  UnionFind shells(polys.size());
-  for (std::size_t i = 0; i < uses.size();) {
-    std::size_t j = i;
-    while (j < uses.size() && uses[j].key == uses[i].key) ++j;
-    if (j - i == 2) shells.unite(uses[i].poly, uses[i + 1].poly);
-    i = j;
+      for (std::uint32_t v : loop) add_point(v);
+  for (const auto& w : lower.wires) {
+    add_point(w[0]);
+    add_point(w[1]);
+    in.wires.push_back({index[w[0]], index[w[1]]});
   }
-  std::vector<double> volume(polys.size(), 0);
-  for (std::uint32_t f = 0; f < polys.size(); ++f) {
-    const std::uint32_t s = shells.find(f);
-    for (const auto& loop : polys[f].loops) {
-      std::vector<std::uint32_t> idx;
-      for (std::uint32_t v : loop) idx.push_back(index[v]);
-      volume[s] += loop_volume6(in.positions, idx);
-    }
-  }
-  std::vector<int> cell(polys.size(), -1);
-  for (std::uint32_t s = 0; s < polys.size(); ++s)
-    if (shells.find(s) == s && volume[s] > 0) cell[s] = in.volumes++;
+  for (std::uint32_t v : lower.points) add_point(v);
   for (std::uint32_t f = 0; f < polys.size(); ++f) {
     MeshFace mf;
     for (const auto& loop : polys[f].loops) {
@@ -547,33 +785,10 @@ Result<BooleanResult> build_result(Arrangement& a, std::vector<OutPoly> polys, R
     }
     in.faces.push_back(std::move(mf));
   }
-  // A shell of negative volume is a cavity of the innermost cell around it, by the
-  // exact nesting of the shells (geom/winding.h) on their rounded triangles.
-  std::vector<std::uint32_t> surface(polys.size(), kInvalidIndex), root_of;
-  bool any_cavity = false;
-  for (std::uint32_t s = 0; s < polys.size(); ++s) {
-    if (shells.find(s) != s) continue;
-    surface[s] = static_cast<std::uint32_t>(root_of.size());
-    root_of.push_back(s);
-    any_cavity |= volume[s] < 0;
-  }
-  if (any_cavity) {
-    std::vector<std::array<std::uint32_t, 3>> tris;
-    std::vector<std::uint32_t> surface_of;
-    for (std::uint32_t f = 0; f < polys.size(); ++f)
-      for (const auto& t : tile_face(in, in.faces[f])) {
-        tris.push_back(t);
-        surface_of.push_back(surface[shells.find(f)]);
-      }
-    std::vector<bool> container(root_of.size());
-    for (std::size_t k = 0; k < root_of.size(); ++k) container[k] = volume[root_of[k]] > 0;
-    const Nesting nest = nest_surfaces(in.positions, tris, surface_of,
-                                       static_cast<std::uint32_t>(root_of.size()), container);
-    for (std::size_t k = 0; k < root_of.size(); ++k)
-      if (volume[root_of[k]] < 0 && nest.parent[k] != Nesting::kNone)
-        cell[root_of[k]] = cell[root_of[nest.parent[k]]];
-  }
-  for (std::uint32_t f = 0; f < polys.size(); ++f) in.faces[f].back = cell[shells.find(f)];
+  // Regularized: face-connected shells, each of positive volume a cell, each of
+  // negative volume a cavity. Otherwise the cells come from the built model's regions
+  // (io/volumes.h), where the radial order at every edge is known.
+  if (!closed) assign_shell_cells(in, polys, threads);
   std::vector<char> inexact(in.positions.size(), 0);
   for (auto [point, i] : index) inexact[i] = !a.rounds_exactly(point);
   std::vector<std::uint32_t> point_of(in.positions.size());
@@ -584,6 +799,59 @@ Result<BooleanResult> build_result(Arrangement& a, std::vector<OutPoly> polys, R
       threads);
   auto built = build_mesh(result.model, in);
   if (!built) return Error{ErrorCode::kUnsupported, "boolean: the result could not be built: " + built.error().message};
+  if (closed) {
+    Model& m = result.model;
+    std::vector<FaceKind> kind_of(m.face_slots(), FaceKind::kBoundary);
+    result.face_in.assign(m.face_slots(), true);
+    for (std::uint32_t f = 0; f < polys.size(); ++f) {
+      kind_of[built->faces[f].value] = polys[f].kind;
+      result.face_in[built->faces[f].value] = polys[f].mark;
+    }
+    auto cells = io::make_region_volumes(m, built->group, [&](FaceId f, bool front) {
+      const FaceKind k = kind_of[f.value];
+      return front ? k == FaceKind::kInner : k != FaceKind::kSheet;
+    });
+    if (!cells) return Error{ErrorCode::kUnsupported, "boolean: the result's cells: " + cells.error().message};
+    if (options.keep_lower_dim) {
+      // Edges and vertices: in the set or not, at a point of each.
+      std::vector<std::uint32_t> arr(m.vertex_slots(), kInvalidIndex);
+      for (std::uint32_t i = 0; i < in.positions.size(); ++i) arr[built->vertices[i].value] = point_of[i];
+      std::vector<std::array<std::uint32_t, 2>> sites;
+      std::vector<EdgeId> edges;
+      std::vector<VertexId> vertices;
+      for (EdgeId e : m.edges()) {
+        edges.push_back(e);
+        sites.push_back({arr[m.start_of(e).value], arr[m.end_of(e).value]});
+      }
+      for (VertexId v : m.vertices()) {
+        vertices.push_back(v);
+        sites.push_back({arr[v.value], arr[v.value]});
+      }
+      const std::vector<SiteVerdict> in_set = classify_sites(a, expr, sites, threads);
+      result.edge_in.assign(m.edge_slots(), true);
+      result.vertex_in.assign(m.vertex_slots(), true);
+      for (std::size_t k = 0; k < edges.size(); ++k) result.edge_in[edges[k].value] = in_set[k].in;
+      for (std::size_t k = 0; k < vertices.size(); ++k)
+        result.vertex_in[vertices[k].value] = in_set[edges.size() + k].in;
+    } else {
+      result.edge_in.assign(m.edge_slots(), true);
+      result.vertex_in.assign(m.vertex_slots(), true);
+    }
+    for (FaceId f : m.faces()) {
+      const bool front = m.front_volume(f).is_valid(), back = m.back_volume(f).is_valid();
+      report.sheet_faces += !front && !back;
+      report.inner_faces += front && back;
+      report.excluded += !result.face_in[f.value];
+    }
+    for (EdgeId e : m.edges()) {
+      report.wire_edges += m.is_wire(e);
+      report.excluded += !result.edge_in[e.value];
+    }
+    for (VertexId v : m.vertices()) {
+      report.isolated_points += !m.first_end(v).edge.is_valid() && !m.point_loop(v).is_valid();
+      report.excluded += !result.vertex_in[v.value];
+    }
+  }
   std::vector<FaceSource> by_id;
   for (std::uint32_t f = 0; f < polys.size(); ++f) {
     const OutPoly& p = polys[f];
@@ -609,7 +877,6 @@ Result<BooleanResult> build_result(Arrangement& a, std::vector<OutPoly> polys, R
     if (v.value >= result.rounded.size()) result.rounded.resize(v.value + 1, false);
     result.rounded[v.value] = inexact[i];
   }
-  (void)report;
   return result;
 }
 

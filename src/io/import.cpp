@@ -21,7 +21,7 @@
 #include "cellforge/topo/builder.h"
 #include "cellforge/geom/winding.h"
 #include "io/formats.h"
-#include "io/volumes.h"
+#include "cellforge/io/volumes.h"
 #include "io/weld.h"
 
 namespace cellforge::io {

@@ -1,5 +1,5 @@
 // Cells from the regions the faces bound (volumes.h).
-#include "io/volumes.h"
+#include "cellforge/io/volumes.h"
 
 #include <algorithm>
 #include <array>
@@ -53,7 +53,8 @@ Sides join_sides(const Model& m, GroupId g) {
 
 }  // namespace
 
-Result<std::size_t> make_region_volumes(Model& m, GroupId g) {
+Result<std::size_t> make_region_volumes(Model& m, GroupId g,
+                                        const std::function<bool(FaceId, bool front)>& side_in) {
   Sides s = join_sides(m, g);
   const std::size_t n = 2 * s.faces.size();
   std::vector<std::uint32_t> class_of(n), dense(n, Nesting::kNone);
@@ -130,14 +131,19 @@ Result<std::size_t> make_region_volumes(Model& m, GroupId g) {
   for (std::uint32_t c = 0; c < classes; ++c) outer[c] = sign[c] > 0;
   std::vector<std::uint32_t> cell_of(classes, Nesting::kNone);
   std::uint32_t cells = 0;
+  std::vector<char> given(classes, 0);  // by side_in: 1 not a cell, 2 a cell
+  if (side_in)
+    for (std::uint32_t k = 0; k < n; ++k)
+      if (given[class_of[k]] == 0) given[class_of[k]] = side_in(s.faces[k / 2], k % 2 == 0) ? 2 : 1;
   for (std::uint32_t c = 0; c < classes; ++c)
-    if (outer[c] && fronts[c] == 0) cell_of[c] = cells++;
+    if (outer[c] && (side_in ? given[c] == 2 : fronts[c] == 0)) cell_of[c] = cells++;
   bool any_inner = false;
   for (std::uint32_t c = 0; c < classes && !any_inner; ++c) any_inner = sign[c] < 0;
   if (cells > 0 && any_inner) {
     const Nesting nest = nest_surfaces(points, triangles, surface_of, classes, outer);
     for (std::uint32_t c = 0; c < classes; ++c)
-      if (sign[c] < 0 && nest.parent[c] != Nesting::kNone) cell_of[c] = cell_of[nest.parent[c]];
+      if (sign[c] < 0 && nest.parent[c] != Nesting::kNone && (!side_in || given[c] == 2))
+        cell_of[c] = cell_of[nest.parent[c]];
   }
   std::vector<std::vector<FaceSide>> sides(cells);
   for (std::uint32_t k = 0; k < n; ++k)

@@ -83,6 +83,40 @@ class Connection {
   // The value of a key-set parameter holding `keys`.
   virtual Value key_set(const std::vector<std::uint32_t>& keys) const = 0;
 
+  // The DDL that creates model table `table`, given the generic `create_table`
+  // statement: PostgreSQL keeps the five large tables (vertices, edges, faces,
+  // loops, loop_edges) as blocks of packed rows under views of the same names and
+  // columns (docs/database.md, "Storage on PostgreSQL").
+  virtual std::vector<std::string> table_ddl(const std::string& table,
+                                             const std::string& create_table) const {
+    (void)table;
+    return {create_table};
+  }
+  // The table that holds the rows of model table `table` (what a removal deletes from).
+  virtual std::string stored_in(const std::string& table) const { return table; }
+  // The rows of stored volume `id` in model table `table`, the given `columns`
+  // (a comma-separated list of column names) in `order_by` order (its key order).
+  // With `keys` (sorted), only the rows whose column `key_column` holds one of them.
+  virtual Status read_volume_rows(const std::string& table, const std::string& columns,
+                                  const std::string& order_by, std::int64_t id,
+                                  const std::string& key_column,
+                                  const std::vector<std::uint32_t>* keys, const RowFn& fn) {
+    std::string sql = "SELECT " + columns + " FROM " + table + " WHERE volume_id = $1";
+    if (keys) sql += " AND " + key_column + " IN (" + key_set_query(2) + ")";
+    sql += " ORDER BY " + order_by;
+    if (!keys) return bulk_select(sql, {id}, fn);
+    return select(sql, {id, key_set(*keys)}, fn);
+  }
+
+  // For a schema migration: the statements that fill the storage of model table
+  // `table` from `rows_table`, a table of the same columns in the row layout
+  // (empty when `table` is stored as rows, which the caller then copies itself).
+  virtual std::vector<std::string> pack_rows(const std::string& table,
+                                             const std::string& rows_table) const {
+    (void)table, (void)rows_table;
+    return {};
+  }
+
   virtual Status exec(const std::string& sql, const std::vector<Value>& params = {}) = 0;
   virtual Status select(const std::string& sql, const std::vector<Value>& params,
                         const RowFn& fn) = 0;
@@ -113,8 +147,8 @@ class Connection {
 
   // One user query, refused unless it is read-only, run so that it can read only
   // the model tables, within options.timeout.
-  virtual Result<QueryResult> read_only_query(const std::string& sql,
-                                              const QueryOptions& options) = 0;
+  virtual Result<bool> read_only_query(const std::string& sql, const QueryOptions& options,
+                                       const QueryCallbacks& callbacks) = 0;
 };
 
 Result<std::unique_ptr<Connection>> open_sqlite(const std::string& path);

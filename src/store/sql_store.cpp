@@ -3,10 +3,11 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <ctime>
 #include <map>
 #include <thread>
-#include <cstdlib>
 
 #include "cellforge/topo/validate.h"
 #include "store/connection.h"
@@ -16,7 +17,11 @@ namespace cellforge::store {
 
 namespace {
 
-constexpr int kSchemaVersion = 2;
+// 1: the first layout; 2: SQLite tables clustered on their keys with doubles
+// kept bit for bit, face boxes and the spatial indexes; 3: PostgreSQL keeps the
+// five large tables as blocks under views (SQLite as in 2). Older databases are
+// migrated when opened (migrate below).
+constexpr int kSchemaVersion = 3;
 
 // Faces per entry of the face_tiles spatial index: a tile is a run of
 // consecutive face keys, indexed by the box of their boxes.
@@ -278,11 +283,36 @@ class SqlStore final : public Store {
       for (double c : {box.min.x, box.min.y, box.min.z, box.max.x, box.max.y, box.max.z}) {
         p.emplace_back(c);
       }
-      // The tiles that meet the box, then each of their faces.
-      return db_->select(
-          "SELECT f.face_key FROM " + db_->tiles_then_faces() + " WHERE t.volume_id = $1 AND " +
-              db_->overlaps("t", 2) + " AND " + box_test("f", 2) + " ORDER BY f.face_key",
-          p, [&](const Row& r) { out.push_back(key(r, 0)); });
+      // The tiles that meet the box (through the spatial index), then the exact
+      // box of each of their faces: in one join where faces are rows, by the
+      // faces' keys where they are packed in blocks (PostgreSQL).
+      if (db_->stored_in("faces") == "faces") {
+        return db_->select("SELECT f.face_key FROM " + db_->tiles_then_faces() +
+                               " WHERE t.volume_id = $1 AND " + db_->overlaps("t", 2) + " AND " +
+                               box_test("f", 2) + " ORDER BY f.face_key",
+                           p, [&](const Row& r) { out.push_back(key(r, 0)); });
+      }
+      std::vector<std::uint32_t> keys;
+      Status st = db_->select(
+          "SELECT t.first_face, t.last_face FROM face_tiles t WHERE "
+          "t.volume_id = $1 AND " +
+              db_->overlaps("t", 2) + " ORDER BY t.id",
+          p, [&](const Row& r) {
+            for (std::uint32_t k = key(r, 0); k <= key(r, 1); ++k) {
+              keys.push_back(k);
+            }
+          });
+      if (!st || keys.empty()) return st;
+      std::sort(keys.begin(), keys.end());
+      return rows_of(
+          *db_, "faces", "face_key, min_x, min_y, min_z, max_x, max_y, max_z", id,
+          [&](const Row& r) {
+            if (r.d(4) >= box.min.x && r.d(1) <= box.max.x && r.d(5) >= box.min.y &&
+                r.d(2) <= box.max.y && r.d(6) >= box.min.z && r.d(3) <= box.max.z) {
+              out.push_back(key(r, 0));
+            }
+          },
+          "face_key", &keys);
     });
     if (!s) return s.error();
     return out;
@@ -302,11 +332,9 @@ class SqlStore final : public Store {
   Result<std::vector<StoredPoint>> get_points(const std::string& name, int version) override {
     std::vector<StoredPoint> out;
     Status s = read(name, version, [&](std::int64_t id) {
-      return db_->bulk_select(
-          "SELECT vertex_key, x, y, z FROM vertices WHERE volume_id = $1 ORDER BY vertex_key", {id},
-          [&](const Row& r) {
-            out.push_back({key(r, 0), {r.d(1), r.d(2), r.d(3)}});
-          });
+      return rows_of(*db_, "vertices", "vertex_key, x, y, z", id, [&](const Row& r) {
+        out.push_back({key(r, 0), {r.d(1), r.d(2), r.d(3)}});
+      });
     });
     if (!s) return s.error();
     return out;
@@ -315,12 +343,10 @@ class SqlStore final : public Store {
   Result<std::vector<StoredEdge>> get_edges(const std::string& name, int version) override {
     std::vector<StoredEdge> out;
     Status s = read(name, version, [&](std::int64_t id) {
-      return db_->bulk_select(
-          "SELECT edge_key, start_vertex, end_vertex, uses FROM edges WHERE volume_id = $1 "
-          "ORDER BY edge_key",
-          {id}, [&](const Row& r) {
-            out.push_back({key(r, 0), key(r, 1), key(r, 2), key(r, 3)});
-          });
+      return rows_of(*db_, "edges", "edge_key, start_vertex, end_vertex, uses", id,
+                     [&](const Row& r) {
+                       out.push_back({key(r, 0), key(r, 1), key(r, 2), key(r, 3)});
+                     });
     });
     if (!s) return s.error();
     return out;
@@ -332,32 +358,40 @@ class SqlStore final : public Store {
       auto cell = [](const Row& r, int c) {
         return r.is_null(c) ? std::nullopt : std::optional<std::uint32_t>(key(r, c));
       };
-      Status st = db_->bulk_select(
-          "SELECT face_key, front_cell, back_cell, nx, ny, nz, d FROM faces WHERE volume_id = $1 "
-          "ORDER BY face_key",
-          {id}, [&](const Row& r) {
+      Status st = rows_of(
+          *db_, "faces", "face_key, front_cell, back_cell, nx, ny, nz, d", id, [&](const Row& r) {
             out.push_back(
                 {key(r, 0), {}, cell(r, 1), cell(r, 2), {r.d(3), r.d(4), r.d(5)}, r.d(6)});
           });
       if (!st) return st;
       std::vector<std::pair<std::uint32_t, std::uint32_t>> loop_at;  // (face, index in loops)
-      st = db_->bulk_select(
-          "SELECT face_key, point_vertex FROM loops WHERE volume_id = $1 ORDER BY loop_key", {id},
-          [&](const Row& r) {
-            auto& loops = out.at(key(r, 0)).loops;
-            loop_at.emplace_back(key(r, 0), static_cast<std::uint32_t>(loops.size()));
-            loops.emplace_back();
-            if (!r.is_null(1)) loops.back().push_back(key(r, 1));
-          });
+      bool bad = false;
+      st = rows_of(*db_, "loops", "face_key, point_vertex", id, [&](const Row& r) {
+        if (key(r, 0) >= out.size()) {
+          bad = true;
+          return;
+        }
+        auto& loops = out[key(r, 0)].loops;
+        loop_at.emplace_back(key(r, 0), static_cast<std::uint32_t>(loops.size()));
+        loops.emplace_back();
+        if (!r.is_null(1)) loops.back().push_back(key(r, 1));
+      });
       if (!st) return st;
-      return db_->bulk_select(
-          "SELECT u.loop_key, CASE WHEN u.reversed = 0 THEN e.start_vertex ELSE e.end_vertex END "
-          "FROM loop_edges u JOIN edges e ON e.volume_id = u.volume_id AND e.edge_key = u.edge_key "
-          "WHERE u.volume_id = $1 ORDER BY u.loop_key, u.ord",
-          {id}, [&](const Row& r) {
-            const auto [face, index] = loop_at.at(key(r, 0));
-            out[face].loops[index].push_back(key(r, 1));
-          });
+      std::vector<std::pair<std::uint32_t, std::uint32_t>> ends;  // per edge
+      st = rows_of(*db_, "edges", "start_vertex, end_vertex", id,
+                   [&](const Row& r) { ends.emplace_back(key(r, 0), key(r, 1)); });
+      if (!st) return st;
+      st = rows_of(*db_, "loop_edges", "loop_key, edge_key, reversed", id, [&](const Row& r) {
+        if (key(r, 0) >= loop_at.size() || key(r, 1) >= ends.size()) {
+          bad = true;
+          return;
+        }
+        const auto [face, index] = loop_at[key(r, 0)];
+        const auto& e = ends[key(r, 1)];
+        out[face].loops[index].push_back(r.i(2) == 0 ? e.first : e.second);
+      });
+      if (st && bad) st = db_error("stored volume: a loop or edge use names a missing key");
+      return st;
     });
     if (!s) return s.error();
     return out;
@@ -412,7 +446,9 @@ class SqlStore final : public Store {
                                          [&](const Row& r) { ids.push_back(r.i(0)); });
     for (std::int64_t id : ids) {
       for (const char* table : kVolumeTables) {
-        if (s) s = db_->exec(std::string("DELETE FROM ") + table + " WHERE volume_id = $1", {id});
+        if (s) {
+          s = db_->exec("DELETE FROM " + db_->stored_in(table) + " WHERE volume_id = $1", {id});
+        }
       }
     }
     for (std::int64_t id : ids) {
@@ -461,12 +497,76 @@ class SqlStore final : public Store {
   }
 
   Result<QueryResult> query(const std::string& sql, const QueryOptions& options) override {
-    return db_->read_only_query(sql, options);
+    QueryResult out;
+    QueryCallbacks collect;
+    collect.columns = [&](const std::vector<std::string>& c) { out.columns = c; };
+    collect.row = [&](const QueryRow& r) {
+      out.rows.push_back(r.values);
+      out.kinds.push_back(r.kinds);
+      return true;
+    };
+    auto truncated = db_->read_only_query(sql, options, collect);
+    if (!truncated) return truncated.error();
+    out.truncated = truncated.value();
+    return out;
+  }
+
+  Result<bool> query_each(const std::string& sql, const QueryOptions& options,
+                          const QueryCallbacks& callbacks) override {
+    return db_->read_only_query(sql, options, callbacks);
   }
 
  private:
   static std::uint32_t key(const Row& r, int c) { return static_cast<std::uint32_t>(r.i(c)); }
 
+  // The rows of stored volume `id` in one of the model tables, the given columns
+  // in key order; with `keys`, only those whose `key_column` is one of them.
+  static Status rows_of(Connection& db, const std::string& table, const std::string& columns,
+                        std::int64_t id, const RowFn& fn, const std::string& key_column = "",
+                        const std::vector<std::uint32_t>* keys = nullptr) {
+    const std::string order = table == "loop_edges" ? "loop_key, ord"
+                              : table == "vertices" ? "vertex_key"
+                              : table == "edges"    ? "edge_key"
+                              : table == "faces"    ? "face_key"
+                              : table == "loops"    ? "loop_key"
+                              : table == "cells"    ? "cell_key"
+                                                    : "";
+    return db.read_volume_rows(table, columns, order, id, key_column, keys, fn);
+  }
+
+  // The DDL of the current schema, each statement with the table it belongs to
+  // (empty for views and functions).
+  std::vector<std::pair<std::string, std::string>> current_ddl() const {
+    std::vector<std::pair<std::string, std::string>> ddl;
+    auto add = [&](std::string sql) {
+      for (const auto& [from, to] :
+           {std::pair<std::string, std::string>{"{serial}", db_->serial_primary_key()},
+            {"{clustered}", db_->clustered()},
+            {"{double}", db_->double_type()}}) {
+        for (std::size_t at; (at = sql.find(from)) != std::string::npos;) {
+          sql.replace(at, from.size(), to);
+        }
+      }
+      std::string table;
+      for (const char* prefix : {"CREATE TABLE ", "CREATE VIRTUAL TABLE ", "CREATE INDEX "}) {
+        if (sql.rfind(prefix, 0) != 0) continue;
+        std::size_t at = std::strlen(prefix);
+        if (std::strcmp(prefix, "CREATE INDEX ") == 0) at = sql.find(" ON ") + 4;
+        table = sql.substr(at, sql.find_first_of(" (", at) - at);
+      }
+      if (sql.rfind("CREATE TABLE ", 0) == 0) {
+        for (std::string& d : db_->table_ddl(table, sql)) {
+          const bool view = d.rfind("CREATE VIEW", 0) == 0 || d.rfind("CREATE OR REPLACE", 0) == 0;
+          ddl.emplace_back(view ? "" : table, std::move(d));
+        }
+        return;
+      }
+      ddl.emplace_back(table, std::move(sql));
+    };
+    for (const char* sql : kSchema) add(sql);
+    for (const std::string& spatial : db_->spatial_schema()) add(spatial);
+    return ddl;
+  }
 
   Status create_schema_locked() {
     if (Status s =
@@ -483,23 +583,109 @@ class SqlStore final : public Store {
       return s;
     }
     if (version == kSchemaVersion) return Status::Ok();
-    if (version != 0) {
+    if (version < 0 || version > kSchemaVersion) {
       return db_error("the database has schema version " + std::to_string(version) +
-                      "; this cellforge knows version " + std::to_string(kSchemaVersion));
+                      "; this cellforge knows versions 1 to " + std::to_string(kSchemaVersion));
     }
-    std::vector<std::string> ddl(std::begin(kSchema), std::end(kSchema));
-    for (const std::string& spatial : db_->spatial_schema()) ddl.push_back(spatial);
-    for (const std::string& grant : db_->reader_schema()) ddl.push_back(grant);
-    for (std::string& sql : ddl) {
-      for (const auto& [from, to] : {std::pair<std::string, std::string>{"{serial}",
-                                                                          db_->serial_primary_key()},
-                                     {"{clustered}", db_->clustered()},
-                                     {"{double}", db_->double_type()}}) {
-        for (std::size_t at; (at = sql.find(from)) != std::string::npos;) {
-          sql.replace(at, from.size(), to);
-        }
+    if (version != 0) return migrate(version);
+    for (const auto& [table, sql] : current_ddl()) {
+      if (Status s = db_->exec(sql); !s) return s;
+    }
+    for (const std::string& grant : db_->reader_schema()) {
+      if (Status s = db_->exec(grant); !s) return s;
+    }
+    return db_->exec("INSERT INTO cellforge_schema (version) VALUES ($1)",
+                     {std::int64_t{kSchemaVersion}});
+  }
+
+  // Brings a database of schema version `from` (1 or 2) to the current one, in
+  // the schema's write transaction (so a failure or a kill leaves it as it was):
+  // the tables whose layout changed are renamed to <name>_old, the current
+  // schema's tables, indexes and views are created, the rows are copied (PostgreSQL
+  // packs them into blocks on the server; version 1 gains the face boxes, computed
+  // from the loops' points, and the spatial indexes), and the old tables are dropped.
+  Status migrate(int from) {
+    const bool pg = db_->backend() == "postgresql";
+    // SQLite 1 -> 2 rebuilt every table (clustered, doubles without affinity); on
+    // PostgreSQL only the packed tables change (faces also gained its box in 2).
+    std::vector<std::string> rebuilt;
+    if (pg) {
+      rebuilt = {"vertices", "edges", "faces", "loops", "loop_edges"};
+    } else if (from == 1) {
+      rebuilt = {"objects",    "volumes", "object_volumes", "model_groups",
+                 "parameters", "cells",   "vertices",       "edges",
+                 "surfaces",   "faces",   "loops",          "loop_edges"};
+    }
+    std::vector<std::string> steps;
+    for (const char* view :
+         {"face_edge_points", "edge_vertices", "face_loops", "volume_faces", "latest_volumes"}) {
+      steps.push_back(std::string("DROP VIEW IF EXISTS ") + view);
+    }
+    steps.push_back("DROP INDEX IF EXISTS loop_edges_by_edge");
+    if (!pg && from == 1) steps.push_back("DROP INDEX IF EXISTS object_volumes_by_name");
+    for (const std::string& t : rebuilt)
+      steps.push_back("ALTER TABLE " + t + " RENAME TO " + t + "_old");
+    for (const std::string& step : steps) {
+      if (Status s = db_->exec(step); !s) return s;
+    }
+    // The current schema: what is missing (every view; the tables renamed above;
+    // in version 1 the spatial indexes).
+    for (const auto& [table, sql] : current_ddl()) {
+      if (!table.empty()) {
+        bool exists = false;
+        Status s = pg ? db_->select("SELECT 1 WHERE to_regclass($1) IS NOT NULL", {table},
+                                    [&](const Row&) { exists = true; })
+                      : db_->select("SELECT 1 FROM sqlite_master WHERE name = $1", {table},
+                                    [&](const Row&) { exists = true; });
+        if (!s) return s;
+        if (exists) continue;
       }
       if (Status s = db_->exec(sql); !s) return s;
+    }
+    steps.clear();
+    if (from == 1) {
+      // The box of each face: of the points of its loops (the start of each use,
+      // or a point loop's vertex), as put computes it.
+      steps.push_back(R"(CREATE TEMP TABLE faces_boxed AS
+SELECT f.*, b.min_x, b.min_y, b.min_z, b.max_x, b.max_y, b.max_z
+FROM faces_old f JOIN (
+  SELECT q.volume_id, q.face_key, MIN(p.x) AS min_x, MIN(p.y) AS min_y, MIN(p.z) AS min_z,
+         MAX(p.x) AS max_x, MAX(p.y) AS max_y, MAX(p.z) AS max_z
+  FROM (SELECT u.volume_id, l.face_key,
+               CASE WHEN u.reversed = 0 THEN e.start_vertex ELSE e.end_vertex END AS vertex_key
+        FROM loop_edges_old u
+        JOIN loops_old l ON l.volume_id = u.volume_id AND l.loop_key = u.loop_key
+        JOIN edges_old e ON e.volume_id = u.volume_id AND e.edge_key = u.edge_key
+        UNION ALL
+        SELECT volume_id, face_key, point_vertex FROM loops_old WHERE point_vertex IS NOT NULL) q
+  JOIN vertices_old p ON p.volume_id = q.volume_id AND p.vertex_key = q.vertex_key
+  GROUP BY q.volume_id, q.face_key) b ON b.volume_id = f.volume_id AND b.face_key = f.face_key)");
+    }
+    for (const std::string& t : rebuilt) {
+      const std::string source = t == "faces" && from == 1 ? "faces_boxed" : t + "_old";
+      std::vector<std::string> pack = db_->pack_rows(t, source);
+      if (pack.empty()) pack.push_back("INSERT INTO " + t + " SELECT * FROM " + source);
+      for (std::string& p : pack) steps.push_back(std::move(p));
+    }
+    if (from == 1) {
+      const std::string tile = std::to_string(kTileFaces);
+      steps.push_back(
+          "INSERT INTO face_tiles (id, min_x, max_x, min_y, max_y, min_z, max_z, volume_id, "
+          "first_face, last_face) SELECT volume_id * 4294967296 + face_key / " +
+          tile +
+          ", MIN(min_x), MAX(max_x), MIN(min_y), MAX(max_y), MIN(min_z), MAX(max_z), volume_id, "
+          "MIN(face_key), MAX(face_key) FROM faces GROUP BY volume_id, face_key / " +
+          tile);
+      steps.push_back(
+          "INSERT INTO volume_boxes (id, min_x, max_x, min_y, max_y, min_z, max_z) SELECT id, "
+          "min_x, max_x, min_y, max_y, min_z, max_z FROM volumes WHERE n_vertices > 0");
+      steps.push_back("DROP TABLE faces_boxed");
+    }
+    for (const std::string& t : rebuilt) steps.push_back("DROP TABLE " + t + "_old");
+    for (const std::string& grant : db_->reader_schema()) steps.push_back(grant);
+    steps.push_back("DELETE FROM cellforge_schema");
+    for (const std::string& step : steps) {
+      if (Status s = db_->exec(step); !s) return s;
     }
     return db_->exec("INSERT INTO cellforge_schema (version) VALUES ($1)",
                      {std::int64_t{kSchemaVersion}});
@@ -716,35 +902,27 @@ class SqlStore final : public Store {
                            [&](const Row& row) { r.cells.push_back(key(row, 0)); });
     }
     if (s) {
-      s = db_->bulk_select(
-          "SELECT x, y, z, group_key FROM vertices WHERE volume_id = $1 ORDER BY vertex_key", p,
-          [&](const Row& row) {
-            r.vertices.push_back({{row.d(0), row.d(1), row.d(2)}, key(row, 3)});
-          });
+      s = rows_of(*db_, "vertices", "x, y, z, group_key", id, [&](const Row& row) {
+        r.vertices.push_back({{row.d(0), row.d(1), row.d(2)}, key(row, 3)});
+      });
     }
     if (s) {
-      s = db_->bulk_select(
-          "SELECT start_vertex, end_vertex, uses FROM edges WHERE volume_id = $1 ORDER BY edge_key",
-          p, [&](const Row& row) {
-            r.edges.push_back({key(row, 0), key(row, 1)});
-            r.edge_uses.push_back(key(row, 2));
-          });
+      s = rows_of(*db_, "edges", "start_vertex, end_vertex, uses", id, [&](const Row& row) {
+        r.edges.push_back({key(row, 0), key(row, 1)});
+        r.edge_uses.push_back(key(row, 2));
+      });
     }
     if (s) {
-      s = db_->bulk_select(
-          "SELECT group_key, front_cell, back_cell, surface_key, nx, ny, nz, d FROM faces "
-          "WHERE volume_id = $1 ORDER BY face_key",
-          p, [&](const Row& row) {
-            r.faces.push_back({key(row, 0), opt(row, 1), opt(row, 2), opt(row, 3)});
-            r.planes.push_back({{row.d(4), row.d(5), row.d(6)}, row.d(7)});
-          });
+      s = rows_of(*db_, "faces", "group_key, front_cell, back_cell, surface_key, nx, ny, nz, d", id,
+                  [&](const Row& row) {
+                    r.faces.push_back({key(row, 0), opt(row, 1), opt(row, 2), opt(row, 3)});
+                    r.planes.push_back({{row.d(4), row.d(5), row.d(6)}, row.d(7)});
+                  });
     }
     if (s) {
-      s = db_->bulk_select(
-          "SELECT face_key, ord, point_vertex FROM loops WHERE volume_id = $1 ORDER BY loop_key", p,
-          [&](const Row& row) {
-            r.loops.push_back({key(row, 0), key(row, 1), opt(row, 2)});
-          });
+      s = rows_of(*db_, "loops", "face_key, ord, point_vertex", id, [&](const Row& row) {
+        r.loops.push_back({key(row, 0), key(row, 1), opt(row, 2)});
+      });
     }
     if (helper.joinable()) helper.join();
     if (s) s = helper_status;
@@ -753,10 +931,8 @@ class SqlStore final : public Store {
   }
 
   static Status read_uses(Connection& db, std::int64_t id, std::vector<Snapshot::Use>& uses) {
-    return db.bulk_select(
-        "SELECT loop_key, ord, edge_key, reversed, radial_ord FROM loop_edges "
-        "WHERE volume_id = $1 ORDER BY loop_key, ord",
-        {id}, [&](const Row& row) {
+    return rows_of(
+        db, "loop_edges", "loop_key, ord, edge_key, reversed, radial_ord", id, [&](const Row& row) {
           uses.push_back({key(row, 0), key(row, 1), key(row, 2), row.i(3) != 0, key(row, 4)});
         });
   }
@@ -816,51 +992,57 @@ class SqlStore final : public Store {
   Status read_face_rows(std::int64_t id, const std::string& condition, ModelRows& r) {
     auto opt = [](const Row& row, int c) { return row.is_null(c) ? kNone : row.i(c); };
     std::vector<std::uint32_t> face_keys;
+    // In key order, sorted here: on PostgreSQL the key is computed by the faces
+    // view, and the server would sort every row the condition keeps.
+    std::vector<std::pair<std::uint32_t, Snapshot::Face>> named;
     Status s = db_->untrusted_select(
         "SELECT f.face_key, f.group_key, f.surface_key FROM faces f JOIN volumes v ON v.id = "
         "f.volume_id WHERE f.volume_id = $1 AND (" +
-            condition + ") ORDER BY f.face_key",
+            condition + ")",
         {id}, [&](const Row& row) {
-          face_keys.push_back(key(row, 0));
-          r.faces.push_back({key(row, 1), kNone, kNone, opt(row, 2)});
+          named.push_back({key(row, 0), {key(row, 1), kNone, kNone, opt(row, 2)}});
         });
+    std::sort(named.begin(), named.end(),
+              [](const auto& a, const auto& b) { return a.first < b.first; });
+    for (const auto& [k, f] : named) {
+      face_keys.push_back(k);
+      r.faces.push_back(f);
+    }
     if (s) s = read_small_tables(id, r);
     if (s) s = db_->before_key_set_reads();
-    const auto in_set = [&](const char* column, int param) {
-      return std::string(" AND ") + column + " IN (" + db_->key_set_query(param) + ")";
-    };
     std::vector<std::uint32_t> loop_keys;
-    std::vector<std::int64_t> point_vertices;
     if (s) {
-      s = db_->select("SELECT loop_key, face_key, ord, point_vertex FROM loops WHERE volume_id = $1" +
-                          in_set("face_key", 2) + " ORDER BY loop_key",
-                      {id, db_->key_set(face_keys)}, [&](const Row& row) {
-                        loop_keys.push_back(key(row, 0));
-                        r.loops.push_back({key(row, 1), key(row, 2), opt(row, 3)});
-                      });
+      s = rows_of(
+          *db_, "loops", "loop_key, face_key, ord, point_vertex", id,
+          [&](const Row& row) {
+            loop_keys.push_back(key(row, 0));
+            r.loops.push_back({key(row, 1), key(row, 2), opt(row, 3)});
+          },
+          "face_key", &face_keys);
     }
     std::vector<std::uint32_t> edge_keys;
     if (s) {
-      s = db_->select(
-          "SELECT loop_key, ord, edge_key, reversed, radial_ord FROM loop_edges WHERE volume_id = "
-          "$1" + in_set("loop_key", 2) + " ORDER BY loop_key, ord",
-          {id, db_->key_set(loop_keys)}, [&](const Row& row) {
+      s = rows_of(
+          *db_, "loop_edges", "loop_key, ord, edge_key, reversed, radial_ord", id,
+          [&](const Row& row) {
             r.uses.push_back({key(row, 0), key(row, 1), key(row, 2), row.i(3) != 0, key(row, 4)});
             edge_keys.push_back(key(row, 2));
-          });
+          },
+          "loop_key", &loop_keys);
     }
     std::sort(edge_keys.begin(), edge_keys.end());
     edge_keys.erase(std::unique(edge_keys.begin(), edge_keys.end()), edge_keys.end());
     std::vector<std::uint32_t> vertex_keys;
     if (s) {
-      s = db_->select("SELECT start_vertex, end_vertex, uses FROM edges WHERE volume_id = $1" +
-                          in_set("edge_key", 2) + " ORDER BY edge_key",
-                      {id, db_->key_set(edge_keys)}, [&](const Row& row) {
-                        r.edges.push_back({key(row, 0), key(row, 1)});
-                        r.edge_uses.push_back(key(row, 2));
-                        vertex_keys.push_back(key(row, 0));
-                        vertex_keys.push_back(key(row, 1));
-                      });
+      s = rows_of(
+          *db_, "edges", "start_vertex, end_vertex, uses", id,
+          [&](const Row& row) {
+            r.edges.push_back({key(row, 0), key(row, 1)});
+            r.edge_uses.push_back(key(row, 2));
+            vertex_keys.push_back(key(row, 0));
+            vertex_keys.push_back(key(row, 1));
+          },
+          "edge_key", &edge_keys);
     }
     for (const auto& l : r.loops) {
       if (l.point_vertex != kNone) vertex_keys.push_back(static_cast<std::uint32_t>(l.point_vertex));
@@ -868,11 +1050,12 @@ class SqlStore final : public Store {
     std::sort(vertex_keys.begin(), vertex_keys.end());
     vertex_keys.erase(std::unique(vertex_keys.begin(), vertex_keys.end()), vertex_keys.end());
     if (s) {
-      s = db_->select("SELECT x, y, z, group_key FROM vertices WHERE volume_id = $1" +
-                          in_set("vertex_key", 2) + " ORDER BY vertex_key",
-                      {id, db_->key_set(vertex_keys)}, [&](const Row& row) {
-                        r.vertices.push_back({{row.d(0), row.d(1), row.d(2)}, key(row, 3)});
-                      });
+      s = rows_of(
+          *db_, "vertices", "x, y, z, group_key", id,
+          [&](const Row& row) {
+            r.vertices.push_back({{row.d(0), row.d(1), row.d(2)}, key(row, 3)});
+          },
+          "vertex_key", &vertex_keys);
     }
     if (!s) return s;
     // Stored keys to dense ones; a key the rows name but the set lacks is left

@@ -415,11 +415,17 @@ TEST(Boolean, SameOutputAtAnyThreadCount) {
   }
 }
 
-TEST(Boolean, RefusesAnOperandWithoutASolid) {
+TEST(Boolean, RefusesAnOperandWithoutAFace) {
   const Model a = box_model({0, 0, 0}, {1, 1, 1});
+  // A sheet is an operand (of no volume: a regularized union is the box alone).
   const Model sheet = build(square_sheet_with_hole());
   const Model* ops[2] = {&a, &sheet};
-  auto r = boolean::apply(Op::kUnion, ops);
+  const BoolCase u = run(Op::kUnion, {&a, &sheet});
+  EXPECT_NEAR(u.volume, 1, 1e-12);
+  EXPECT_EQ(u.faces, 6u);
+  const Model empty;
+  const Model* with_empty[2] = {&a, &empty};
+  auto r = boolean::apply(Op::kUnion, with_empty);
   ASSERT_FALSE(r.ok());
   EXPECT_NE(r.error().message.find("operand 1"), std::string::npos);
   auto bad = boolean::evaluate(std::span<const Model* const>(ops, 1), Expr::of(3));

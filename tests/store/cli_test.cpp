@@ -250,6 +250,29 @@ TEST_P(Cli, SqlJsonIsJson) {
             "\"t\": \"12\", \"a_2\": 2.5}\n]\n");
 }
 
+// db sql prints rows as they are read: the rows before a failing row are on
+// standard output when the command fails (a buffered answer would print none).
+TEST_P(Cli, SqlOutputStreams) {
+  const std::string failing =
+      GetParam() == "sqlite"
+          ? "WITH RECURSIVE n(i) AS (SELECT 1 UNION ALL SELECT i + 1 FROM n WHERE i < 10) "
+            "SELECT CASE WHEN i <= 3 THEN i ELSE abs(-9223372036854775804 - i) END AS i FROM n"
+          : "SELECT CASE WHEN i <= 3 THEN i ELSE 1 / (i - i) END AS i "
+            "FROM generate_series(1, 10) AS i";
+  CliRun r = cli({"db", "sql", failing, "--json", "--db", db_});
+  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(r.out.substr(0, r.out.find("cellforge db:")),
+            "[\n {\"i\": 1},\n {\"i\": 2},\n {\"i\": 3}")
+      << r.out;
+  r = cli({"db", "sql", failing, "--db", db_});
+  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(r.out.substr(0, r.out.find("cellforge db:")), "i\n-\n1\n2\n3\n") << r.out;
+  // Complete answers end as before; the table is as wide as its widest value.
+  r = cli({"db", "sql", "SELECT 7 AS i UNION ALL SELECT 12345", "--db", db_});
+  EXPECT_EQ(r.status, 0);
+  EXPECT_EQ(r.out, "i\n-----\n7\n12345\n(2 rows)\n");
+}
+
 TEST_P(Cli, ACommandOnAMissingDatabaseSaysSo) {
   if (GetParam() != "sqlite") {
     // PostgreSQL: a database is a server's, never created by a command.

@@ -86,6 +86,10 @@ struct Report {
   std::size_t exact_fallbacks = 0;      // predicates the double filter could not decide
   std::size_t rounding_self_intersections = 0;  // pairs of result triangles that cross
                                                 // after rounding (checked exactly)
+  // Non-regularized and cell results: faces of no volume, faces between two cells,
+  // edges of no face, points of no edge, and elements marked not in the set.
+  std::size_t sheet_faces = 0, inner_faces = 0, wire_edges = 0, isolated_points = 0;
+  std::size_t excluded = 0;
   StageTimes seconds;
 };
 

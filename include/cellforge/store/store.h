@@ -97,6 +97,21 @@ struct QueryResult {
   bool truncated = false;  // the query had more rows than max_rows
 };
 
+// One row of a query's answer handed over as it is read (Store::query_each):
+// values and kinds as in QueryResult.
+struct QueryRow {
+  std::vector<std::optional<std::string>> values;
+  std::vector<ValueKind> kinds;
+};
+
+// What receives a streamed answer: `columns` once, before any row; then `row` for
+// each row in order. When `row` returns false the query stops there (no more
+// rows are read and the database stops working on it).
+struct QueryCallbacks {
+  std::function<void(const std::vector<std::string>&)> columns;
+  std::function<bool(const QueryRow&)> row;
+};
+
 class Store {
  public:
   virtual ~Store() = default;
@@ -151,6 +166,13 @@ class Store {
   // Runs one SQL query that must not write (refused otherwise), with the rights of
   // a reader of the model tables only (docs/database.md, "User SQL").
   virtual Result<QueryResult> query(const std::string& sql, const QueryOptions& options = {}) = 0;
+  // The same query, streamed: each row goes to `callbacks` as soon as it is read,
+  // and none is kept, so memory does not grow with the answer (SQLite steps the
+  // statement; PostgreSQL reads in single-row mode). Rows read before an error
+  // have been handed over when the error is returned. The result says whether
+  // rows were left out by options.max_rows (QueryResult::truncated).
+  virtual Result<bool> query_each(const std::string& sql, const QueryOptions& options,
+                                  const QueryCallbacks& callbacks) = 0;
 };
 
 // Opens (creating the schema if needed) the database named by `db`: a

@@ -16,6 +16,7 @@
 // shells, two cubes exported with their common face twice (back to back) are two
 // cells with a zero-thickness gap between them, and an open sheet has no cell.
 #pragma once
+#include <functional>
 
 #include <cstddef>
 
@@ -25,6 +26,11 @@
 namespace cellforge::io {
 
 // Makes the cells of group g, whose faces have no volumes yet; returns how many.
-Result<std::size_t> make_region_volumes(Model& m, GroupId g);
+// With `side_in`, which regions are cells is given rather than inferred from the
+// faces' orientation: side_in(f, front) tells whether the region on that side of face
+// f is a cell (a Boolean's selection knows it); a region whose outer boundary has
+// positive volume and is in becomes a cell, and its inner boundaries join it.
+Result<std::size_t> make_region_volumes(Model& m, GroupId g,
+                                        const std::function<bool(FaceId, bool front)>& side_in = {});
 
 }  // namespace cellforge::io
