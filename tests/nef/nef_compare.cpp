@@ -59,17 +59,19 @@ Nef shell_solid(const Model& m, const std::vector<Tri>& tris, bool reversed) {
     return it->second;
   };
   for (const Tri& t : tris) {
-    const auto a = vertex(t[0]), b = vertex(reversed ? t[2] : t[1]), c = vertex(reversed ? t[1] : t[2]);
+    const auto a = vertex(t[0]), b = vertex(reversed ? t[2] : t[1]),
+               c = vertex(reversed ? t[1] : t[2]);
     if (mesh.add_face(a, b, c) == Mesh::null_face()) {
-      ADD_FAILURE() << "Surface_mesh refused a triangle of an operand shell at " << m.position(t[0]);
+      ADD_FAILURE() << "Surface_mesh refused a triangle of an operand shell at "
+                    << m.position(t[0]);
       return Nef();
     }
   }
   return Nef(mesh);
 }
 
-// The operand: the union of its positive shells minus the union of its negative ones
-// (nef_compare.h, top). Shells are the vertex-connected pieces of its bounding
+// The operand: the union of its positive shells minus the interiors of its negative
+// ones (nef_compare.h, top). Shells are the vertex-connected pieces of its bounding
 // triangles; the sign of a shell's volume is exact (sum of a . (b x c) in Kernel::FT).
 Nef operand_nef(const Model& m) {
   const std::vector<Tri> tris = bounding_triangles(m);
@@ -96,7 +98,8 @@ Nef operand_nef(const Model& m) {
     if (s == CGAL::POSITIVE) solids += shell_solid(m, shell, false);
     if (s == CGAL::NEGATIVE) cavities += shell_solid(m, shell, true);
   }
-  return cavities.is_empty() ? solids : solids - cavities;
+  // The operand is closed: its cavities' boundaries belong to it.
+  return cavities.is_empty() ? solids : solids - cavities.interior();
 }
 
 // The expression on Nef polyhedra, as left folds (Nef's operations are binary).
@@ -132,14 +135,16 @@ LowerDim nef_lower_dim(const Nef& n) {
   LowerDim out;
   std::size_t sheet_halves = 0, wire_halves = 0;
   for (auto f = n.halffacets_begin(); f != n.halffacets_end(); ++f) {
-    sheet_halves += f->mark() && !f->incident_volume()->mark() && !f->twin()->incident_volume()->mark();
+    sheet_halves +=
+        f->mark() && !f->incident_volume()->mark() && !f->twin()->incident_volume()->mark();
   }
   for (auto e = n.halfedges_begin(); e != n.halfedges_end(); ++e) {
     if (!e->mark()) continue;
     bool alone = !e->is_isolated() || !e->incident_sface()->mark();
     const auto v = e->source();
     for (auto s = v->shalfedges_begin(); alone && s != v->shalfedges_end(); ++s) {
-      if (s->source() == Nef::SVertex_const_handle(e)) alone = !s->mark() && !s->incident_sface()->mark();
+      if (s->source() == Nef::SVertex_const_handle(e))
+        alone = !s->mark() && !s->incident_sface()->mark();
     }
     wire_halves += alone;
   }
@@ -185,7 +190,7 @@ struct Box {
   // Widened by far more than the few ulps rounding moves a vertex (rounding.cpp).
   Box widened() const {
     const double m = 0x1p-30 * (1 + std::max({std::abs(lo.x), std::abs(lo.y), std::abs(lo.z),
-                                               std::abs(hi.x), std::abs(hi.y), std::abs(hi.z)}));
+                                              std::abs(hi.x), std::abs(hi.y), std::abs(hi.z)}));
     return {{lo.x - m, lo.y - m, lo.z - m}, {hi.x + m, hi.y + m, hi.z + m}};
   }
 };
@@ -198,7 +203,8 @@ class ResultLocator {
     for (VertexId v : m.vertices()) slots = std::max(slots, v.value + 1);
     points_.assign(slots, Vec3{});
     for (VertexId v : m.vertices()) points_[v.value] = m.position(v);
-    for (const Tri& t : bounding_triangles(m)) bounding_.push_back({t[0].value, t[1].value, t[2].value});
+    for (const Tri& t : bounding_triangles(m))
+      bounding_.push_back({t[0].value, t[1].value, t[2].value});
     for (FaceId f : m.faces()) {
       FaceTris ft{f, {}, {}};
       for (const Tri& t : io::triangulate_face(m, f)) {
@@ -271,7 +277,9 @@ class ResultLocator {
 // kept around them.
 LowerDim cellforge_lower_dim(const boolean::BooleanResult& r) {
   const Model& m = r.model;
-  const auto bare = [&](FaceId f) { return !m.front_volume(f).is_valid() && !m.back_volume(f).is_valid(); };
+  const auto bare = [&](FaceId f) {
+    return !m.front_volume(f).is_valid() && !m.back_volume(f).is_valid();
+  };
   const auto face_in = [&](FaceId f) { return marked(r.face_in, f.value); };
   const auto edge_in = [&](EdgeId e) { return marked(r.edge_in, e.value); };
   const auto edge_alone = [&](EdgeId e) {
@@ -286,7 +294,8 @@ LowerDim cellforge_lower_dim(const boolean::BooleanResult& r) {
   for (EdgeId e : m.edges()) out.wires += edge_in(e) && edge_alone(e);
   for (VertexId v : m.vertices()) {
     bool alone = marked(r.vertex_in, v.value);
-    for (EdgeEnd end : m.ends_around(v)) alone = alone && !edge_in(end.edge) && edge_alone(end.edge);
+    for (EdgeEnd end : m.ends_around(v))
+      alone = alone && !edge_in(end.edge) && edge_alone(end.edge);
     const LoopId l = m.point_loop(v);
     if (l.is_valid()) alone = alone && !face_in(m.face_of(l)) && bare(m.face_of(l));
     out.points += alone;
@@ -298,7 +307,8 @@ LowerDim cellforge_lower_dim(const boolean::BooleanResult& r) {
 
 void add_model_points(const Model& m, std::vector<Vec3>& out) {
   for (VertexId v : m.vertices()) out.push_back(m.position(v));
-  for (EdgeId e : m.edges()) out.push_back((m.position(m.start_of(e)) + m.position(m.end_of(e))) * 0.5);
+  for (EdgeId e : m.edges())
+    out.push_back((m.position(m.start_of(e)) + m.position(m.end_of(e))) * 0.5);
   for (FaceId f : m.faces()) {
     const std::vector<Vec3> loop = m.loop_points(m.outer_loop(f));
     Vec3 sum{};
@@ -306,7 +316,8 @@ void add_model_points(const Model& m, std::vector<Vec3>& out) {
     out.push_back(sum * (1.0 / static_cast<double>(loop.size())));
     // A point inside the face near a corner: a third of the way from the corner to
     // the centroid of its neighbours, which lies in the face for convex corners.
-    if (loop.size() >= 3) out.push_back((loop[0] * 4.0 + loop[1] + loop[loop.size() - 1] * 3.0) * 0.125);
+    if (loop.size() >= 3)
+      out.push_back((loop[0] * 4.0 + loop[1] + loop[loop.size() - 1] * 3.0) * 0.125);
   }
 }
 
@@ -322,9 +333,11 @@ std::vector<Vec3> sample_points(const Case& c, const boolean::BooleanResult& r, 
   const double step = c.grid_step > 0 ? c.grid_step : std::max({size.x, size.y, size.z}) / 8;
   std::mt19937_64 rng(c.seed);
   const auto count = [&](double extent) { return static_cast<int>(std::ceil(extent / step)) + 2; };
-  std::uniform_int_distribution<int> ix(-1, count(size.x)), iy(-1, count(size.y)), iz(-1, count(size.z));
+  std::uniform_int_distribution<int> ix(-1, count(size.x)), iy(-1, count(size.y)),
+      iz(-1, count(size.z));
   for (std::size_t i = 0; i < c.grid_points; ++i) {
-    pts.push_back({box.lo.x + step * ix(rng), box.lo.y + step * iy(rng), box.lo.z + step * iz(rng)});
+    pts.push_back(
+        {box.lo.x + step * ix(rng), box.lo.y + step * iy(rng), box.lo.z + step * iz(rng)});
   }
   std::sort(pts.begin(), pts.end(), [](Vec3 a, Vec3 b) {
     return a.x != b.x ? a.x < b.x : (a.y != b.y ? a.y < b.y : a.z < b.z);
@@ -346,8 +359,9 @@ bool agree(const Case& c, Where a, Where b) {
 // The deepest subexpression of e whose results disagree at p, both answers told (or
 // "" when they agree there, or when rounding leaves p unsure): the smallest part of a
 // failing case to look at.
-std::string deepest_disagreement(const Case& c, const boolean::Expr& e, const std::vector<Nef>& operands,
-                                 Vec3 p, const boolean::Options& options) {
+std::string deepest_disagreement(const Case& c, const boolean::Expr& e,
+                                 const std::vector<Nef>& operands, Vec3 p,
+                                 const boolean::Options& options) {
   for (const boolean::Expr& child : e.children) {
     std::string s = deepest_disagreement(c, child, operands, p, options);
     if (!s.empty()) return s;
@@ -394,14 +408,16 @@ Outcome compare(const Case& c) {
   options.keep_lower_dim = !c.regularized;
   options.cells = c.cells;
   auto r = boolean::evaluate(c.operands, c.expr, options);
-  const std::string title = c.name + ": " + describe(c.expr) + (c.regularized ? "" : " (not regularized)") +
+  const std::string title = c.name + ": " + describe(c.expr) +
+                            (c.regularized ? "" : " (not regularized)") +
                             (c.cells ? " (cells)" : "");
   EXPECT_TRUE(r.ok()) << title << ": " << (r.ok() ? "" : r.error().message);
   if (!r.ok()) return out;
   const boolean::BooleanResult& res = r.value();
   const auto violations = validate(res.model);
   EXPECT_TRUE(violations.empty()) << title << ": " << to_string(violations);
-  out.rounded_vertices = static_cast<std::size_t>(std::count(res.rounded.begin(), res.rounded.end(), true));
+  out.rounded_vertices =
+      static_cast<std::size_t>(std::count(res.rounded.begin(), res.rounded.end(), true));
 
   std::vector<Nef> operands;
   for (const Model* m : c.operands) operands.push_back(operand_nef(*m));
@@ -437,11 +453,13 @@ Outcome compare(const Case& c) {
     EXPECT_EQ(out.cellforge, LowerDim{}) << title << ": cellforge";
   } else {
     EXPECT_EQ(out.cellforge.points, out.nef.points) << title << ": isolated points";
-    EXPECT_EQ(out.cellforge.sheets > 0, out.nef.sheets > 0) << title << ": " << out.cellforge << " against " << out.nef;
-    EXPECT_EQ(out.cellforge.wires > 0, out.nef.wires > 0) << title << ": " << out.cellforge << " against " << out.nef;
+    EXPECT_EQ(out.cellforge.sheets > 0, out.nef.sheets > 0)
+        << title << ": " << out.cellforge << " against " << out.nef;
+    EXPECT_EQ(out.cellforge.wires > 0, out.nef.wires > 0)
+        << title << ": " << out.cellforge << " against " << out.nef;
   }
-  EXPECT_EQ(out.disagreements, 0u) << title << " (" << out.compared << " points compared)"
-                                   << out.first_disagreement;
+  EXPECT_EQ(out.disagreements, 0u)
+      << title << " (" << out.compared << " points compared)" << out.first_disagreement;
   return out;
 }
 

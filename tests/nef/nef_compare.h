@@ -7,9 +7,10 @@
 // Operands become Nef polyhedra through their boundary: the faces with a cell on one
 // side only, triangulated (io/triangulate.h) with the cell behind, split into
 // connected shells. A shell of positive signed volume is a solid, one of negative
-// volume a cavity; the operand is the union of its solids minus the union of its
-// cavities, which is the winding number > 0 rule of boolean.h for operands whose
-// shells nest at most two deep (a solid with cavities), as every operand here does.
+// volume a cavity; the operand is the union of its solids minus the interiors of its
+// cavities (a closed set, as every operand is), which is the winding number > 0 rule
+// of boolean.h for operands whose shells nest at most two deep (a solid with
+// cavities), as every operand here does.
 //
 // A sampled point is located on each side as the element holding it in its relative
 // interior: a vertex, an edge, a face or, off every element, a volume or the outside.
@@ -77,14 +78,14 @@ struct Case {
 };
 
 struct Outcome {
-  std::size_t compared = 0;     // points compared
-  std::size_t skipped = 0;      // points near a rounded element
+  std::size_t compared = 0;  // points compared
+  std::size_t skipped = 0;   // points near a rounded element
   std::size_t disagreements = 0;
   std::size_t rounded_vertices = 0;
   std::array<std::size_t, 4> nef_dims{};  // compared points Nef located on a vertex,
                                           // an edge, a facet, in a volume
-  LowerDim cellforge, nef;      // lower-dimensional parts of either result
-  std::string first_disagreement;  // operands, expression, point, both answers
+  LowerDim cellforge, nef;                // lower-dimensional parts of either result
+  std::string first_disagreement;         // operands, expression, point, both answers
 };
 
 // Evaluates the case with cellforge and with Nef and compares them; records a
