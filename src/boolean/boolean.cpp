@@ -3,6 +3,7 @@
 // output.cpp, and the exact check of the rounded result.
 #include "cellforge/boolean/boolean.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstring>
@@ -115,6 +116,36 @@ std::vector<std::vector<std::array<VertexId, 3>>> triangulate_faces(const Model&
   return all;
 }
 
+// Whether every edge of every loop is an edge of one of the triangles.
+bool covers_loops(const std::vector<std::vector<std::uint32_t>>& loops,
+                  const std::vector<std::array<std::uint32_t, 3>>& tiles) {
+  if (loops.size() == 1 && loops[0].size() == 3 && tiles.size() == 1) return true;
+  std::vector<std::uint64_t> edges;
+  for (const auto& t : tiles)
+    for (int e = 0; e < 3; ++e) {
+      const std::uint32_t p = t[e], q = t[(e + 1) % 3];
+      edges.push_back((static_cast<std::uint64_t>(std::min(p, q)) << 32) | std::max(p, q));
+    }
+  std::sort(edges.begin(), edges.end());
+  for (const auto& loop : loops)
+    for (std::size_t i = 0; i < loop.size(); ++i) {
+      const std::uint32_t p = loop[i], q = loop[(i + 1) % loop.size()];
+      if (!std::binary_search(edges.begin(), edges.end(),
+                              (static_cast<std::uint64_t>(std::min(p, q)) << 32) | std::max(p, q)))
+        return false;
+    }
+  return true;
+}
+
+// Each loop as a fan from its first vertex (holes turn the other way, so they count
+// negatively).
+std::vector<std::array<std::uint32_t, 3>> fan_tiles(const std::vector<std::vector<std::uint32_t>>& loops) {
+  std::vector<std::array<std::uint32_t, 3>> out;
+  for (const auto& loop : loops)
+    for (std::size_t i = 1; i + 1 < loop.size(); ++i) out.push_back({loop[0], loop[i], loop[i + 1]});
+  return out;
+}
+
 // The operands' faces that bound a cell on one side, as outward triangles, and their
 // sheets (faces with no cell on either side) as they are.
 Result<Arrangement> make_soup(std::span<const Model* const> operands, int threads) {
@@ -161,9 +192,20 @@ Result<Arrangement> make_soup(std::span<const Model* const> operands, int thread
         sf.loops.push_back(std::move(loop));
       }
       const auto sfi = static_cast<std::uint32_t>(faces.size());
+      std::vector<std::array<std::uint32_t, 3>> tiles;
       for (const auto& t : triangles) {
-        Tri tri{{vid(t[0]), vid(t[1]), vid(t[2])}, k, f.value, sfi};
-        if (front) std::swap(tri.v[1], tri.v[2]);
+        std::array<std::uint32_t, 3> tri{vid(t[0]), vid(t[1]), vid(t[2])};
+        if (front) std::swap(tri[1], tri[2]);
+        tiles.push_back(tri);
+      }
+      // A face that is not planar (a rounded result read back) may have two vertices
+      // that one projection makes one point, and its tiling then misses a sliver along
+      // its boundary. Then each loop is tiled as a fan instead: the fans' triangles,
+      // signed, have the face's winding number everywhere, which is all the
+      // classification reads, and they take every edge of every loop.
+      if (!covers_loops(sf.loops, tiles)) tiles = fan_tiles(sf.loops);
+      for (const auto& t : tiles) {
+        const Tri tri{t, k, f.value, sfi};
         if (collinear3d(pos[tri.v[0]], pos[tri.v[1]], pos[tri.v[2]])) continue;
         sf.tris.push_back(static_cast<std::uint32_t>(tris.size()));
         tris.push_back(tri);
