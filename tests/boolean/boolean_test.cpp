@@ -11,6 +11,7 @@
 #include <numbers>
 
 #include "boolean/boolean_test_util.h"
+#include "cellforge/io/mesh_io.h"
 
 namespace cellforge::testing {
 namespace {
@@ -413,6 +414,21 @@ TEST(Boolean, SameOutputAtAnyThreadCount) {
       EXPECT_EQ(rx.rounding_self_intersections, ry.rounding_self_intersections);
     }
   }
+}
+
+// A rounded result read back: a sphere minus a cylinder, turned by 30 degrees, whose
+// 15-gon has two vertices one unit in the last place apart that its projection makes
+// one point; the face's tiling used to miss the sliver between them, leaving a hole
+// in any result (found by children.scad).
+TEST(Boolean, RoundedOperandWithTwinVertices) {
+  Model a;
+  ASSERT_TRUE(io::read_file(a, std::string(CELLFORGE_TEST_DATA) + "/boolean/rounded_sphere_minus_cylinder.json").ok());
+  const Model far = box_model({100, 0, 0}, {101, 1, 1});
+  const double va = shape::mass_properties(a).volume;
+  const BoolCase u = run(Op::kUnion, {&a, &far}, false);
+  EXPECT_NEAR(u.volume, va + 1, 1e-9 * va);
+  const BoolCase self = run(Op::kUnion, {&a, &a}, false);
+  EXPECT_NEAR(self.volume, va, 1e-9 * va);
 }
 
 TEST(Boolean, RefusesAnOperandWithoutAFace) {
