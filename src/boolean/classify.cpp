@@ -585,7 +585,8 @@ Selection classify_and_select(const Arrangement& a, const Expr& expr, const Opti
             [](const HalfEdge& x, const HalfEdge& y) { return x.key < y.key || (x.key == y.key && x.tri < y.tri); });
   UnionFind patches(a.tris.size());
   std::vector<char> on_other_edge(a.pos.size(), 0);
-  for (auto [key, v] : a.edge_points) on_other_edge[v] = 1;
+  for (auto [key, v] : a.edge_points)
+    if (v < on_other_edge.size()) on_other_edge[v] = 1;  // implicit ones (wires) have keys
   auto untouched = [&](std::uint32_t t) { return !a.clusters[a.cluster_of[t]].touched; };
   for (std::size_t i = 0; i < halves.size();) {
     std::size_t j = i;
