@@ -428,6 +428,10 @@ std::uint32_t Arrangement::edge_key(std::uint32_t p, std::uint32_t q) {
   return it->second;
 }
 
+bool Arrangement::is_contact_edge(std::uint32_t p, std::uint32_t q) const {
+  return std::binary_search(contact_edges.begin(), contact_edges.end(), ordered(p, q));
+}
+
 std::uint32_t Arrangement::find_edge_key(std::uint32_t p, std::uint32_t q) const {
   auto it = key_ids.find(kEdgeTag | ordered(p, q));
   return it == key_ids.end() ? kInvalidIndex : it->second;
@@ -565,16 +569,18 @@ int Arrangement::side_of(const Tri& x, std::uint32_t v) const {
   return orient3d(pos[x.v[0]], pos[x.v[1]], pos[x.v[2]], pos[v]);
 }
 
-// Whether segment pq, in the plane of triangle x, meets x's interior: no line of x's
-// edges and not the line pq itself separates them (exact, in x's dominant projection).
-bool Arrangement::segment_enters(const Tri& x, std::uint32_t p, std::uint32_t q) const {
+// Whether segment pq, in the plane of triangle x, meets x's interior (closed: x's
+// closed set): no line of x's edges and not the line pq itself separates them (exact,
+// in x's dominant projection).
+bool Arrangement::segment_enters(const Tri& x, std::uint32_t p, std::uint32_t q, bool closed) const {
   const Vec3 a = pos[x.v[0]], b = pos[x.v[1]], c = pos[x.v[2]];
   const int k = dominant_axis(cross(b - a, c - a));
   const int o = orient2d_projected(a, b, c, k);
   const Vec3 pp = pos[p], pq = pos[q];
   for (int e = 0; e < 3; ++e) {
     const Vec3 s = pos[x.v[e]], t = pos[x.v[(e + 1) % 3]];
-    if (orient2d_projected(s, t, pp, k) * o <= 0 && orient2d_projected(s, t, pq, k) * o <= 0) return false;
+    const int sp = orient2d_projected(s, t, pp, k) * o, sq = orient2d_projected(s, t, pq, k) * o;
+    if (closed ? (sp < 0 && sq < 0) : (sp <= 0 && sq <= 0)) return false;
   }
   int above = 0, below = 0;
   for (const Vec3 v : {a, b, c}) {
@@ -582,7 +588,7 @@ bool Arrangement::segment_enters(const Tri& x, std::uint32_t p, std::uint32_t q)
     above += s > 0;
     below += s < 0;
   }
-  return above > 0 && below > 0;
+  return closed ? above < 3 && below < 3 : above > 0 && below > 0;
 }
 
 // What the exact test of one candidate pair found, gathered per range of pairs so
@@ -593,6 +599,7 @@ struct Arrangement::PairEvents {
   std::vector<std::array<std::uint32_t, 2>> coplanar, same_plane;  // pairs to join
   std::vector<std::array<std::uint32_t, 2>> touching;  // triangle, vertex on its plane
   std::vector<std::array<std::uint32_t, 3>> crossing;  // i, j, which of them is cut
+  std::vector<std::uint64_t> contact_edges;            // Arrangement::contact_edges
   std::size_t tested = 0, hit = 0;
 };
 
@@ -649,6 +656,20 @@ void Arrangement::test_pair(std::uint32_t i, std::uint32_t j, PairEvents& ev) co
     return segment_enters(x, e[0], e[1]);
   };
   const bool cut_a = cuts(a, b, ob, pos_b, neg_b), cut_b = cuts(b, a, oa, pos_a, neg_a);
+  // An edge of y in x's plane that meets x (runs inside it, for one operand's own
+  // triangles, whose edges meet their neighbours' planes all along a mesh): y's
+  // surface may cross x's plane there, so the triangles on either side of the edge
+  // are classified apart.
+  auto contact = [&](const Tri& x, const Tri& y, const int o[3], int pos_y, int neg_y) {
+    if (pos_y + neg_y != 1) return;
+    std::uint32_t e[2];
+    int n = 0;
+    for (int k = 0; k < 3; ++k)
+      if (o[k] == 0) e[n++] = y.v[k];
+    if (segment_enters(x, e[0], e[1], x.operand != y.operand)) ev.contact_edges.push_back(ordered(e[0], e[1]));
+  };
+  contact(a, b, ob, pos_b, neg_b);
+  contact(b, a, oa, pos_a, neg_a);
   // A corner of one resting on the other's plane, the rest on one side: a point
   // where the surfaces touch, a vertex of the other's arrangement if inside it.
   auto touch = [&](std::uint32_t x, const Tri& y, const int o[3], int pos_y, int neg_y) {
@@ -684,6 +705,7 @@ void Arrangement::intersect(int threads) {
       for (auto [x, y] : e.same_plane) same_plane.unite(x, y);
       touching.insert(touching.end(), e.touching.begin(), e.touching.end());
       crossing.insert(crossing.end(), e.crossing.begin(), e.crossing.end());
+      contact_edges.insert(contact_edges.end(), e.contact_edges.begin(), e.contact_edges.end());
     }
     batch.clear();
   };
@@ -692,6 +714,8 @@ void Arrangement::intersect(int threads) {
     if (batch.size() == kBatch) run_batch();
   });
   run_batch();
+  std::sort(contact_edges.begin(), contact_edges.end());
+  contact_edges.erase(std::unique(contact_edges.begin(), contact_edges.end()), contact_edges.end());
 
   // Clusters: components of the coplanar-overlap relation, numbered by their
   // smallest triangle.

@@ -168,6 +168,12 @@ class Arrangement {
   std::vector<H2<Fp>> h2f;       // home-cluster coordinates of cross points (else unused)
   // Points found on input edges by the pair tests (vertex on an edge).
   std::vector<std::pair<std::uint32_t, std::uint32_t>> edge_points;  // (line key, point)
+  // Input edges {min, max} (as one 64-bit key) that lie in the plane of another
+  // triangle and run inside it or belong to another operand: the surface may pass from
+  // one side of that plane to the other across the edge, so untouched triangles are
+  // not joined into one patch there (classify.cpp). Sorted, no repeats.
+  std::vector<std::uint64_t> contact_edges;
+  bool is_contact_edge(std::uint32_t p, std::uint32_t q) const;
 
   // Global line keys: an input edge {p, q}, a pair of clusters {c1, c2} (the line
   // where their planes meet), or a fresh key for a bounding-box side. Keys of lines
@@ -232,7 +238,7 @@ class Arrangement {
   std::uint32_t crossing_point(std::uint32_t ci, std::uint32_t li, std::uint32_t m);
   std::uint32_t add_line(Cluster& c, Line l);
   void add_pair(std::uint32_t t, std::uint32_t b);
-  bool segment_enters(const Tri& x, std::uint32_t p, std::uint32_t q) const;
+  bool segment_enters(const Tri& x, std::uint32_t p, std::uint32_t q, bool closed = false) const;
   int side_of(const Tri& x, std::uint32_t v) const;
   void split_cluster(std::uint32_t ci);
   bool split_piece(Cluster& c, std::uint32_t ci, std::size_t pi, std::uint32_t li,

@@ -599,7 +599,7 @@ Selection classify_and_select(const Arrangement& a, const Expr& expr, const Opti
       const std::uint32_t p = static_cast<std::uint32_t>(x.key >> 32), q = static_cast<std::uint32_t>(x.key);
       if (untouched(x.tri) && untouched(y.tri) && x.forward != y.forward &&
           a.tris[x.tri].operand == a.tris[y.tri].operand && a.find_edge_key(p, q) == kInvalidIndex &&
-          !on_other_edge[p] && !on_other_edge[q]) {
+          !on_other_edge[p] && !on_other_edge[q] && !a.is_contact_edge(p, q)) {
         patches.unite(x.tri, y.tri);
       }
     }

@@ -118,7 +118,7 @@ Result<ZipReader> ZipReader::open(std::span<const std::uint8_t> bytes) {
     if (end < 20 || get32(bytes, end - 20) != 0x07064b50)
       return zip_error(end, "a ZIP64 archive without its end record locator");
     const std::uint64_t record = get64(bytes, end - 12);
-    if (record + 56 > end - 20 || get32(bytes, record) != 0x06064b50)
+    if (record > end - 20 || end - 20 - record < 56 || get32(bytes, record) != 0x06064b50)
       return zip_error(end - 20, "the ZIP64 end record is damaged");
     count = get64(bytes, record + 32);
     size = get64(bytes, record + 40);

@@ -155,12 +155,37 @@ Analysis analyse(const Model& m) {
   // join that closes a cycle of pieces makes the component unsummable.
   UnionFind comp(pieces);
   std::vector<std::uint32_t> cyclic;
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> shell_contacts;
   for (VertexId v : m.vertices()) {
     const auto& list = pieces_at[v.value];
     for (std::size_t i = 1; i < list.size(); ++i) {
       if (!comp.unite(list[0], list[i])) cyclic.push_back(list[0]);
-      if (list[0] < shells && list[i] < shells) shell_contacts.emplace_back(list[0], list[i]);
+    }
+  }
+  // Shells that touch, at a common vertex or through a wire graph that reaches both,
+  // see one void region where they meet: each join of two shells not yet joined so
+  // merges two of the void classes counted below.
+  std::vector<std::uint32_t> shell_contacts;  // a shell of each join
+  {
+    UnionFind joined(pieces);
+    for (VertexId v : m.vertices()) {
+      std::uint32_t first_shell = kInvalidIndex;
+      for (std::uint32_t p : pieces_at[v.value]) {
+        if (p >= shells) continue;
+        if (first_shell == kInvalidIndex) first_shell = p;
+        else if (joined.unite(first_shell, p)) shell_contacts.push_back(p);
+      }
+    }
+    std::vector<std::uint32_t> wire_shell(pieces, kInvalidIndex);  // a shell the wire graph reaches
+    for (VertexId v : m.vertices()) {
+      const auto& list = pieces_at[v.value];
+      for (std::uint32_t w : list) {
+        if (w < shells) continue;  // a wire graph (an isolated vertex is alone)
+        for (std::uint32_t p : list) {
+          if (p >= shells) continue;
+          if (wire_shell[w] == kInvalidIndex) wire_shell[w] = p;
+          else if (joined.unite(wire_shell[w], p)) shell_contacts.push_back(p);
+        }
+      }
     }
   }
   std::vector<VolumeId> vols;
@@ -236,7 +261,7 @@ Analysis analyse(const Model& m) {
     const auto& list = pieces_at[v.value];
     if (list.size() > 1) tally[comp.find(list[0])].v -= static_cast<long>(list.size() - 1);
   }
-  for (const auto& [p, q] : shell_contacts) ++tally[comp.find(p)].contacts;
+  for (std::uint32_t p : shell_contacts) ++tally[comp.find(p)].contacts;
   for (std::uint32_t p : cyclic) tally[comp.find(p)].summable = false;
   for (std::size_t i = 0; i < vols.size(); ++i) {
     Tally& t = tally[comp.find(vol_shells[i].empty() ? 0 : vol_shells[i][0])];

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstring>
 
 #include <cmath>
@@ -169,6 +170,40 @@ TEST(Boolean, VertexOnAFace) {
   bool shared = false;
   for (VertexId v : w.result.model.vertices()) shared |= w.result.model.position(v) == Vec3{0.5, 1.25, 1};
   EXPECT_TRUE(shared);
+}
+
+// Edges of one solid inside a face of the other, the surface passing from outside it
+// to inside across them: two square pyramids whose bases, in x = 2 and y = 2, share a
+// diagonal (found by the comparison with CGAL Nef, tests/nef). The triangles on either
+// side of such an edge are classified apart.
+TEST(Boolean, EdgesInsideTheOtherSolidsFace) {
+  auto pyramid = [](std::vector<Vec3> base, Vec3 apex) {
+    MeshInput in;
+    in.volumes = 1;
+    in.positions = base;
+    in.positions.push_back(apex);
+    in.faces = {{{{3, 2, 1, 0}}, -1, 0}, {{{0, 1, 4}}, -1, 0}, {{{1, 2, 4}}, -1, 0},
+                {{{2, 3, 4}}, -1, 0}, {{{3, 0, 4}}, -1, 0}};
+    Model m = build(in);
+    if (shape::mass_properties(m).volume < 0) {
+      for (MeshFace& f : in.faces) std::reverse(f.loops[0].begin(), f.loops[0].end());
+      m = build(in);
+    }
+    return m;
+  };
+  const Model p0 = pyramid({{2, 2, 2.5}, {2, 3.5, 1}, {2, 2, -0.5}, {2, 0.5, 1}}, {0, 2, 1});
+  const Model p1 = pyramid({{2, 2, 2.5}, {3.5, 2, 1}, {2, 2, -0.5}, {0.5, 2, 1}}, {2, 3, 1});
+  // Bases of area 4.5; heights 2 and 1. The common part is the tetrahedron
+  // (2,2,2.5) (2,2,-0.5) (2,3,1) (0.5,2,1) of volume 3 * 1 * 1.5 / 6 = 0.75.
+  EXPECT_NEAR(shape::mass_properties(p0).volume, 3, 1e-12);
+  EXPECT_NEAR(shape::mass_properties(p1).volume, 1.5, 1e-12);
+  const BoolCase i = run(Op::kIntersection, {&p0, &p1});
+  EXPECT_NEAR(i.volume, 0.75, 1e-12);
+  EXPECT_EQ(i.vertices, 4u);
+  EXPECT_EQ(i.faces, 4u);
+  EXPECT_NEAR(run(Op::kUnion, {&p0, &p1}).volume, 3.75, 1e-12);
+  EXPECT_NEAR(run(Op::kDifference, {&p0, &p1}).volume, 2.25, 1e-12);
+  EXPECT_NEAR(run(Op::kDifference, {&p1, &p0}).volume, 0.75, 1e-12);
 }
 
 TEST(Boolean, NestedBoxMakesACavity) {

@@ -157,6 +157,28 @@ TEST(ThreeMf, DamagedPackagesAreErrors) {
       << big.error().message;
 }
 
+// A ZIP64 end record locator naming a record near 2^64 once overflowed the bounds check
+// (found by the fuzzer): it must be an error that names the damaged record.
+TEST(ThreeMf, AZip64LocatorPastTheArchiveIsAnError) {
+  // A local header's signature (where a package starts), the locator (signature,
+  // disk, record offset, disks), the end record.
+  std::string zip(30 + 20 + 22, '\0');
+  const auto put = [&](std::size_t at, std::uint64_t v, int bytes) {
+    for (int k = 0; k < bytes; ++k) zip[at + k] = static_cast<char>(v >> (8 * k) & 0xff);
+  };
+  put(0, 0x04034b50, 4);
+  put(30, 0x07064b50, 4);
+  put(30 + 8, ~std::uint64_t{0}, 8);
+  put(50, 0x06054b50, 4);
+  put(50 + 10, 0xffff, 2);  // saturated entry count: look for ZIP64
+  Model m;
+  auto r = io::read_model(m, bytes_of(zip), io::Format::k3mf);
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.error().message.find("ZIP64 end record is damaged"), std::string::npos)
+      << r.error().message;
+  EXPECT_TRUE(m.empty());
+}
+
 #ifdef CELLFORGE_TEST_LIB3MF
 // lib3mf's view of a package: its mesh objects' vertex and triangle counts.
 std::vector<std::pair<unsigned, unsigned>> lib3mf_counts(const std::string& bytes) {

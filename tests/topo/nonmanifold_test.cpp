@@ -36,6 +36,34 @@ TEST(NonManifold, IsolatedVertexAndWireEdge) {
   EXPECT_NE(refused.error().message.find("has 2 uses (a wire edge has none)"), std::string::npos);
 }
 
+// Shells joined through a wire see one void region where the wire reaches them (the
+// validator once counted each shell's outside as a cavity; found by the OBJ fuzzer).
+TEST(NonManifold, ShellsJoinedByAWireEncloseOnlyTheirCavities) {
+  MeshInput sheets;
+  add_face(sheets, {{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}});
+  add_face(sheets, {{{5, 5, 5}, {6, 5, 5}, {5, 6, 5}}});
+  sheets.wires.push_back({add_point(sheets, {1, 0, 0}), add_point(sheets, {5, 5, 5})});
+  const Model two = build(sheets);
+  EXPECT_VALID(two);
+  EulerFigures f = euler_figures(two);
+  EXPECT_EQ(f.components, 1);
+  EXPECT_EQ(f.cavities, 0);
+  EXPECT_EQ(f.lhs(), f.rhs());
+
+  // A bare box inside a bare box, a wire from the inner one to the outer one's inner
+  // wall: three regions of space (outside, between, inside the inner box), 2 cavities.
+  MeshInput nested;
+  add_box(nested, {0, 0, 0}, {4, 4, 4}, -1);
+  add_box(nested, {1, 1, 1}, {2, 2, 2}, -1);
+  nested.wires.push_back({add_point(nested, {2, 2, 2}), add_point(nested, {4, 4, 4})});
+  const Model boxes = build(nested);
+  EXPECT_VALID(boxes);
+  f = euler_figures(boxes);
+  EXPECT_EQ(f.components, 1);
+  EXPECT_EQ(f.cavities, 2);
+  EXPECT_EQ(f.lhs(), f.rhs());
+}
+
 TEST(NonManifold, FaceOnExistingEdgesMakesTheEdgeNonManifold) {
   Model m = build(unit_cube());
   const GroupId g = *m.groups().begin();
