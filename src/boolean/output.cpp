@@ -14,6 +14,7 @@
 //    volume bounds a cell; a shell of negative volume is a cavity of the innermost
 //    cell around it (an exact nesting test).
 #include <algorithm>
+#include <span>
 #include <cmath>
 #include <map>
 #include <numeric>
@@ -66,8 +67,10 @@ std::vector<std::uint32_t> canonical_points(const Arrangement& a, const std::vec
            (static_cast<std::uint64_t>(y) * 0xC2B2AE3D27D4EB4Full) ^
            (static_cast<std::uint64_t>(z) * 0x165667B19E3779F9ull);
   };
-  std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> grid;  // -> item indices
+  // Cell -> the last representative put there; chain[i]: the one before it there.
+  std::unordered_map<std::uint64_t, std::uint32_t> grid;
   grid.reserve(items.size());
+  std::vector<std::uint32_t> chain(items.size(), kInvalidIndex);
   std::vector<std::uint32_t> wide, reps;  // items whose error exceeds a cell; all representatives
   auto near = [](const Item& p, const Item& q) {
     return std::abs(p.x.x - q.x.x) <= p.e + q.e && std::abs(p.x.y - q.x.y) <= p.e + q.e &&
@@ -95,7 +98,9 @@ std::vector<std::uint32_t> canonical_points(const Arrangement& a, const std::vec
         for (int dy = lo[1]; dy <= hi[1] && found == kInvalidIndex; ++dy)
           for (int dz = lo[2]; dz <= hi[2] && found == kInvalidIndex; ++dz) {
             auto g = grid.find(key(c[0] + dx, c[1] + dy, c[2] + dz));
-            if (g != grid.end()) found = match(it, g->second);
+            if (g == grid.end()) continue;
+            for (std::uint32_t r = g->second; r != kInvalidIndex && found == kInvalidIndex; r = chain[r])
+              if (near(it, items[r]) && (it.id == items[r].id || a.equal3(it.id, items[r].id))) found = r;
           }
       if (found == kInvalidIndex) found = match(it, wide);
     }
@@ -107,29 +112,51 @@ std::vector<std::uint32_t> canonical_points(const Arrangement& a, const std::vec
     if (it.e * 4 > h) {
       wide.push_back(i);
     } else {
-      grid[key(cell(it.x.x), cell(it.x.y), cell(it.x.z))].push_back(i);
+      auto [g, fresh] = grid.try_emplace(key(cell(it.x.x), cell(it.x.y), cell(it.x.z)), i);
+      if (!fresh) {
+        chain[i] = g->second;
+        g->second = i;
+      }
     }
   }
   return canon;
 }
 
-// The points of each line class, sorted along the line.
+// The points of each line class, sorted along the line: by root key (keys are
+// dense), a range of `pts` and the axis it is sorted along (-1: fewer than 2 points).
 struct LineClasses {
-  std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> points;  // root key ->
-  std::unordered_map<std::uint32_t, int> axis;
+  std::vector<std::uint32_t> begin;  // begin[k] .. begin[k + 1]
+  std::vector<std::uint32_t> pts;
+  std::vector<std::int8_t> axis;
+  std::span<const std::uint32_t> points(std::uint32_t root) const {
+    if (root + 1 >= begin.size()) return {};
+    return {pts.data() + begin[root], pts.data() + begin[root + 1]};
+  }
 };
 
 LineClasses line_classes(Arrangement& a, const std::vector<std::uint32_t>& canon) {
-  LineClasses lc;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;  // (root key, point)
   for (const Cluster& c : a.clusters)
     for (const Line& l : c.lines) {
-      auto& list = lc.points[a.line_root(l.key)];
-      for (std::uint32_t p : l.points) list.push_back(canon[p]);
+      const std::uint32_t root = a.line_root(l.key);
+      for (std::uint32_t p : l.points) pairs.push_back({root, canon[p]});
     }
-  for (auto [key, p] : a.edge_points) lc.points[a.line_root(key)].push_back(canon[p]);
-  for (auto& [key, list] : lc.points) {
-    std::sort(list.begin(), list.end());
-    list.erase(std::unique(list.begin(), list.end()), list.end());
+  for (auto [key, p] : a.edge_points) pairs.push_back({a.line_root(key), canon[p]});
+  std::sort(pairs.begin(), pairs.end());
+  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+  LineClasses lc;
+  const std::size_t keys = a.key_parent.size();
+  lc.begin.assign(keys + 1, 0);
+  lc.axis.assign(keys, -1);
+  lc.pts.reserve(pairs.size());
+  for (auto [root, p] : pairs) {
+    ++lc.begin[root + 1];
+    lc.pts.push_back(p);
+  }
+  for (std::size_t k = 0; k < keys; ++k) lc.begin[k + 1] += lc.begin[k];
+  std::vector<std::pair<double, std::uint32_t>> keyed;
+  for (std::size_t key = 0; key < keys; ++key) {
+    const std::span<std::uint32_t> list(lc.pts.data() + lc.begin[key], lc.pts.data() + lc.begin[key + 1]);
     if (list.size() < 2) continue;
     Vec3 lo{1e308, 1e308, 1e308}, hi{-1e308, -1e308, -1e308};
     for (std::uint32_t p : list) {
@@ -141,10 +168,10 @@ LineClasses line_classes(Arrangement& a, const std::vector<std::uint32_t>& canon
     }
     const Vec3 ext = hi - lo;
     const int ax = ext.x >= ext.y && ext.x >= ext.z ? 0 : (ext.y >= ext.z ? 1 : 2);
-    lc.axis[key] = ax;
+    lc.axis[key] = static_cast<std::int8_t>(ax);
     // Sort by the rounded coordinate, then finish exactly with insertion (safe for
     // any comparator, and linear when the rounded order was right).
-    std::vector<std::pair<double, std::uint32_t>> keyed;
+    keyed.clear();
     for (std::uint32_t p : list) keyed.push_back({a.approx3(p)[ax], p});
     std::sort(keyed.begin(), keyed.end());
     for (std::size_t i = 0; i < list.size(); ++i) list[i] = keyed[i].second;
@@ -158,16 +185,12 @@ LineClasses line_classes(Arrangement& a, const std::vector<std::uint32_t>& canon
 // Every point of the edge's line strictly between its ends, in order from p to q.
 void insert_between(const Arrangement& a, const LineClasses& lc, std::uint32_t root,
                     std::uint32_t p, std::uint32_t q, std::vector<std::uint32_t>& out) {
-  auto it = lc.points.find(root);
-  if (it == lc.points.end() || it->second.empty()) return;
-  const auto& list = it->second;
+  const std::span<const std::uint32_t> list = lc.points(root);
+  if (list.empty()) return;
   // Along the axis the class was sorted by; a class of one point takes one along
   // which the edge runs.
-  auto ax_it = lc.axis.find(root);
-  int ax = 0;
-  if (ax_it != lc.axis.end()) {
-    ax = ax_it->second;
-  } else {
+  int ax = lc.axis[root];
+  if (ax < 0) {
     const Vec3 d = a.approx3(q) - a.approx3(p);
     ax = std::abs(d.x) >= std::abs(d.y) && std::abs(d.x) >= std::abs(d.z) ? 0 : (std::abs(d.y) >= std::abs(d.z) ? 1 : 2);
   }
@@ -649,15 +672,23 @@ Result<BooleanResult> build_result(Arrangement& a, Selection selection, const Ex
     std::sort(nb.begin(), nb.end());
     nb.erase(std::unique(nb.begin(), nb.end()), nb.end());
     // Three points of one recorded line are collinear without arithmetic.
-    std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> lines_at;  // point -> line roots
-    for (const auto& [root, list] : lc.points)
-      for (std::uint32_t q : list) lines_at[q].push_back(root);
+    // Point -> line roots, as ranges of one array (roots ascending).
+    const std::size_t total = a.pos.size() + a.points.size();
+    std::vector<std::uint32_t> at_begin(total + 1, 0), at_roots(lc.pts.size());
+    for (std::uint32_t q : lc.pts) ++at_begin[q + 1];
+    for (std::size_t i = 0; i < total; ++i) at_begin[i + 1] += at_begin[i];
+    {
+      std::vector<std::uint32_t> fill(at_begin.begin(), at_begin.end() - 1);
+      for (std::uint32_t root = 0; root < lc.axis.size(); ++root)
+        for (std::uint32_t q : lc.points(root)) at_roots[fill[q]++] = root;
+    }
+    auto lines_at = [&](std::uint32_t x) {
+      return std::span<const std::uint32_t>(at_roots.data() + at_begin[x], at_roots.data() + at_begin[x + 1]);
+    };
     auto on_one_line = [&](std::uint32_t x, std::uint32_t y, std::uint32_t z) {
-      const auto fx = lines_at.find(x), fy = lines_at.find(y), fz = lines_at.find(z);
-      if (fx == lines_at.end() || fy == lines_at.end() || fz == lines_at.end()) return false;
-      for (std::uint32_t r : fy->second)
-        if (std::find(fx->second.begin(), fx->second.end(), r) != fx->second.end() &&
-            std::find(fz->second.begin(), fz->second.end(), r) != fz->second.end())
+      const auto fx = lines_at(x), fy = lines_at(y), fz = lines_at(z);
+      for (std::uint32_t r : fy)
+        if (std::binary_search(fx.begin(), fx.end(), r) && std::binary_search(fz.begin(), fz.end(), r))
           return true;
       return false;
     };

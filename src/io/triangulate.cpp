@@ -6,10 +6,12 @@
 // the last one cut, and a candidate is tested only against the vertices in the grid
 // cells its box covers, so that a face with thousands of holes (a plate after a
 // Boolean) costs about n log n rather than n^2; repeated points are found by hashing.
-// Triangles, the common case, are returned as they are.
+// Triangles, the common case, are returned as they are, and quadrilaterals tiled
+// directly, as the ear clipping would tile them.
 #include "cellforge/io/triangulate.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <numeric>
@@ -305,10 +307,44 @@ class Clipper {
 
 }  // namespace
 
+namespace {
+
+// A quadrilateral of four distinct projected points, tiled as Clipper::clip_ring
+// tiles it (the first strict ear from corner 0, else the first convex corner, else
+// corner 0), without the general path's allocations: most faces of a mesh are
+// triangles or quads.
+std::vector<Tri> clip_quad(const std::array<Vec2, 4>& q, bool reversed) {
+  std::array<std::uint32_t, 4> r{0, 1, 2, 3};
+  if (reversed) r = {3, 2, 1, 0};
+  const auto at = [&](int k) { return q[r[(k + 4) % 4]]; };
+  const auto strict_ear = [&](int k) {
+    const Vec2 a = at(k - 1), b = at(k), c = at(k + 1), other = at(k + 2);
+    if (orient2d(a, b, c) <= 0) return false;
+    return !(orient2d(a, b, other) >= 0 && orient2d(b, c, other) >= 0 && orient2d(c, a, other) >= 0);
+  };
+  int pick = -1;
+  for (int k = 0; k < 4 && pick < 0; ++k)
+    if (strict_ear(k)) pick = k;
+  for (int k = 0; k < 4 && pick < 0; ++k)
+    if (orient2d(at(k - 1), at(k), at(k + 1)) > 0) pick = k;
+  if (pick < 0) pick = 0;
+  const auto id = [&](int k) { return r[(k + 4) % 4]; };
+  return {{id(pick - 1), id(pick), id(pick + 1)}, {id(pick - 1), id(pick + 1), id(pick + 2)}};
+}
+
+}  // namespace
+
 std::vector<Tri> triangulate_polygon(const std::vector<std::vector<Vec3>>& loops, Vec3 normal) {
   if (loops.empty()) return {};
   if (loops.size() == 1 && loops[0].size() == 3) return {{0, 1, 2}};
   const Projection proj(normal);
+  if (loops.size() == 1 && loops[0].size() == 4) {
+    const std::array<Vec2, 4> q{proj(loops[0][0]), proj(loops[0][1]), proj(loops[0][2]), proj(loops[0][3])};
+    bool distinct = true;
+    for (int i = 0; i < 4; ++i)
+      for (int j = i + 1; j < 4; ++j) distinct &= q[i] != q[j];
+    if (distinct) return clip_quad(q, area_sign(q) < 0);
+  }
   std::vector<Vec2> points;
   std::vector<std::vector<std::uint32_t>> index(loops.size());
   for (std::size_t l = 0; l < loops.size(); ++l) {

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -11,6 +12,7 @@
 #include <random>
 #include <sstream>
 
+#include "cellforge/geom/intersect.h"
 #include "cellforge/geom/predicates.h"
 #include "cellforge/io/diagnose.h"
 #include "io_test_util.h"
@@ -39,6 +41,33 @@ void expect_good_triangulation(const Loops& loops, double area) {
   std::size_t corners = 0;
   for (const auto& l : loops) corners += l.size();
   EXPECT_EQ(tris.size(), corners - 2 + 2 * (loops.size() - 1));
+}
+
+// Quadrilaterals take a direct path: seeded random simple ones (convex and concave,
+// either orientation) tile into two counterclockwise triangles covering the area.
+TEST(Triangulate, RandomQuadrilaterals) {
+  std::mt19937 rng(11);
+  std::uniform_int_distribution<int> coord(-4, 4);
+  int tested = 0;
+  while (tested < 2000) {
+    std::vector<Vec3> q;
+    for (int k = 0; k < 4; ++k) q.push_back({double(coord(rng)), double(coord(rng)), 0});
+    std::vector<Vec2> p;
+    for (const Vec3& v : q) p.push_back({v.x, v.y});
+    // Simple: no three corners on a line, the two pairs of opposite edges apart.
+    bool simple = true;
+    for (int k = 0; k < 4; ++k) simple &= orient2d(p[k], p[(k + 1) % 4], p[(k + 2) % 4]) != 0;
+    simple &= !segments_meet(p[0], p[1], p[2], p[3]) && !segments_meet(p[1], p[2], p[3], p[0]);
+    if (!simple) continue;
+    double area = 0;
+    for (int k = 0; k < 4; ++k) area += (p[k].x * p[(k + 1) % 4].y - p[(k + 1) % 4].x * p[k].y) / 2;
+    if (area < 0) {
+      std::reverse(q.begin() + 1, q.end());
+      area = -area;
+    }
+    expect_good_triangulation({q}, area);
+    ++tested;
+  }
 }
 
 TEST(Triangulate, ConcaveComb) {
