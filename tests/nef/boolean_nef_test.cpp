@@ -356,19 +356,19 @@ RandomCase random_case(std::uint64_t seed) {
 
 // Seeds 1 to 240, or as CELLFORGE_NEF_SEEDS says ("N": 1 to N; "A-B": A to B), for a
 // longer search or one case by hand.
-std::pair<std::uint64_t, std::uint64_t> random_seeds() {
+std::pair<std::uint64_t, std::uint64_t> random_seeds(std::pair<std::uint64_t, std::uint64_t> fallback) {
   const char* n = std::getenv("CELLFORGE_NEF_SEEDS");
-  if (!n) return {1, 240};
+  if (!n) return fallback;
   char* rest = nullptr;
   const std::uint64_t a = std::strtoull(n, &rest, 10);
   if (*rest != '-') return {1, a};
   return {a, std::strtoull(rest + 1, nullptr, 10)};
 }
 
-void random_cases(bool regularized) {
+void random_cases(bool regularized, std::pair<std::uint64_t, std::uint64_t> seeds = {1, 240}) {
   Tally tally;
   std::size_t exact_results = 0;
-  const auto [first, last] = random_seeds();
+  const auto [first, last] = random_seeds(seeds);
   for (std::uint64_t seed = first; seed <= last; ++seed) {
     const RandomCase rc = random_case(seed);
     std::vector<const Model*> ops;
@@ -410,10 +410,10 @@ TEST(BooleanNef, TwoSquarePyramidsSharingABaseCentre) {
 }
 
 // Seed 187 of the non-regularized random cases, reduced: a hollow box cut down to two
-// sheets and a wire on the cavity's wall. The point set agrees with Nef's, but the
-// result fails to validate ("[euler] extended Euler formula fails ...: ... = 1 but
-// C - Ch + Cc = 2 (v=8 e=9 f=2 r=0 V=0 Vh=0 Vc=0 Ch=0 Cc=1)").
-TEST(BooleanNefPending, SheetsAndAWireLeftOfAHollowBox) {
+// sheets and a wire on the cavity's wall. The point set agreed with Nef's, but the
+// validator counted the two sheets' outsides, joined only through the wire, as a
+// cavity ("[euler] extended Euler formula fails ... Cc=1").
+TEST(BooleanNefOpen, SheetsAndAWireLeftOfAHollowBox) {
   const Model slab = box_model({0, 0, 1.5}, {3, 3, 2});
   const Model hollow = box_with_cavity({0, 0, 0}, {3, 3, 3}, {1, 1, 1}, {2.5, 2.5, 2.5});
   const Model bar = box_model({2, 0, 1}, {2.5, 3, 1.5});
@@ -425,14 +425,20 @@ TEST(BooleanNefPending, SheetsAndAWireLeftOfAHollowBox) {
   EXPECT_EQ(o.nef, (LowerDim{2, 1, 0}));
 }
 
-// Non-regularized random cases: in seeds 1 to 240 every point agrees, but seed 187's
-// result does not validate (the test above). Seeds 241 to 2000 show about 25 more
-// cases to sort out: points on a vertex or face in or out against Nef (e.g. 565, a
-// box minus a pyramid touching its face at a vertex; 487 and 670, hollow boxes), and
-// isolated point counts that differ (304, 313, 630, ...). Some may be Nef's: in 670,
-// reduced to (h0 - h1) - b2, Nef holds (1, 1.5, 0.5) though its own h0 - h1 does not.
-// Each seed runs alone with CELLFORGE_NEF_SEEDS=670-670.
-TEST(BooleanNefPending, RandomBoxesAndPyramidsNotRegularized) { random_cases(false); }
+// Non-regularized random cases: seeds 1 to 240 (the default) agree and validate.
+// Seeds 241 to 2000 showed about 25 more cases to sort out: points on a vertex or face
+// in or out against Nef (e.g. 565, a box minus a pyramid touching its face at a
+// vertex; 487 and 670, hollow boxes), and isolated point counts that differ (304, 313,
+// 630, ...). Some may be Nef's: in 670, reduced to (h0 - h1) - b2, Nef holds
+// (1, 1.5, 0.5) though its own h0 - h1 does not. Each seed runs alone with
+// CELLFORGE_NEF_SEEDS=670-670.
+TEST(BooleanNefOpen, RandomBoxesAndPyramids) { random_cases(false); }
+
+// The 24 seeds of 241 to 2000 that disagree (measured 2026-12-02): 246 304 313 328 427
+// 449 487 565 630 670 739 916 1044 1046 1172 1286 1435 1449 1501 1633 1673 1747 1818
+// 1970.
+TEST(BooleanNefPending, RandomBoxesAndPyramidsNotRegularizedBeyond240) { random_cases(false, {241, 2000}); }
+
 
 }  // namespace
 }  // namespace cellforge::testing
