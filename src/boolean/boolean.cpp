@@ -240,21 +240,22 @@ std::size_t rounding_crossings(const Model& m, const std::vector<bool>& rounded,
       tris.push_back(t);
       face.push_back(face_ids[fi].value);
     }
-  std::vector<Box> boxes(tris.size());
+  std::vector<std::array<Vec3, 3>> corners(tris.size());
   std::vector<char> moved(tris.size(), 0);
   for (std::size_t i = 0; i < tris.size(); ++i)
-    for (VertexId v : tris[i]) {
-      boxes[i].add(m.position(v));
+    for (int k = 0; k < 3; ++k) {
+      const VertexId v = tris[i][k];
+      corners[i][k] = m.position(v);
       moved[i] |= v.value < rounded.size() && rounded[v.value];
     }
-  // Each triangle with a moved vertex against every triangle its box meets (a pair of
+  // Each triangle with a moved vertex against every triangle its boxes meet (a pair of
   // two moved ones once), so that a part whose vertices are all doubles costs nothing.
-  const Bvh bvh(boxes);
+  const TriangleBoxes index(corners);
   std::vector<std::size_t> counts = parallel_ranges<std::size_t>(tris.size(), threads, [&](std::size_t lo, std::size_t hi, std::size_t& count) {
+  std::vector<std::uint32_t> scratch;
   for (std::uint32_t i = static_cast<std::uint32_t>(lo); i < hi; ++i) {
     if (!moved[i]) continue;
-    const Box& bi = boxes[i];
-    bvh.query([&](const Box& b) { return b.overlaps(bi); }, [&](std::uint32_t j) {
+    index.near(i, scratch, [&](std::uint32_t j) {
       if (j == i || (moved[j] && j < i) || face[i] == face[j]) return;  // one face: its tiling
       for (VertexId u : tris[i])
         for (VertexId v : tris[j])

@@ -82,6 +82,63 @@ Box grown(Box b) {
 
 }  // namespace
 
+TriangleBoxes::TriangleBoxes(const std::vector<std::array<Vec3, 3>>& tris) {
+  const auto extent = [](const Box& b) { return std::max({b.hi.x - b.lo.x, b.hi.y - b.lo.y, b.hi.z - b.lo.z}); };
+  const auto box_of3 = [](const Vec3& a, const Vec3& b, const Vec3& c) {
+    Box x;
+    x.add(a);
+    x.add(b);
+    x.add(c);
+    return x;
+  };
+  // Typical: 4 times the median extent.
+  std::vector<double> ext(tris.size());
+  for (std::size_t i = 0; i < tris.size(); ++i) ext[i] = extent(box_of3(tris[i][0], tris[i][1], tris[i][2]));
+  double limit = 0;
+  if (!ext.empty()) {
+    std::vector<double> sorted = ext;
+    std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+    limit = 4 * sorted[sorted.size() / 2];
+  }
+  constexpr int kMaxPieces = 256;
+  begin_.reserve(tris.size() + 1);
+  std::vector<std::array<Vec3, 3>> stack;
+  for (std::uint32_t i = 0; i < tris.size(); ++i) {
+    begin_.push_back(static_cast<std::uint32_t>(boxes_.size()));
+    if (!(ext[i] > limit)) {
+      boxes_.push_back(grown(box_of3(tris[i][0], tris[i][1], tris[i][2])));
+      owner_.push_back(i);
+      continue;
+    }
+    stack.assign(1, tris[i]);
+    int pieces = 1;
+    while (!stack.empty()) {
+      std::array<Vec3, 3> t = stack.back();
+      stack.pop_back();
+      const Box b = box_of3(t[0], t[1], t[2]);
+      if (extent(b) <= limit || pieces >= kMaxPieces) {
+        boxes_.push_back(grown(b));
+        owner_.push_back(i);
+        continue;
+      }
+      // Halve the longest edge.
+      int e = 0;
+      double longest = -1;
+      for (int k = 0; k < 3; ++k) {
+        const Vec3 d = t[(k + 1) % 3] - t[k];
+        const double l = dot(d, d);
+        if (l > longest) longest = l, e = k;
+      }
+      const Vec3 p = t[e], q = t[(e + 1) % 3], r = t[(e + 2) % 3], m = (p + q) * 0.5;
+      stack.push_back({p, m, r});
+      stack.push_back({m, q, r});
+      ++pieces;
+    }
+  }
+  begin_.push_back(static_cast<std::uint32_t>(boxes_.size()));
+  bvh_ = Bvh(boxes_);
+}
+
 void nudge_rounding(MeshInput& in, const std::vector<char>& inexact,
                     const std::function<bool(std::uint32_t, int)>& exact, int threads) {
   constexpr int kRounds = 4;
@@ -104,20 +161,20 @@ void nudge_rounding(MeshInput& in, const std::vector<char>& inexact,
         tris.push_back(t);
         face.push_back(f);
       }
-    std::vector<Box> boxes(tris.size());
+    std::vector<std::array<Vec3, 3>> corners(tris.size());
     std::vector<char> moved(tris.size(), 0);
     for (std::size_t i = 0; i < tris.size(); ++i) {
-      boxes[i] = grown(box_of(in, tris[i]));
+      for (int k = 0; k < 3; ++k) corners[i][k] = in.positions[tris[i][k]];
       for (std::uint32_t v : tris[i]) moved[i] |= inexact[v];
     }
-    const Bvh bvh(boxes);
+    const TriangleBoxes index(corners);
     // The inexact vertices of crossing pairs.
     auto found = parallel_ranges<std::vector<std::uint32_t>>(
         tris.size(), threads, [&](std::size_t lo, std::size_t hi, std::vector<std::uint32_t>& out) {
+          std::vector<std::uint32_t> scratch;
           for (std::size_t i = lo; i < hi; ++i) {
             if (!moved[i]) continue;
-            const Box& bi = boxes[i];
-            bvh.query([&](const Box& b) { return b.overlaps(bi); }, [&](std::uint32_t j) {
+            index.near(static_cast<std::uint32_t>(i), scratch, [&](std::uint32_t j) {
               if (j == i || (moved[j] && j < i) || face[i] == face[j] || share_vertex(tris[i], tris[j])) return;
               if (!meet(in, tris[i], tris[j])) return;
               for (std::uint32_t v : tris[i]) if (inexact[v]) out.push_back(v);
@@ -150,9 +207,10 @@ void nudge_rounding(MeshInput& in, const std::vector<char>& inexact,
         for (std::uint32_t f : fs)
           for (const Tri3& t : tile_face(in, in.faces[f])) near.push_back({f, t});
         std::size_t n = 0;
+        std::vector<std::uint32_t> scratch;
         for (std::size_t a = 0; a < near.size(); ++a) {
           const Box ba = grown(box_of(in, near[a].second));
-          bvh.query([&](const Box& b) { return b.overlaps(ba); }, [&](std::uint32_t j) {
+          index.near(ba, scratch, [&](std::uint32_t j) {
             if (std::binary_search(fs.begin(), fs.end(), face[j]) || share_vertex(near[a].second, tris[j])) return;
             n += meet(in, near[a].second, tris[j]);
           });

@@ -2,11 +2,14 @@
 // (classify.cpp), merging and stitching into a model (output.cpp), and the choice of
 // doubles for the rounded points (rounding.cpp).
 #pragma once
+#include <algorithm>
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <vector>
 
 #include "boolean/arrangement.h"
+#include "cellforge/geom/bvh.h"
 #include "cellforge/boolean/boolean.h"
 #include "cellforge/topo/builder.h"
 
@@ -66,6 +69,46 @@ std::vector<SiteVerdict> classify_sites(const Arrangement& a, const Expr& expr,
 // the faces built into one group with a cell per connected solid.
 Result<BooleanResult> build_result(Arrangement& a, Selection selection, const Expr& expr,
                                    const Options& options, Report& report);
+
+// Boxes of triangles for the rounding checks (rounding.cpp): a triangle much longer
+// than the typical one (a sliver of a face with many holes) takes the boxes of the
+// pieces left by halving its longest edge until each is about typical, so that a few
+// slivers across a part do not make every query visit most of the tree. Every box is
+// grown by a few units in the last place (a vertex may move that much, and the
+// pieces' corners are rounded).
+class TriangleBoxes {
+ public:
+  explicit TriangleBoxes(const std::vector<std::array<Vec3, 3>>& tris);
+  // Calls f(j) once for each triangle j with a box meeting one of triangle i's.
+  template <class F>
+  void near(std::uint32_t i, std::vector<std::uint32_t>& scratch, F&& f) const {
+    scratch.clear();
+    for (std::uint32_t k = begin_[i]; k < begin_[i + 1]; ++k) collect(boxes_[k], scratch);
+    finish(scratch, f);
+  }
+  // Calls f(j) once for each triangle j with a box meeting `box`.
+  template <class F>
+  void near(const Box& box, std::vector<std::uint32_t>& scratch, F&& f) const {
+    scratch.clear();
+    collect(box, scratch);
+    finish(scratch, f);
+  }
+
+ private:
+  void collect(const Box& box, std::vector<std::uint32_t>& out) const {
+    bvh_.query([&](const Box& b) { return b.overlaps(box); }, [&](std::uint32_t k) { out.push_back(owner_[k]); });
+  }
+  template <class F>
+  static void finish(std::vector<std::uint32_t>& found, F& f) {
+    std::sort(found.begin(), found.end());
+    found.erase(std::unique(found.begin(), found.end()), found.end());
+    for (std::uint32_t j : found) f(j);
+  }
+  std::vector<Box> boxes_;            // by piece
+  std::vector<std::uint32_t> owner_;  // by piece: its triangle
+  std::vector<std::uint32_t> begin_;  // by triangle: its pieces begin_[i] .. begin_[i + 1]
+  Bvh bvh_;
+};
 
 // A face of `in` as triangles (indices into in.positions), as io::triangulate_face
 // tiles the face it becomes (rounding.cpp).

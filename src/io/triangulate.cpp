@@ -14,6 +14,7 @@
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <memory>
 #include <numeric>
 #include <unordered_map>
 
@@ -69,25 +70,46 @@ class Clipper {
       note(outer, 0);
       for (std::size_t h = 0; h < holes.size(); ++h) note(holes[h], h + 1);
     }
+    const auto right_of = [&](std::uint32_t a, std::uint32_t b) {  // a beyond b
+      return p_[a].x > p_[b].x || (p_[a].x == p_[b].x && p_[a].y < p_[b].y);
+    };
+    const auto rightmost = [&](const std::vector<std::uint32_t>& h) {
+      return static_cast<std::size_t>(std::min_element(h.begin(), h.end(), right_of) - h.begin());
+    };
+    const auto splice = [&](const std::vector<std::uint32_t>& h, std::size_t mi, std::size_t at) {
+      std::vector<std::uint32_t> spliced(outer.begin(), outer.begin() + at + 1);
+      for (std::size_t k = 0; k <= h.size(); ++k) spliced.push_back(h[(mi + k) % h.size()]);
+      spliced.insert(spliced.end(), outer.begin() + at, outer.end());
+      outer = std::move(spliced);
+    };
+    if (!any_touch && !holes.empty()) {
+      // No loop shares a point with another: the holes go in the order of their
+      // rightmost vertices, found once, and the edges a bridge must clear are kept in
+      // a grid (every loop's edges and the bridges so far).
+      std::vector<std::size_t> order(holes.size()), right(holes.size());
+      for (std::size_t i = 0; i < holes.size(); ++i) right[i] = rightmost(holes[i]);
+      std::iota(order.begin(), order.end(), std::size_t{0});
+      std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+        return right_of(holes[a][right[a]], holes[b][right[b]]);
+      });
+      grid_ = std::make_unique<SegmentGrid>(p_, outer, holes);
+      for (std::size_t i : order) {
+        const std::vector<std::uint32_t>& h = holes[i];
+        const std::size_t at = find_bridge(outer, h, right[i], {});
+        grid_->add(h[right[i]], outer[at]);
+        splice(h, right[i], at);
+      }
+      return;
+    }
     while (!holes.empty()) {
       if (any_touch && join_touching(outer, holes)) continue;
-      const auto right_of = [&](std::uint32_t a, std::uint32_t b) {  // a beyond b
-        return p_[a].x > p_[b].x || (p_[a].x == p_[b].x && p_[a].y < p_[b].y);
-      };
-      const auto rightmost = [&](const std::vector<std::uint32_t>& h) {
-        return static_cast<std::size_t>(std::min_element(h.begin(), h.end(), right_of) - h.begin());
-      };
       const auto hole = std::min_element(
           holes.begin(), holes.end(),
           [&](const auto& a, const auto& b) { return right_of(a[rightmost(a)], b[rightmost(b)]); });
       const std::vector<std::uint32_t> h = std::move(*hole);
       holes.erase(hole);
       const std::size_t mi = rightmost(h);
-      const std::size_t at = find_bridge(outer, h, mi, holes);
-      std::vector<std::uint32_t> spliced(outer.begin(), outer.begin() + at + 1);
-      for (std::size_t k = 0; k <= h.size(); ++k) spliced.push_back(h[(mi + k) % h.size()]);
-      spliced.insert(spliced.end(), outer.begin() + at, outer.end());
-      outer = std::move(spliced);
+      splice(h, mi, find_bridge(outer, h, mi, holes));
     }
   }
 
@@ -244,7 +266,38 @@ class Clipper {
       const Vec2 q = p_[outer[k]];
       return (q.x - m.x) * (q.x - m.x) + (q.y - m.y) * (q.y - m.y);
     };
-    // Nearest first, from a heap: usually one of the first few is visible.
+    // Nearest first: usually one of the first few is visible, so the 16 nearest are
+    // picked in one pass and tried in order; only when none will do, all of them,
+    // from a heap (the same order: by distance, then by position).
+    const auto fits = [&](std::size_t k) {
+      const Vec2 q = p_[outer[k]];
+      const Vec2 q_prev = p_[outer[(k + outer.size() - 1) % outer.size()]];
+      const Vec2 q_next = p_[outer[(k + 1) % outer.size()]];
+      if (!inside_cone(q_prev, q, q_next, m)) return false;
+      if (grid_) return !grid_->crosses(p_, m, q) && cones_clear(hole, m, q);
+      if (crosses(outer, m, q) || !clear(hole, m, q)) return false;
+      return std::all_of(others.begin(), others.end(), [&](const auto& other) { return clear(other, m, q); });
+    };
+    {
+      constexpr std::size_t kFirst = 16;
+      std::array<std::pair<double, std::size_t>, kFirst> best;
+      std::size_t n = 0;
+      for (std::size_t k = 0; k < outer.size(); ++k) {
+        const std::pair<double, std::size_t> c{dist(k), k};
+        if (n < kFirst) {
+          best[n++] = c;
+          std::push_heap(best.begin(), best.begin() + n);
+        } else if (c < best[0]) {
+          std::pop_heap(best.begin(), best.begin() + n);
+          best[n - 1] = c;
+          std::push_heap(best.begin(), best.begin() + n);
+        }
+      }
+      std::sort_heap(best.begin(), best.begin() + n);
+      for (std::size_t i = 0; i < n; ++i)
+        if (fits(best[i].second)) return best[i].second;
+      if (n == outer.size()) return n ? best[0].second : 0;
+    }
     std::vector<std::pair<double, std::size_t>> heap;
     heap.reserve(outer.size());
     for (std::size_t k = 0; k < outer.size(); ++k) heap.push_back({dist(k), k});
@@ -255,16 +308,19 @@ class Clipper {
       std::pop_heap(heap.begin(), heap.end(), farther);
       const std::size_t k = heap.back().second;
       heap.pop_back();
-      const Vec2 q = p_[outer[k]];
-      const Vec2 q_prev = p_[outer[(k + outer.size() - 1) % outer.size()]];
-      const Vec2 q_next = p_[outer[(k + 1) % outer.size()]];
-      if (!inside_cone(q_prev, q, q_next, m) || crosses(outer, m, q) || !clear(hole, m, q))
-        continue;
-      if (std::all_of(others.begin(), others.end(),
-                      [&](const auto& other) { return clear(other, m, q); }))
-        return k;
+      if (fits(k)) return k;
     }
     return nearest;  // nothing visible (a degenerate face): the nearest vertex
+  }
+
+  // Segment mq leaves each vertex of `loop` at m on the interior side of the loop.
+  bool cones_clear(const std::vector<std::uint32_t>& loop, Vec2 m, Vec2 q) const {
+    for (std::size_t i = 0; i < loop.size(); ++i) {
+      if (p_[loop[i]] != m) continue;
+      const Vec2 prev = p_[loop[(i + loop.size() - 1) % loop.size()]];
+      if (!inside_cone(prev, m, p_[loop[(i + 1) % loop.size()]], q)) return false;
+    }
+    return true;
   }
 
   // Segment mq, from a point m of hole loop `loop` or beside it, meets none of its
@@ -302,7 +358,80 @@ class Clipper {
     return true;
   }
 
+  // Every edge of the loops and every bridge made so far, in a uniform grid over
+  // their box, so that a bridge candidate is tested against the edges near it rather
+  // than all of them (a face with a thousand holes).
+  class SegmentGrid {
+   public:
+    SegmentGrid(const std::vector<Vec2>& p, const std::vector<std::uint32_t>& outer,
+                const std::vector<std::vector<std::uint32_t>>& holes) {
+      std::size_t edges = outer.size();
+      for (const auto& h : holes) edges += h.size();
+      lo_ = {1e308, 1e308};
+      Vec2 hi{-1e308, -1e308};
+      for (const Vec2& q : p) {
+        lo_ = {std::min(lo_.x, q.x), std::min(lo_.y, q.y)};
+        hi = {std::max(hi.x, q.x), std::max(hi.y, q.y)};
+      }
+      g_ = std::max(1, static_cast<int>(std::sqrt(static_cast<double>(edges))));
+      w_ = {(hi.x - lo_.x) / g_, (hi.y - lo_.y) / g_};
+      cells_.resize(static_cast<std::size_t>(g_) * g_);
+      const auto loop = [&](const std::vector<std::uint32_t>& l) {
+        for (std::size_t i = 0; i < l.size(); ++i) add_edge(p, l[i], l[(i + 1) % l.size()]);
+      };
+      loop(outer);
+      for (const auto& h : holes) loop(h);
+    }
+    void add(std::uint32_t a, std::uint32_t b) { pending_.push_back({a, b}); }
+    // Whether mq meets an edge that has neither m nor q as an end.
+    bool crosses(const std::vector<Vec2>& p, Vec2 m, Vec2 q) {
+      for (auto [a, b] : pending_) add_edge(p, a, b);
+      pending_.clear();
+      ++tick_;
+      const auto [x0, x1] = span(std::min(m.x, q.x), std::max(m.x, q.x), 0);
+      const auto [y0, y1] = span(std::min(m.y, q.y), std::max(m.y, q.y), 1);
+      for (int y = y0; y <= y1; ++y)
+        for (int x = x0; x <= x1; ++x)
+          for (std::uint32_t s : cells_[static_cast<std::size_t>(y) * g_ + x]) {
+            if (stamp_[s] == tick_) continue;
+            stamp_[s] = tick_;
+            const Vec2 c = p[segs_[s][0]], d = p[segs_[s][1]];
+            if (c == m || c == q || d == m || d == q) continue;
+            if (segments_meet(m, q, c, d)) return true;
+          }
+      return false;
+    }
+
+   private:
+    int cell(double v, int axis) const {
+      const double w = axis == 0 ? w_.x : w_.y, o = axis == 0 ? lo_.x : lo_.y;
+      if (!(w > 0)) return 0;
+      return static_cast<int>(std::clamp(std::floor((v - o) / w), 0.0, static_cast<double>(g_ - 1)));
+    }
+    // Cells one beyond on each side: a point on a cell wall may round into either.
+    std::pair<int, int> span(double a, double b, int axis) const {
+      return {std::max(0, cell(a, axis) - 1), std::min(g_ - 1, cell(b, axis) + 1)};
+    }
+    void add_edge(const std::vector<Vec2>& p, std::uint32_t a, std::uint32_t b) {
+      const auto s = static_cast<std::uint32_t>(segs_.size());
+      segs_.push_back({a, b});
+      stamp_.push_back(0);
+      const auto [x0, x1] = span(std::min(p[a].x, p[b].x), std::max(p[a].x, p[b].x), 0);
+      const auto [y0, y1] = span(std::min(p[a].y, p[b].y), std::max(p[a].y, p[b].y), 1);
+      for (int y = y0; y <= y1; ++y)
+        for (int x = x0; x <= x1; ++x) cells_[static_cast<std::size_t>(y) * g_ + x].push_back(s);
+    }
+    Vec2 lo_, w_;
+    int g_ = 1;
+    std::vector<std::vector<std::uint32_t>> cells_;
+    std::vector<std::array<std::uint32_t, 2>> segs_;
+    std::vector<std::uint32_t> stamp_;
+    std::uint32_t tick_ = 0;
+    std::vector<std::array<std::uint32_t, 2>> pending_;
+  };
+
   std::vector<Vec2> p_;
+  std::unique_ptr<SegmentGrid> grid_;
 };
 
 }  // namespace

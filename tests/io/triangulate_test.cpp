@@ -5,10 +5,12 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <numbers>
 #include <random>
 #include <sstream>
 
@@ -68,6 +70,40 @@ TEST(Triangulate, RandomQuadrilaterals) {
     expect_good_triangulation({q}, area);
     ++tested;
   }
+}
+
+// A plate face with 900 holes (octagons, turned a little each, so that no two
+// vertices line up): the bridges are found through the grid of edges; the tiling
+// still covers the face's area exactly once with counterclockwise triangles.
+TEST(Triangulate, NineHundredHoles) {
+  Loops loops = {{{0, 0, 0}, {120, 0, 0}, {120, 120, 0}, {0, 120, 0}}};
+  double area = 120 * 120;
+  for (int i = 0; i < 30; ++i)
+    for (int j = 0; j < 30; ++j) {
+      std::vector<Vec3> hole;
+      const double cx = 2 + 4 * i, cy = 2 + 4 * j, turn = 0.01 * (i * 30 + j);
+      std::vector<Vec2> p;
+      for (int k = 7; k >= 0; --k) {  // clockwise
+        const double a = 2 * std::numbers::pi * k / 8 + turn;
+        hole.push_back({cx + std::cos(a), cy + std::sin(a), 0});
+        p.push_back({hole.back().x, hole.back().y});
+      }
+      double twice = 0;
+      for (int k = 0; k < 8; ++k) twice += p[k].x * p[(k + 1) % 8].y - p[(k + 1) % 8].x * p[k].y;
+      area += twice / 2;  // negative: clockwise
+      loops.push_back(std::move(hole));
+    }
+  const auto tris = io::triangulate_polygon(loops, {0, 0, 1});
+  EXPECT_EQ(tris.size(), 4 + 900 * 8 - 2 + 2 * 900u);
+  std::vector<Vec3> all;
+  for (const auto& l : loops) all.insert(all.end(), l.begin(), l.end());
+  double sum = 0;
+  for (const auto& t : tris) {
+    const Vec2 a{all[t[0]].x, all[t[0]].y}, b{all[t[1]].x, all[t[1]].y}, c{all[t[2]].x, all[t[2]].y};
+    EXPECT_EQ(orient2d(a, b, c), 1);
+    sum += ((b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x)) / 2;
+  }
+  EXPECT_NEAR(sum, area, 1e-9 * area);
 }
 
 TEST(Triangulate, ConcaveComb) {
