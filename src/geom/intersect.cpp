@@ -8,7 +8,6 @@
 #include "cellforge/geom/intersect.h"
 
 #include <algorithm>
-#include <cmath>
 
 #include "cellforge/geom/polygon.h"
 
@@ -97,26 +96,6 @@ bool triangles_meet(const Vec3 a[3], const Vec3 b[3]) {
     if (segment_meets_triangle(b[i], b[(i + 1) % 3], a)) return true;
   }
   return false;
-}
-
-bool triangle_may_meet_box(const Vec3 t[3], Vec3 lo, Vec3 hi) {
-  const Vec3 c = (lo + hi) * 0.5, h = (hi - lo) * 0.5;
-  const Vec3 v[3] = {t[0] - c, t[1] - c, t[2] - c};
-  double scale = std::max({std::abs(c.x), std::abs(c.y), std::abs(c.z), h.x, h.y, h.z});
-  for (const Vec3& p : v) scale = std::max({scale, std::abs(p.x), std::abs(p.y), std::abs(p.z)});
-  // Apart along axis a: the triangle's projections all beyond the box's radius.
-  const auto apart = [&](Vec3 a) {
-    const double p0 = dot(a, v[0]), p1 = dot(a, v[1]), p2 = dot(a, v[2]);
-    const double r = h.x * std::abs(a.x) + h.y * std::abs(a.y) + h.z * std::abs(a.z);
-    const double tol = 1e-9 * scale * (std::abs(a.x) + std::abs(a.y) + std::abs(a.z));
-    return std::min({p0, p1, p2}) > r + tol || std::max({p0, p1, p2}) < -r - tol;
-  };
-  if (apart({1, 0, 0}) || apart({0, 1, 0}) || apart({0, 0, 1})) return false;
-  const Vec3 e[3] = {v[1] - v[0], v[2] - v[1], v[0] - v[2]};
-  for (const Vec3& d : e) {
-    if (apart({0, d.z, -d.y}) || apart({-d.z, 0, d.x}) || apart({d.y, -d.x, 0})) return false;
-  }
-  return !apart(cross(e[0], e[1]));
 }
 
 }  // namespace cellforge::inline geom

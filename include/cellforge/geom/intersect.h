@@ -34,11 +34,4 @@ bool segment_meets_triangle(Vec3 p, Vec3 q, const Vec3 t[3]);
 // callers report degeneracy on its own.
 bool triangles_meet(const Vec3 a[3], const Vec3 b[3]);
 
-// A filter before exact tests, never a decision: false only when the closed triangle t
-// and the closed box b are certainly apart, by a separating axis (the box's axes, t's
-// normal, t's edges crossed with the box's axes) with a margin far above the rounding
-// of the floating-point test (1e-9 of the coordinates' size). A long thin triangle
-// keeps away most of what its box meets.
-bool triangle_may_meet_box(const Vec3 t[3], Vec3 lo, Vec3 hi);
-
 }  // namespace cellforge::inline geom
