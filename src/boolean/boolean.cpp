@@ -151,22 +151,25 @@ std::vector<std::array<std::uint32_t, 3>> fan_tiles(const std::vector<std::vecto
 Result<Arrangement> make_soup(std::span<const Model* const> operands, int threads) {
   std::vector<Vec3> pos;
   std::unordered_map<Vec3, std::uint32_t, VecHash> ids;
+  std::size_t vertices = 0;
+  for (const Model* m : operands) vertices += m->num_vertices();
+  ids.reserve(vertices);
   std::vector<Tri> tris;
   std::vector<SoupFace> faces;
   std::vector<WireSeg> wires;
   for (std::uint32_t k = 0; k < operands.size(); ++k) {
     const Model& m = *operands[k];
-    std::unordered_map<std::uint32_t, std::uint32_t> vmap;
+    std::vector<std::uint32_t> vmap(m.vertex_slots(), kInvalidIndex);  // by vertex slot
     auto vid = [&](VertexId v) {
-      auto [it, fresh] = vmap.try_emplace(v.value, 0);
-      if (fresh) {
+      std::uint32_t& id = vmap[v.value];
+      if (id == kInvalidIndex) {
         Vec3 p = m.position(v);
         p = {p.x + 0.0, p.y + 0.0, p.z + 0.0};  // -0.0 and 0.0 are one point
         auto [jt, nu] = ids.try_emplace(p, static_cast<std::uint32_t>(pos.size()));
         if (nu) pos.push_back(p);
-        it->second = jt->second;
+        id = jt->second;
       }
-      return it->second;
+      return id;
     };
     const std::size_t before = tris.size();
     const std::vector<FaceId> face_ids = face_list(m);

@@ -15,6 +15,7 @@
 // operand joined across manifold edges, consistently oriented, that touch nothing.
 #include <algorithm>
 #include <array>
+#include <numeric>
 #include <optional>
 #include <type_traits>
 
@@ -39,6 +40,10 @@ V3<T> normal_t(const Arrangement& a, const Tri& t) {
 }
 
 int sgn(double x) { return x > 0 ? 1 : (x < 0 ? -1 : 0); }
+
+std::uint64_t ordered(std::uint32_t p, std::uint32_t q) {
+  return (static_cast<std::uint64_t>(std::min(p, q)) << 32) | std::max(p, q);
+}
 
 // Winding numbers by operand on the two sides of a point; `touched` lists the
 // operands a ray met (with repeats), so that a ray over many operands costs what it
@@ -453,6 +458,97 @@ bool covers(const Arrangement& a, std::uint32_t t, const RepPoint& r) {
   return true;
 }
 
+// Pieces that one ray classifies together. Two pieces of one-triangle clusters that
+// meet along a part of an input edge (the same two points of it) have equal winding
+// numbers on their like sides when the two triangles are the only ones at the edge,
+// of one operand and consistently oriented, and no other surface reaches the open
+// part: none lies along the edge (a contact edge, an input vertex inside it, an end
+// on another's edge) and one crossing it makes a point of it, an end of the part. By
+// job (index into `jobs`): the smallest job of its group, whose ray decides.
+std::vector<std::uint32_t> shared_rays(const Arrangement& a, const std::vector<std::array<std::uint32_t, 2>>& jobs) {
+  std::vector<std::uint32_t> root(jobs.size());
+  std::iota(root.begin(), root.end(), 0u);
+  // The input edges of touched one-triangle clusters, with their triangle.
+  struct Use {
+    std::uint64_t edge;
+    std::uint32_t tri;
+    bool forward;
+  };
+  std::vector<Use> uses;
+  for (const Cluster& c : a.clusters) {
+    if (!c.touched || c.tris.size() != 1) continue;
+    const Tri& t = a.tris[c.tris[0]];
+    for (int e = 0; e < 3; ++e) {
+      const std::uint32_t p = t.v[e], q = t.v[(e + 1) % 3];
+      uses.push_back({ordered(p, q), c.tris[0], p < q});
+    }
+  }
+  if (uses.empty()) return root;
+  std::sort(uses.begin(), uses.end(), [](const Use& x, const Use& y) { return x.edge < y.edge || (x.edge == y.edge && x.tri < y.tri); });
+  // Edges that other triangles use too (any triangle: untouched ones are not above).
+  std::vector<std::uint64_t> all_edges;
+  all_edges.reserve(a.tris.size() * 3);
+  for (const Tri& t : a.tris)
+    for (int e = 0; e < 3; ++e) all_edges.push_back(ordered(t.v[e], t.v[(e + 1) % 3]));
+  std::sort(all_edges.begin(), all_edges.end());
+  std::vector<char> on_other_edge(a.pos.size(), 0);
+  std::vector<std::uint32_t> keys_with_vertex;
+  for (auto [key, v] : a.edge_points) {
+    if (v >= a.pos.size()) continue;
+    on_other_edge[v] = 1;
+    keys_with_vertex.push_back(key);
+  }
+  std::sort(keys_with_vertex.begin(), keys_with_vertex.end());
+  std::vector<std::uint64_t> good;  // edges across which groups may form
+  for (std::size_t i = 0; i + 1 < uses.size(); ++i) {
+    const Use &x = uses[i], &y = uses[i + 1];
+    if (x.edge != y.edge || (i + 2 < uses.size() && uses[i + 2].edge == x.edge) || (i > 0 && uses[i - 1].edge == x.edge))
+      continue;
+    const auto [lo, hi] = std::equal_range(all_edges.begin(), all_edges.end(), x.edge);
+    if (hi - lo != 2 || x.forward == y.forward || a.tris[x.tri].operand != a.tris[y.tri].operand) continue;
+    const std::uint32_t p = static_cast<std::uint32_t>(x.edge >> 32), q = static_cast<std::uint32_t>(x.edge);
+    if (on_other_edge[p] || on_other_edge[q] || a.is_contact_edge(p, q)) continue;
+    const std::uint32_t key = a.find_edge_key(p, q);
+    if (key != kInvalidIndex && std::binary_search(keys_with_vertex.begin(), keys_with_vertex.end(), key)) continue;
+    good.push_back(x.edge);
+  }
+  // The pieces' sides along those edges: (edge, the side's two points, job).
+  struct Side {
+    std::uint64_t edge, part;
+    std::uint32_t job;
+  };
+  std::vector<Side> sides;
+  for (std::uint32_t k = 0; k < jobs.size(); ++k) {
+    const Cluster& c = a.clusters[jobs[k][0]];
+    if (c.tris.size() != 1) continue;
+    const Piece& piece = c.pieces[jobs[k][1]];
+    for (std::size_t e = 0; e < piece.pts.size(); ++e) {
+      const Line& l = c.lines[piece.lines[e]];
+      if (l.kind != LineKind::kThrough) continue;
+      const std::uint64_t edge = ordered(l.a, l.b);
+      if (!std::binary_search(good.begin(), good.end(), edge)) continue;
+      sides.push_back({edge, ordered(piece.pts[e], piece.pts[(e + 1) % piece.pts.size()]), k});
+    }
+  }
+  std::sort(sides.begin(), sides.end(), [](const Side& x, const Side& y) {
+    return x.edge < y.edge || (x.edge == y.edge && (x.part < y.part || (x.part == y.part && x.job < y.job)));
+  });
+  UnionFind groups(jobs.size());
+  for (std::size_t i = 0; i + 1 < sides.size(); ++i) {
+    const Side &x = sides[i], &y = sides[i + 1];
+    if (x.edge != y.edge || x.part != y.part || jobs[x.job][0] == jobs[y.job][0]) continue;
+    if (i + 2 < sides.size() && sides[i + 2].edge == x.edge && sides[i + 2].part == x.part) continue;
+    groups.unite(x.job, y.job);
+  }
+  std::vector<std::uint32_t> first(jobs.size(), kInvalidIndex);
+  for (std::uint32_t k = 0; k < jobs.size(); ++k) {
+    std::uint32_t& f = first[groups.find(k)];
+    if (f == kInvalidIndex) f = k;
+    root[k] = f;
+  }
+  return root;
+}
+
 }  // namespace
 
 Selection classify_and_select(const Arrangement& a, const Expr& expr, const Options& options,
@@ -524,16 +620,18 @@ Selection classify_and_select(const Arrangement& a, const Expr& expr, const Opti
     report.touched_triangles += c.tris.size();
     for (std::uint32_t pi = 0; pi < c.pieces.size(); ++pi) jobs.push_back({ci, pi});
   }
-  const std::vector<Verdict> pieces = classify(jobs.size(), [&](std::size_t k, std::uint32_t& source,
-                                                                 std::vector<std::uint32_t>& on) {
+  const std::vector<std::uint32_t> ray_of = shared_rays(a, jobs);
+  std::vector<Verdict> pieces = classify(jobs.size(), [&](std::size_t k, std::uint32_t& source,
+                                                           std::vector<std::uint32_t>& on) {
     const auto [ci, pi] = jobs[k];
     const Cluster& c = a.clusters[ci];
-    const RepPoint r = rep_of(a, ci, c.pieces[pi]);
     if (c.tris.size() == 1) {
       source = c.tris[0];
       on.push_back(a.tris[source].operand);
-      return std::optional<RepPoint>(r);
+      if (ray_of[k] != k) return std::optional<RepPoint>();  // its group's ray decides
+      return std::optional<RepPoint>(rep_of(a, ci, c.pieces[pi]));
     }
+    const RepPoint r = rep_of(a, ci, c.pieces[pi]);
     int source_sign = 0;
     for (std::size_t t = 0; t < c.tris.size(); ++t) {
       if (!covers(a, c.tris[t], r)) continue;
@@ -546,6 +644,13 @@ Selection classify_and_select(const Arrangement& a, const Expr& expr, const Opti
     // Outside every triangle of the cluster: no face.
     return source == kInvalidIndex ? std::nullopt : std::optional<RepPoint>(r);
   });
+  for (std::size_t k = 0; k < jobs.size(); ++k) {
+    if (ray_of[k] == k) continue;
+    const Verdict& root = pieces[ray_of[k]];  // an earlier job
+    pieces[k].keep = root.keep;
+    pieces[k].kind = root.kind;
+    pieces[k].mark = root.mark;
+  }
   for (std::size_t k = 0; k < jobs.size(); ++k) {
     const Verdict& v = pieces[k];
     if (v.source == kInvalidIndex) continue;
