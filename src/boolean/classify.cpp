@@ -15,12 +15,14 @@
 // operand joined across manifold edges, consistently oriented, that touch nothing.
 #include <algorithm>
 #include <array>
+#include <memory>
 #include <numeric>
 #include <optional>
 #include <type_traits>
 
 #include "boolean/parallel.h"
 #include "boolean/stages.h"
+#include "cellforge/geom/bvh.h"
 #include "cellforge/geom/predicates.h"
 #include "cellforge/geom/union_find.h"
 
@@ -621,6 +623,18 @@ Selection classify_and_select(const Arrangement& a, const Expr& expr, const Opti
     for (std::uint32_t pi = 0; pi < c.pieces.size(); ++pi) jobs.push_back({ci, pi});
   }
   const std::vector<std::uint32_t> ray_of = shared_rays(a, jobs);
+  // Clusters of many triangles (coplanar faces of many operands: a Menger sponge's
+  // planes): a tree of their triangles' boxes, so that a piece tests only the
+  // triangles whose boxes hold its corners' box.
+  std::vector<std::unique_ptr<Bvh>> cluster_tree(a.clusters.size());
+  for (std::uint32_t ci = 0; ci < a.clusters.size(); ++ci) {
+    const Cluster& c = a.clusters[ci];
+    if (!c.touched || c.tris.size() <= 8) continue;
+    std::vector<Box> boxes;
+    boxes.reserve(c.tris.size());
+    for (std::uint32_t t : c.tris) boxes.push_back(a.tri_boxes[t]);
+    cluster_tree[ci] = std::make_unique<Bvh>(std::move(boxes));
+  }
   std::vector<Verdict> pieces = classify(jobs.size(), [&](std::size_t k, std::uint32_t& source,
                                                            std::vector<std::uint32_t>& on) {
     const auto [ci, pi] = jobs[k];
@@ -633,7 +647,23 @@ Selection classify_and_select(const Arrangement& a, const Expr& expr, const Opti
     }
     const RepPoint r = rep_of(a, ci, c.pieces[pi]);
     int source_sign = 0;
-    for (std::size_t t = 0; t < c.tris.size(); ++t) {
+    std::vector<std::uint32_t> candidates;  // indices into c.tris, in order
+    if (cluster_tree[ci]) {
+      Box near;
+      for (std::uint32_t q : r.p) {
+        double e = 0;
+        const Vec3 x = a.approx3(q, &e);
+        near.add(x - Vec3{e, e, e});
+        near.add(x + Vec3{e, e, e});
+      }
+      cluster_tree[ci]->query([&](const Box& b) { return b.overlaps(near); },
+                              [&](std::uint32_t t) { candidates.push_back(t); });
+      std::sort(candidates.begin(), candidates.end());
+    } else {
+      candidates.resize(c.tris.size());
+      std::iota(candidates.begin(), candidates.end(), 0u);
+    }
+    for (std::uint32_t t : candidates) {
       if (!covers(a, c.tris[t], r)) continue;
       on.push_back(a.tris[c.tris[t]].operand);
       if (source == kInvalidIndex || (source_sign < 0 && c.tri_sign[t] > 0)) {
