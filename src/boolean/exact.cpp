@@ -224,6 +224,45 @@ Status write_exact(const ExactForm& form, const std::string& path) {
   return {};
 }
 
+Attachment exact_attachment(const ExactForm& form) {
+  return {kExactAttachment, kExactAttachmentVersion, exact_to_string(form)};
+}
+
+Result<std::shared_ptr<const ExactForm>> exact_from_attachment(const Attachment& a) {
+  const std::string what = std::string("attachment '") + a.name + "'";
+  if (a.name != kExactAttachment)
+    return Error{ErrorCode::kInvalidInput, what + " is not an exact form ('" + kExactAttachment + "')"};
+  if (a.version != kExactAttachmentVersion)
+    return Error{ErrorCode::kUnsupported, what + " has version " + std::to_string(a.version) +
+                                              "; this cellforge reads version " +
+                                              std::to_string(kExactAttachmentVersion)};
+  auto form = exact_from_string(a.data);
+  if (!form) return Error{form.error().code, what + ": " + form.error().message};
+  return form;
+}
+
+Result<std::shared_ptr<const ExactForm>> find_exact(const std::vector<Attachment>& attachments) {
+  const Attachment* a = find_attachment(attachments, kExactAttachment);
+  if (!a) return std::shared_ptr<const ExactForm>();
+  return exact_from_attachment(*a);
+}
+
+Status write_result(const BooleanResult& result, const std::string& path) {
+  io::WriteOptions options{.format = io::Format::kJson};
+  if (result.exact) options.attachments.push_back(exact_attachment(*result.exact));
+  return io::write_file(result.model, path, options);
+}
+
+Result<BooleanResult> read_result(const std::string& path) {
+  BooleanResult out;
+  auto r = io::read_file(out.model, path);
+  if (!r) return r.error();
+  auto form = find_exact(r->attachments);
+  if (!form) return Error{form.error().code, path + ": " + form.error().message};
+  out.exact = std::move(*form);
+  return out;
+}
+
 Result<std::shared_ptr<const ExactForm>> read_exact(const std::string& path) {
   auto bytes = io::read_bytes(path);
   if (!bytes) return bytes.error();
