@@ -708,6 +708,10 @@ Status read_property(JsonReader& r, Snapshot& s) {
   if (!st) return st;
   if (!has_owner || !has_name || !has_type || !has_default)
     return r.error_at(at, "a property needs 'owner', 'name', 'type' and 'default'");
+  for (const Snapshot::Property& q : s.properties) {
+    if (q.owner == p.owner && q.name == p.name)
+      return r.error_at(at, std::string(owner_name(p.owner)) + " property " + quote(p.name) + " is there twice");
+  }
   s.properties.push_back(std::move(p));
   return Status::Ok();
 }
@@ -948,8 +952,8 @@ Status append_properties(Snapshot& a, const Snapshot& b, const std::uint32_t (&b
     }
     if (into->type != p.type) {
       return Error{ErrorCode::kInvalidInput,
-                   "json: property '" + p.name + "' of the " + std::string(owner_name(p.owner)) +
-                       "s is " + std::string(type_name(p.type)) + " in the file and " +
+                   "json: " + std::string(owner_name(p.owner)) + " property '" + p.name + "' is " +
+                       std::string(type_name(p.type)) + " in the file and " +
                        std::string(type_name(into->type)) + " in the model it is read into"};
     }
     if (same_value(into->fallback, p.fallback)) {

@@ -121,7 +121,7 @@ Status check_properties(const Snapshot& r, const std::size_t (&count)[4]) {
     const Snapshot::Property& p = r.properties[i];
     const auto owner = static_cast<std::size_t>(p.owner);
     if (owner >= 4) return inconsistent("property " + std::to_string(i) + " has no owner kind");
-    const std::string what = "property '" + p.name + "' of the " + std::string(owner_name(p.owner)) + "s";
+    const std::string what = std::string(owner_name(p.owner)) + " property '" + p.name + "'";
     for (std::size_t j = 0; j < i; ++j) {
       if (r.properties[j].owner == p.owner && r.properties[j].name == p.name)
         return inconsistent(what + " is there twice");
