@@ -8,12 +8,15 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <functional>
 #include <random>
 
 #include "boolean/boolean_test_util.h"
 #include "cellforge/io/mesh_io.h"
 #include "cellforge/store/store.h"
+#include "support/cli.h"
 #include "store/connection.h"
 
 namespace cellforge::testing {
@@ -302,6 +305,68 @@ TEST(ExactChain, DamagedStoredFormsAreErrorsWithTheirPlace) {
   EXPECT_FALSE(plain->exact);
   EXPECT_TRUE(same_model(plain->model, r->model));
   db->reset();
+  std::filesystem::remove_all(dir);
+}
+
+// The command line keeps chains exact: `bool` takes a JSON result's exact form
+// and writes its own, `db save` and `db load` keep it; --rounded rounds between.
+TEST(ExactChain, CommandLineChainsStayExact) {
+  const auto dir = std::filesystem::temp_directory_path() / ("cellforge_cli_chain_" + std::to_string(getpid()));
+  std::filesystem::create_directories(dir);
+  const auto at = [&](const std::string& name) { return (dir / name).string(); };
+  const Model a = box_model({0, 0, 0}, {3, 3, 3});
+  const Model b = sphere_model(1.7, 14, {1.5, 1.5, 3});
+  const Model c = cylinder_model(0.6, 5, 12, {1.5, 1.5, -1});
+  ASSERT_TRUE(io::write_file(a, at("a.json")).ok());
+  ASSERT_TRUE(io::write_file(b, at("b.json")).ok());
+  ASSERT_TRUE(io::write_file(c, at("c.json")).ok());
+  CliRun r = run_cli("bool difference " + at("a.json") + " " + at("b.json") + " -o " + at("r1.json"));
+  ASSERT_EQ(r.status, 0) << r.out;
+  r = run_cli("bool difference " + at("r1.json") + " " + at("c.json") + " -o " + at("r2.json"));
+  ASSERT_EQ(r.status, 0) << r.out;
+  const std::string db = "--db " + at("chain.db");
+  r = run_cli("db save " + at("r2.json") + " --name part " + db);
+  ASSERT_EQ(r.status, 0) << r.out;
+  r = run_cli("db load part -o " + at("r3.json") + " " + db);
+  ASSERT_EQ(r.status, 0) << r.out;
+
+  // (a - b) - c at once, from the input doubles.
+  const Model* all[3] = {&a, &b, &c};
+  auto once = boolean::evaluate(all, Expr::op(Op::kDifference, {Expr::over(Op::kDifference, 2), Expr::of(2)}));
+  ASSERT_TRUE(once.ok()) << once.error().message;
+  for (const char* name : {"r2.json", "r3.json"}) {
+    SCOPED_TRACE(name);
+    auto back = boolean::read_result(at(name));
+    ASSERT_TRUE(back.ok()) << back.error().message;
+    ASSERT_TRUE(back->exact);
+    EXPECT_EQ(back->exact->inputs.size(), 3u);
+    EXPECT_TRUE(same_model(back->model, once->model));
+    auto again = boolean::evaluate(*back->exact);
+    ASSERT_TRUE(again.ok());
+    EXPECT_TRUE(same_model(again->model, once->model));
+  }
+  // Rounded between the steps: no exact form, and the second step starts from the
+  // rounded first result.
+  r = run_cli("bool difference " + at("r1.json") + " " + at("c.json") + " -o " + at("r4.json") + " --rounded");
+  ASSERT_EQ(r.status, 0) << r.out;
+  auto rounded = boolean::read_result(at("r4.json"));
+  ASSERT_TRUE(rounded.ok()) << rounded.error().message;
+  EXPECT_FALSE(rounded->exact);
+  // A damaged exact form in an operand is an error that names the file.
+  std::string text;
+  {
+    std::ifstream f(at("r1.json"), std::ios::binary);
+    text.assign(std::istreambuf_iterator<char>(f), {});
+  }
+  text.replace(text.find("(difference 0 1)"), 16, "(differense 0 1)");
+  {
+    std::ofstream f(at("bad.json"), std::ios::binary);
+    f << text;
+  }
+  r = run_cli("bool union " + at("bad.json") + " " + at("c.json") + " -o " + at("r5.json"));
+  EXPECT_EQ(r.status, 1) << r.out;
+  EXPECT_NE(r.out.find(at("bad.json") + ": attachment 'cellforge.exact': exact form: byte "), std::string::npos)
+      << r.out;
   std::filesystem::remove_all(dir);
 }
 
