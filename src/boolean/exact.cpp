@@ -2,6 +2,7 @@
 // expression, and its text form.
 #include "cellforge/boolean/exact.h"
 
+#include <algorithm>
 #include <cctype>
 #include <charconv>
 #include <fstream>
@@ -66,6 +67,12 @@ void write_expr(const Expr& e, std::string& out) {
   out += ')';
 }
 
+int depth_of(const Expr& e) {
+  int d = 0;
+  for (const Expr& c : e.children) d = std::max(d, depth_of(c));
+  return e.kind == Expr::Kind::kOperand ? 0 : d + 1;
+}
+
 Error bad(std::string_view what, std::size_t offset) {
   return Error{ErrorCode::kParse, "exact form: byte " + std::to_string(offset) + ": " + std::string(what)};
 }
@@ -89,7 +96,8 @@ struct ExprParser {
       return Expr::of(v);
     }
     if (s[i] != '(') return bad("expected '(' or an operand number", base + i);
-    if (++depth > 10000) return bad("the expression nests too deeply", base + i);
+    if (++depth > kMaxExactDepth)
+      return bad("the expression nests deeper than " + std::to_string(kMaxExactDepth) + " levels", base + i);
     ++i;
     const std::size_t start = i;
     while (i < s.size() && std::isalpha(static_cast<unsigned char>(s[i]))) ++i;
@@ -149,6 +157,11 @@ Result<BooleanResult> chain(std::span<const Operand> operands, const Expr& expr,
                                                std::to_string(expr.max_operand()) + " of " +
                                                std::to_string(parts.size())};
   form->expr = substituted(expr, parts);
+  if (const int depth = depth_of(form->expr); depth > kMaxExactDepth)
+    return Error{ErrorCode::kUnsupported,
+                 "boolean: the chain's expression would nest " + std::to_string(depth) +
+                     " levels; an exact form holds at most " + std::to_string(kMaxExactDepth) +
+                     " (make an operand of the rounded model, Operand::of(result.model))"};
   auto r = evaluate(*form, options);
   if (r) r->exact = std::move(form);
   return r;

@@ -65,6 +65,16 @@ TEST(ExactChain, StepsAreOneArrangement) {
   EXPECT_TRUE(same_model(again->model, r2->model));
 }
 
+// An expression nested past the parser's limit is refused, not a stack overflow.
+TEST(ExactChain, DeepNestingIsRefused) {
+  std::string deep = "cellforge exact form 1\nexpr ";
+  for (int k = 0; k < 20000; ++k) deep += "(union 0 ";
+  deep += "\n";
+  auto r = boolean::exact_from_string(deep);
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.error().message.find("nests deeper than 2000 levels"), std::string::npos) << r.error().message;
+}
+
 TEST(ExactChain, BadTextIsAnErrorWithItsPlace) {
   EXPECT_FALSE(boolean::exact_from_string("hello").ok());
   auto r = boolean::exact_from_string("cellforge exact form 1\nexpr (union 0 1\n");

@@ -46,8 +46,14 @@ struct Operand {
   static Operand of(std::shared_ptr<const ExactForm> form);
 };
 
+// How deep an exact form's expression may nest (a step of a chain adds a level at
+// most): deeper forms are refused by chain() and by the reader, whose recursion must
+// stay well inside a thread's stack.
+inline constexpr int kMaxExactDepth = 2000;
+
 // evaluate() over operands that may be earlier results; the result carries its exact
 // form (BooleanResult::exact). Inputs shared by several operands are one input.
+// An error (kUnsupported) when the expression would nest deeper than kMaxExactDepth.
 Result<BooleanResult> chain(std::span<const Operand> operands, const Expr& expr,
                             const Options& options = {});
 
