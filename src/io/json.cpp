@@ -995,6 +995,34 @@ Status append(Snapshot& a, const Snapshot& b) {
   return append_properties(a, b, {v0, e0, f0, static_cast<std::uint32_t>(c0)});
 }
 
+// The property tables of `before` that snapshots leave out (value types without a
+// PropertyType), carried to `after`, which holds before's elements first, in id
+// order, renumbered (restore of before's snapshot and more).
+void keep_memory_only_properties(const Model& before, Model& after) {
+  const auto ids = [](const Model& m, int kind) {
+    std::vector<std::uint32_t> out;
+    if (kind == detail::kVertexProperty)
+      for (VertexId v : m.vertices()) out.push_back(v.value);
+    if (kind == detail::kEdgeProperty)
+      for (EdgeId e : m.edges()) out.push_back(e.value);
+    if (kind == detail::kFaceProperty)
+      for (FaceId f : m.faces()) out.push_back(f.value);
+    if (kind == detail::kVolumeProperty)
+      for (VolumeId c : m.volumes()) out.push_back(c.value);
+    return out;
+  };
+  for (int kind = 0; kind < detail::kPropertyKinds; ++kind) {
+    std::vector<std::uint32_t> from, to;
+    for (const auto& column : before.property_store().columns(kind)) {
+      if (property_type_of(column->type())) continue;
+      if (from.empty()) from = ids(before, kind), to = ids(after, kind);
+      auto copy = column->empty_like();
+      for (std::size_t k = 0; k < from.size() && k < to.size(); ++k) column->copy_to(from[k], *copy, to[k]);
+      after.property_store().add(kind, std::move(copy));
+    }
+  }
+}
+
 }  // namespace
 
 Result<ReadResult> read_json(Model& m, std::string_view text) {
@@ -1009,6 +1037,7 @@ Result<ReadResult> read_json(Model& m, std::string_view text) {
   if (Status s = append(all, file); !s) return s.error();
   auto restored = restore(all);
   if (!restored) return Error{ErrorCode::kInvalidInput, "json: " + restored.error().message};
+  keep_memory_only_properties(m, *restored);
   m = std::move(*restored);
   ReadResult result;
   result.attachments = std::move(attachments);

@@ -113,6 +113,26 @@ TEST(JsonTables, ReadingIntoAModelJoinsItsTables) {
             std::string::npos)
       << r.error().message;
   EXPECT_EQ(canonical_dump(other), dump);
+
+  // A table of a type files do not keep stays with the model's own elements.
+  Model held = testing::build(testing::book());
+  auto scratch = add_property<FaceProperty<std::vector<int>>>(held, "scratch");
+  ASSERT_OK(scratch);
+  const FaceId last = [&] {
+    FaceId f;
+    for (FaceId g : held.faces()) f = g;
+    return f;
+  }();
+  scratch->set(last, {4, 2});
+  const std::size_t faces_before = held.num_faces();
+  ASSERT_OK(io::read_model(held, testing::bytes_of(text), Format::kJson));
+  const auto kept = find_property<FaceProperty<std::vector<int>>>(held, "scratch");
+  ASSERT_TRUE(kept.is_valid());
+  std::size_t k = 0;
+  for (FaceId f : held.faces()) {
+    EXPECT_EQ(kept[f], k + 1 == faces_before ? std::vector<int>({4, 2}) : std::vector<int>()) << f.str();
+    ++k;
+  }
 }
 
 TEST(JsonTables, AttachmentsComeBackByteForByte) {
