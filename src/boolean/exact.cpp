@@ -74,7 +74,8 @@ int depth_of(const Expr& e) {
 }
 
 Error bad(std::string_view what, std::size_t offset) {
-  return Error{ErrorCode::kParse, "exact form: byte " + std::to_string(offset) + ": " + std::string(what)};
+  return Error{ErrorCode::kParse,
+               "exact form: byte " + std::to_string(offset) + ": " + std::string(what)};
 }
 
 struct ExprParser {
@@ -97,7 +98,8 @@ struct ExprParser {
     }
     if (s[i] != '(') return bad("expected '(' or an operand number", base + i);
     if (++depth > kMaxExactDepth)
-      return bad("the expression nests deeper than " + std::to_string(kMaxExactDepth) + " levels", base + i);
+      return bad("the expression nests deeper than " + std::to_string(kMaxExactDepth) + " levels",
+                 base + i);
     ++i;
     const std::size_t start = i;
     while (i < s.size() && std::isalpha(static_cast<unsigned char>(s[i]))) ++i;
@@ -131,7 +133,8 @@ constexpr std::string_view kMagic = "cellforge exact form 1\n";
 
 }  // namespace
 
-Result<BooleanResult> chain(std::span<const Operand> operands, const Expr& expr, const Options& options) {
+Result<BooleanResult> chain(std::span<const Operand> operands, const Expr& expr,
+                            const Options& options) {
   auto form = std::make_shared<ExactForm>();
   std::unordered_map<const Model*, int> index;  // an input shared by operands, once
   auto input = [&](const std::shared_ptr<const Model>& m) {
@@ -149,7 +152,8 @@ Result<BooleanResult> chain(std::span<const Operand> operands, const Expr& expr,
     } else if (o.model) {
       parts.push_back(Expr::of(input(o.model)));
     } else {
-      return Error{ErrorCode::kInvalidInput, "boolean: chain operand " + std::to_string(k) + " is empty"};
+      return Error{ErrorCode::kInvalidInput,
+                   "boolean: chain operand " + std::to_string(k) + " is empty"};
     }
   }
   if (expr.max_operand() >= static_cast<int>(parts.size()))
@@ -189,11 +193,13 @@ std::string exact_to_string(const ExactForm& form) {
 }
 
 Result<std::shared_ptr<const ExactForm>> exact_from_string(std::string_view text) {
-  if (text.substr(0, kMagic.size()) != kMagic) return bad("not a cellforge exact form (no header)", 0);
+  if (text.substr(0, kMagic.size()) != kMagic)
+    return bad("not a cellforge exact form (no header)", 0);
   std::size_t at = kMagic.size();
   auto line_end = [&](std::size_t from) { return text.find('\n', from); };
   std::size_t e = line_end(at);
-  if (e == std::string_view::npos || text.substr(at, 5) != "expr ") return bad("expected 'expr (...)'", at);
+  if (e == std::string_view::npos || text.substr(at, 5) != "expr ")
+    return bad("expected 'expr (...)'", at);
   ExprParser p{text.substr(at + 5, e - at - 5), 0, at + 5};
   auto expr = p.parse();
   if (!expr) return expr.error();
@@ -204,20 +210,26 @@ Result<std::shared_ptr<const ExactForm>> exact_from_string(std::string_view text
   at = e + 1;
   while (at < text.size()) {
     e = line_end(at);
-    if (e == std::string_view::npos || text.substr(at, 6) != "input ") return bad("expected 'input LENGTH'", at);
+    if (e == std::string_view::npos || text.substr(at, 6) != "input ")
+      return bad("expected 'input LENGTH'", at);
     std::size_t length = 0;
     const auto [ptr, ec] = std::from_chars(text.data() + at + 6, text.data() + e, length);
-    if (ec != std::errc() || ptr != text.data() + e) return bad("expected the input's length in bytes", at + 6);
+    if (ec != std::errc() || ptr != text.data() + e)
+      return bad("expected the input's length in bytes", at + 6);
     const std::size_t body = e + 1;
     if (length > text.size() - body || body + length >= text.size() || text[body + length] != '\n')
-      return bad("input " + std::to_string(form->inputs.size()) + " is shorter than its length", body);
+      return bad("input " + std::to_string(form->inputs.size()) + " is shorter than its length",
+                 body);
     auto m = std::make_shared<Model>();
     const std::string_view json = text.substr(body, length);
-    auto r = io::read_model(*m, std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(json.data()), json.size()),
+    auto r = io::read_model(*m,
+                            std::span<const std::uint8_t>(
+                                reinterpret_cast<const std::uint8_t*>(json.data()), json.size()),
                             io::Format::kJson);
     if (!r)
-      return Error{ErrorCode::kParse, "exact form: input " + std::to_string(form->inputs.size()) + " (from byte " +
-                                          std::to_string(body) + "): " + r.error().message};
+      return Error{ErrorCode::kParse, "exact form: input " + std::to_string(form->inputs.size()) +
+                                          " (from byte " + std::to_string(body) +
+                                          "): " + r.error().message};
     form->inputs.push_back(std::move(m));
     at = body + length + 1;
   }
@@ -244,7 +256,8 @@ Attachment exact_attachment(const ExactForm& form) {
 Result<std::shared_ptr<const ExactForm>> exact_from_attachment(const Attachment& a) {
   const std::string what = std::string("attachment '") + a.name + "'";
   if (a.name != kExactAttachment)
-    return Error{ErrorCode::kInvalidInput, what + " is not an exact form ('" + kExactAttachment + "')"};
+    return Error{ErrorCode::kInvalidInput,
+                 what + " is not an exact form ('" + kExactAttachment + "')"};
   if (a.version != kExactAttachmentVersion)
     return Error{ErrorCode::kUnsupported, what + " has version " + std::to_string(a.version) +
                                               "; this cellforge reads version " +
@@ -279,7 +292,8 @@ Result<BooleanResult> read_result(const std::string& path) {
 Result<std::shared_ptr<const ExactForm>> read_exact(const std::string& path) {
   auto bytes = io::read_bytes(path);
   if (!bytes) return bytes.error();
-  auto r = exact_from_string(std::string_view(reinterpret_cast<const char*>(bytes->data()), bytes->size()));
+  auto r = exact_from_string(
+      std::string_view(reinterpret_cast<const char*>(bytes->data()), bytes->size()));
   if (!r) return Error{r.error().code, path + ": " + r.error().message};
   return r;
 }

@@ -398,11 +398,11 @@ class JsonReader {
     const std::string_view tok = text_.substr(start, i_ - start);
     const auto [end, ec] = std::from_chars(tok.data(), tok.data() + tok.size(), out);
     if (tok.empty() || ec == std::errc::invalid_argument || end != tok.data() + tok.size())
-      return error_at(start, "expected a non-negative integer, found " +
-                                 (tok.empty() ? found() : quote(tok)));
+      return error_at(
+          start, "expected a non-negative integer, found " + (tok.empty() ? found() : quote(tok)));
     if (ec == std::errc::result_out_of_range || out > hi)
-      return error_at(start, "integer " + std::string(tok) + " out of range [0, " +
-                                 std::to_string(hi) + "]");
+      return error_at(
+          start, "integer " + std::string(tok) + " out of range [0, " + std::to_string(hi) + "]");
     return Status::Ok();
   }
   // A number, or one of the strings "NaN", "Infinity", "-Infinity".
@@ -417,8 +417,8 @@ class JsonReader {
       out = word == kInfinity ? std::numeric_limits<double>::infinity()
                               : -std::numeric_limits<double>::infinity();
     } else {
-      return error_at(start, "expected a number, \"NaN\", \"Infinity\" or \"-Infinity\", found " +
-                                 quote(word));
+      return error_at(
+          start, "expected a number, \"NaN\", \"Infinity\" or \"-Infinity\", found " + quote(word));
     }
     return Status::Ok();
   }
@@ -663,7 +663,8 @@ Status read_property(JsonReader& r, Snapshot& s) {
       if (key == "owner") {
         const auto owner = owner_from_name(word);
         if (!owner)
-          return r.error_at(here, "unknown property owner " + quote(word) + " (vertex, edge, face or cell)");
+          return r.error_at(
+              here, "unknown property owner " + quote(word) + " (vertex, edge, face or cell)");
         p.owner = *owner;
         has_owner = true;
       } else {
@@ -710,7 +711,8 @@ Status read_property(JsonReader& r, Snapshot& s) {
     return r.error_at(at, "a property needs 'owner', 'name', 'type' and 'default'");
   for (const Snapshot::Property& q : s.properties) {
     if (q.owner == p.owner && q.name == p.name)
-      return r.error_at(at, std::string(owner_name(p.owner)) + " property " + quote(p.name) + " is there twice");
+      return r.error_at(
+          at, std::string(owner_name(p.owner)) + " property " + quote(p.name) + " is there twice");
   }
   s.properties.push_back(std::move(p));
   return Status::Ok();
@@ -920,17 +922,20 @@ Status read_snapshot(JsonReader& r, Snapshot& s, std::vector<Attachment>& attach
     return r.error_at(0, "not a cellforge model ('format' is " + quote(format) + ", expected '" +
                              std::string(kFormat) + "')");
   if (version < 1 || version > kVersion)
-    return r.error_at(0, "unsupported version " + std::to_string(version) + " (this reader reads 1 to " +
-                             std::to_string(kVersion) + ")");
+    return r.error_at(0, "unsupported version " + std::to_string(version) +
+                             " (this reader reads 1 to " + std::to_string(kVersion) + ")");
   return r.end();
 }
 
 // Equal bit for bit (doubles and floats: -0.0 is not 0.0).
 bool same_value(const PropertyValue& a, const PropertyValue& b) {
   if (a.index() != b.index()) return false;
-  if (const auto* d = std::get_if<double>(&a)) return std::memcmp(d, std::get_if<double>(&b), sizeof *d) == 0;
-  if (const auto* c = std::get_if<Colour>(&a)) return std::memcmp(c, std::get_if<Colour>(&b), sizeof *c) == 0;
-  if (const auto* p = std::get_if<Vec3>(&a)) return std::memcmp(p, std::get_if<Vec3>(&b), sizeof *p) == 0;
+  if (const auto* d = std::get_if<double>(&a))
+    return std::memcmp(d, std::get_if<double>(&b), sizeof *d) == 0;
+  if (const auto* c = std::get_if<Colour>(&a))
+    return std::memcmp(c, std::get_if<Colour>(&b), sizeof *c) == 0;
+  if (const auto* p = std::get_if<Vec3>(&a))
+    return std::memcmp(p, std::get_if<Vec3>(&b), sizeof *p) == 0;
   return a == b;
 }
 
@@ -1017,7 +1022,8 @@ void keep_memory_only_properties(const Model& before, Model& after) {
       if (property_type_of(column->type())) continue;
       if (from.empty()) from = ids(before, kind), to = ids(after, kind);
       auto copy = column->empty_like();
-      for (std::size_t k = 0; k < from.size() && k < to.size(); ++k) column->copy_to(from[k], *copy, to[k]);
+      for (std::size_t k = 0; k < from.size() && k < to.size(); ++k)
+        column->copy_to(from[k], *copy, to[k]);
       after.property_store().add(kind, std::move(copy));
     }
   }

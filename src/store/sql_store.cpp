@@ -2,11 +2,11 @@
 // once over a Connection (sqlite_connection.cpp, pg_connection.cpp).
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <ctime>
-#include <cmath>
 #include <limits>
 #include <map>
 #include <thread>
@@ -307,7 +307,8 @@ Status check_strings(const std::string& name, const ModelRows& rows, const PutOp
     const std::string what = "property '" + p.name + "'";
     if (Status s = check_text("a property name", p.name); !s) return s;
     if (p.type != PropertyType::kString) continue;
-    if (Status s = check_text(what + ": the default", std::get<std::string>(p.fallback)); !s) return s;
+    if (Status s = check_text(what + ": the default", std::get<std::string>(p.fallback)); !s)
+      return s;
     for (const auto& [key, value] : p.values) {
       if (Status s = check_text(what + ": the value of " + std::string(owner_name(p.owner)) + " " +
                                     std::to_string(key),
@@ -382,7 +383,9 @@ class SqlStore final : public Store {
     Status s = read(name, version, [&](std::int64_t id) {
       return db_->select(
           "SELECT name, version, data FROM attachments WHERE volume_id = $1 ORDER BY ord", {id},
-          [&](const Row& r) { out.push_back({r.s(0), static_cast<int>(r.i(1)), r.s(2)}); });
+          [&](const Row& r) {
+            out.push_back({r.s(0), static_cast<int>(r.i(1)), r.s(2)});
+          });
     });
     if (!s) return s.error();
     return out;
@@ -391,8 +394,8 @@ class SqlStore final : public Store {
   Result<Model> get_faces_where(const std::string& name, const std::string& condition,
                                 int version) override {
     ModelRows rows;
-    Status s = read(name, version,
-                    [&](std::int64_t id) { return read_face_rows(id, condition, rows); });
+    Status s =
+        read(name, version, [&](std::int64_t id) { return read_face_rows(id, condition, rows); });
     if (!s) return s.error();
     return to_model(rows);
   }
@@ -934,8 +937,8 @@ FROM faces_old f JOIN (
         const QueryBox& b = r.boxes[i];
         w.i(id), w.i(static_cast<std::int64_t>(i)), w.i(f.group), w.opt(f.front), w.opt(f.back),
             w.opt(f.surface), w.d(r.planes[i].normal.x), w.d(r.planes[i].normal.y),
-            w.d(r.planes[i].normal.z), w.d(r.planes[i].d), w.d(b.min.x), w.d(b.min.y),
-            w.d(b.min.z), w.d(b.max.x), w.d(b.max.y), w.d(b.max.z);
+            w.d(r.planes[i].normal.z), w.d(r.planes[i].d), w.d(b.min.x), w.d(b.min.y), w.d(b.min.z),
+            w.d(b.max.x), w.d(b.max.y), w.d(b.max.z);
       });
     }
     if (s) {
@@ -958,9 +961,9 @@ FROM faces_old f JOIN (
       s = insert("face_tiles", 10, tiles.size(), [&](std::size_t t, RowWriter& w) {
         const QueryBox& b = tiles[t];
         const auto first = static_cast<std::int64_t>(t * kTileFaces);
-        const auto last = static_cast<std::int64_t>(std::min<std::size_t>(
-                              (t + 1) * kTileFaces, r.faces.size())) -
-                          1;
+        const auto last =
+            static_cast<std::int64_t>(std::min<std::size_t>((t + 1) * kTileFaces, r.faces.size())) -
+            1;
         w.i(tile_id(id, t)), w.d(b.min.x), w.d(b.max.x), w.d(b.min.y), w.d(b.max.y), w.d(b.min.z),
             w.d(b.max.z), w.i(id), w.i(first), w.i(last);
       });
@@ -997,7 +1000,8 @@ FROM faces_old f JOIN (
     for (std::size_t i = 0; i < r.properties.size(); ++i) {
       const auto& p = r.properties[i];
       values.push_back({static_cast<std::int64_t>(i), -1, &p.fallback});
-      for (const auto& [key, value] : p.values) values.push_back({static_cast<std::int64_t>(i), key, &value});
+      for (const auto& [key, value] : p.values)
+        values.push_back({static_cast<std::int64_t>(i), key, &value});
     }
     if (s) {
       s = insert("property_values", 9, values.size(), [&](std::size_t i, RowWriter& w) {
@@ -1009,13 +1013,13 @@ FROM faces_old f JOIN (
   }
 
   Status write_attachments(std::int64_t id, const std::vector<Attachment>& attachments) {
-    return db_->bulk_insert(
-        "attachments", 5, attachments.size(),
-        [&](std::size_t i, RowWriter& w) {
-          const Attachment& a = attachments[i];
-          w.i(id), w.i(static_cast<std::int64_t>(i)), w.s(a.name), w.i(a.version), w.s(a.data);
-        },
-        {});
+    return db_->bulk_insert("attachments", 5, attachments.size(),
+                            [&](std::size_t i, RowWriter& w) {
+                              const Attachment& a = attachments[i];
+                              w.i(id), w.i(static_cast<std::int64_t>(i)), w.s(a.name),
+                                  w.i(a.version), w.s(a.data);
+                            },
+                            {});
   }
 
   // The property tables of stored volume `id` into r.
@@ -1027,10 +1031,11 @@ FROM faces_old f JOIN (
         {id}, [&](const Row& row) {
           const auto owner = owner_from_name(row.s(1));
           const auto type = type_from_name(row.s(3));
-          if (bad && (row.i(0) != static_cast<std::int64_t>(r.properties.size()) || !owner || !type)) {
-            bad = db_error("stored volume: property " + std::to_string(row.i(0)) + " ('" + row.s(2) +
-                           "') has an unknown owner or type ('" + row.s(1) + "', '" + row.s(3) +
-                           "') or is out of key order");
+          if (bad &&
+              (row.i(0) != static_cast<std::int64_t>(r.properties.size()) || !owner || !type)) {
+            bad = db_error("stored volume: property " + std::to_string(row.i(0)) + " ('" +
+                           row.s(2) + "') has an unknown owner or type ('" + row.s(1) + "', '" +
+                           row.s(3) + "') or is out of key order");
           }
           if (bad) r.properties.push_back({owner.value(), row.s(2), type.value(), {}, {}});
         });
@@ -1052,10 +1057,11 @@ FROM faces_old f JOIN (
           Snapshot::Property& p = r.properties[static_cast<std::size_t>(k)];
           auto value = read_value(p.type, row, 2);
           if (!value) {
-            bad = db_error("stored volume: property '" + p.name + "', " +
-                           (element < 0 ? std::string("its default")
-                                        : std::string(owner_name(p.owner)) + " " + std::to_string(element)) +
-                           ": " + value.error().message + " for a " + std::string(type_name(p.type)));
+            bad = db_error(
+                "stored volume: property '" + p.name + "', " +
+                (element < 0 ? std::string("its default")
+                             : std::string(owner_name(p.owner)) + " " + std::to_string(element)) +
+                ": " + value.error().message + " for a " + std::string(type_name(p.type)));
             return;
           }
           if (element < 0) {
@@ -1180,8 +1186,8 @@ FROM faces_old f JOIN (
     Connection& db = *helper_;
     if (Status s = db.begin_read(); !s) return s;
     bool found = false;
-    Status s = db.select("SELECT id FROM volumes WHERE id = $1", {id},
-                         [&](const Row&) { found = true; });
+    Status s =
+        db.select("SELECT id FROM volumes WHERE id = $1", {id}, [&](const Row&) { found = true; });
     if (s && !found) s = db_error("the volume was removed while it was read");
     if (s) s = read_uses(db, id, uses);
     if (!s) {
@@ -1280,7 +1286,8 @@ FROM faces_old f JOIN (
           "edge_key", &edge_keys);
     }
     for (const auto& l : r.loops) {
-      if (l.point_vertex != kNone) vertex_keys.push_back(static_cast<std::uint32_t>(l.point_vertex));
+      if (l.point_vertex != kNone)
+        vertex_keys.push_back(static_cast<std::uint32_t>(l.point_vertex));
     }
     std::sort(vertex_keys.begin(), vertex_keys.end());
     vertex_keys.erase(std::unique(vertex_keys.begin(), vertex_keys.end()), vertex_keys.end());
@@ -1306,8 +1313,10 @@ FROM faces_old f JOIN (
         l.point_vertex = renumber(vertex_keys, static_cast<std::uint32_t>(l.point_vertex));
       }
     }
-    for (auto& u : r.uses) u.loop = renumber(loop_keys, u.loop), u.edge = renumber(edge_keys, u.edge);
-    for (auto& e : r.edges) e.start = renumber(vertex_keys, e.start), e.end = renumber(vertex_keys, e.end);
+    for (auto& u : r.uses)
+      u.loop = renumber(loop_keys, u.loop), u.edge = renumber(edge_keys, u.edge);
+    for (auto& e : r.edges)
+      e.start = renumber(vertex_keys, e.start), e.end = renumber(vertex_keys, e.end);
     // The property tables, with the values of the elements loaded (renumbered);
     // a cell table keeps its default alone, as there are no cells.
     ModelRows all;

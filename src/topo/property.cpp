@@ -22,7 +22,8 @@ Status in_range(const PropertyValue& v, std::string_view type) {
   const Wide* w = std::get_if<Wide>(&v);
   if (!w) {
     return Error{ErrorCode::kInvalidInput,
-                 "expected " + std::string(std::is_signed_v<T> ? "an integer" : "a non-negative integer") +
+                 "expected " +
+                     std::string(std::is_signed_v<T> ? "an integer" : "a non-negative integer") +
                      " (" + std::string(type) + ")"};
   }
   if (!std::in_range<T>(*w)) {
@@ -58,14 +59,19 @@ std::optional<PropertyType> type_from_name(std::string_view name) {
 
 std::optional<PropertyType> property_type_of(const std::type_info& t) {
   using P = PropertyType;
-  const std::pair<const std::type_info&, P> types[] = {
-      {typeid(std::int8_t), P::kInt8},     {typeid(std::int16_t), P::kInt16},
-      {typeid(std::int32_t), P::kInt32},   {typeid(std::int64_t), P::kInt64},
-      {typeid(std::uint8_t), P::kUInt8},   {typeid(std::uint16_t), P::kUInt16},
-      {typeid(std::uint32_t), P::kUInt32}, {typeid(std::uint64_t), P::kUInt64},
-      {typeid(float), P::kFloat},          {typeid(double), P::kDouble},
-      {typeid(std::string), P::kString},   {typeid(Colour), P::kColour},
-      {typeid(Vec3), P::kVec3}};
+  const std::pair<const std::type_info&, P> types[] = {{typeid(std::int8_t), P::kInt8},
+                                                       {typeid(std::int16_t), P::kInt16},
+                                                       {typeid(std::int32_t), P::kInt32},
+                                                       {typeid(std::int64_t), P::kInt64},
+                                                       {typeid(std::uint8_t), P::kUInt8},
+                                                       {typeid(std::uint16_t), P::kUInt16},
+                                                       {typeid(std::uint32_t), P::kUInt32},
+                                                       {typeid(std::uint64_t), P::kUInt64},
+                                                       {typeid(float), P::kFloat},
+                                                       {typeid(double), P::kDouble},
+                                                       {typeid(std::string), P::kString},
+                                                       {typeid(Colour), P::kColour},
+                                                       {typeid(Vec3), P::kVec3}};
   for (const auto& [info, type] : types)
     if (info == t) return type;
   return std::nullopt;
@@ -86,7 +92,8 @@ std::vector<std::string> unstored_properties(const Model& m) {
 Status check_value(PropertyType type, const PropertyValue& v) {
   const std::string_view name = type_name(type);
   auto expected = [&](const char* what) {
-    return Error{ErrorCode::kInvalidInput, std::string("expected ") + what + " (" + std::string(name) + ")"};
+    return Error{ErrorCode::kInvalidInput,
+                 std::string("expected ") + what + " (" + std::string(name) + ")"};
   };
   switch (type) {
     case PropertyType::kInt8:
@@ -110,8 +117,7 @@ Status check_value(PropertyType type, const PropertyValue& v) {
       if (!d) return expected("a number");
       const bool fits = !std::isfinite(*d) || (std::abs(*d) <= std::numeric_limits<float>::max() &&
                                                static_cast<double>(static_cast<float>(*d)) == *d);
-      if (!fits)
-        return Error{ErrorCode::kInvalidInput, "the number is not a float"};
+      if (!fits) return Error{ErrorCode::kInvalidInput, "the number is not a float"};
       return Status::Ok();
     }
     case PropertyType::kDouble:
@@ -123,7 +129,8 @@ Status check_value(PropertyType type, const PropertyValue& v) {
     case PropertyType::kVec3:
       return std::holds_alternative<Vec3>(v) ? Status::Ok() : Status(expected("a vector"));
   }
-  return Error{ErrorCode::kInvalidInput, "unknown property type " + std::to_string(static_cast<int>(type))};
+  return Error{ErrorCode::kInvalidInput,
+               "unknown property type " + std::to_string(static_cast<int>(type))};
 }
 
 }  // namespace cellforge::inline topo

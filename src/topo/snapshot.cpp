@@ -48,38 +48,59 @@ template <class F>
 auto with_type(PropertyType type, F&& f) {
   using P = PropertyType;
   switch (type) {
-    case P::kInt8: return f(std::type_identity<std::int8_t>{});
-    case P::kInt16: return f(std::type_identity<std::int16_t>{});
-    case P::kInt32: return f(std::type_identity<std::int32_t>{});
-    case P::kInt64: return f(std::type_identity<std::int64_t>{});
-    case P::kUInt8: return f(std::type_identity<std::uint8_t>{});
-    case P::kUInt16: return f(std::type_identity<std::uint16_t>{});
-    case P::kUInt32: return f(std::type_identity<std::uint32_t>{});
-    case P::kUInt64: return f(std::type_identity<std::uint64_t>{});
-    case P::kFloat: return f(std::type_identity<float>{});
-    case P::kDouble: return f(std::type_identity<double>{});
-    case P::kString: return f(std::type_identity<std::string>{});
-    case P::kColour: return f(std::type_identity<Colour>{});
-    case P::kVec3: break;
+    case P::kInt8:
+      return f(std::type_identity<std::int8_t>{});
+    case P::kInt16:
+      return f(std::type_identity<std::int16_t>{});
+    case P::kInt32:
+      return f(std::type_identity<std::int32_t>{});
+    case P::kInt64:
+      return f(std::type_identity<std::int64_t>{});
+    case P::kUInt8:
+      return f(std::type_identity<std::uint8_t>{});
+    case P::kUInt16:
+      return f(std::type_identity<std::uint16_t>{});
+    case P::kUInt32:
+      return f(std::type_identity<std::uint32_t>{});
+    case P::kUInt64:
+      return f(std::type_identity<std::uint64_t>{});
+    case P::kFloat:
+      return f(std::type_identity<float>{});
+    case P::kDouble:
+      return f(std::type_identity<double>{});
+    case P::kString:
+      return f(std::type_identity<std::string>{});
+    case P::kColour:
+      return f(std::type_identity<Colour>{});
+    case P::kVec3:
+      break;
   }
   return f(std::type_identity<Vec3>{});
 }
 
 template <class T>
 PropertyValue to_value(const T& v) {
-  if constexpr (std::is_integral_v<T> && std::is_signed_v<T>) return std::int64_t{v};
-  else if constexpr (std::is_integral_v<T>) return std::uint64_t{v};
-  else if constexpr (std::is_floating_point_v<T>) return double{v};
-  else return v;
+  if constexpr (std::is_integral_v<T> && std::is_signed_v<T>)
+    return std::int64_t{v};
+  else if constexpr (std::is_integral_v<T>)
+    return std::uint64_t{v};
+  else if constexpr (std::is_floating_point_v<T>)
+    return double{v};
+  else
+    return v;
 }
 
 // v must hold T's alternative, in T's range (check_value).
 template <class T>
 T from_value(const PropertyValue& v) {
-  if constexpr (std::is_integral_v<T> && std::is_signed_v<T>) return static_cast<T>(std::get<std::int64_t>(v));
-  else if constexpr (std::is_integral_v<T>) return static_cast<T>(std::get<std::uint64_t>(v));
-  else if constexpr (std::is_floating_point_v<T>) return static_cast<T>(std::get<double>(v));
-  else return std::get<T>(v);
+  if constexpr (std::is_integral_v<T> && std::is_signed_v<T>)
+    return static_cast<T>(std::get<std::int64_t>(v));
+  else if constexpr (std::is_integral_v<T>)
+    return static_cast<T>(std::get<std::uint64_t>(v));
+  else if constexpr (std::is_floating_point_v<T>)
+    return static_cast<T>(std::get<double>(v));
+  else
+    return std::get<T>(v);
 }
 
 // Equal bit for bit (floating-point values: -0.0 is not 0.0, a NaN is itself).
@@ -126,7 +147,8 @@ Status check_properties(const Snapshot& r, const std::size_t (&count)[4]) {
       if (r.properties[j].owner == p.owner && r.properties[j].name == p.name)
         return inconsistent(what + " is there twice");
     }
-    if (Status s = check_value(p.type, p.fallback); !s) return inconsistent(what + ": default: " + s.error().message);
+    if (Status s = check_value(p.type, p.fallback); !s)
+      return inconsistent(what + ": default: " + s.error().message);
     for (std::size_t k = 0; k < p.values.size(); ++k) {
       const std::uint32_t key = p.values[k].first;
       const PropertyValue& value = p.values[k].second;
@@ -149,7 +171,8 @@ void put_properties(const Snapshot& r, const std::vector<std::uint32_t> (&slots)
     with_type(p.type, [&]<class T>(std::type_identity<T>) {
       auto column = std::make_unique<detail::TypedColumn<T>>(p.name, from_value<T>(p.fallback));
       const auto owner = static_cast<std::size_t>(p.owner);
-      for (const auto& [key, value] : p.values) column->at(slots[owner][key]) = from_value<T>(value);
+      for (const auto& [key, value] : p.values)
+        column->at(slots[owner][key]) = from_value<T>(value);
       m.property_store().add(static_cast<int>(p.owner), std::move(column));
     });
   }
@@ -181,7 +204,8 @@ Snapshot snapshot(const Model& m) {
   // below they are counted from the edge's use that comes first in the tables,
   // so that the rows do not depend on which use holds which slot.
   std::vector<std::uint32_t> radial_ord(m.use_slots(), 0);
-  std::vector<std::uint32_t> cycle_length(m.edge_slots(), 0), radial_base(m.edge_slots(), kInvalidIndex);
+  std::vector<std::uint32_t> cycle_length(m.edge_slots(), 0),
+      radial_base(m.edge_slots(), kInvalidIndex);
   r.edges.reserve(m.num_edges());
   for (EdgeId e : m.edges()) {
     std::uint32_t n = 0;

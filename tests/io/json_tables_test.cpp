@@ -23,12 +23,14 @@ using io::Format;
 Model tagged_model(std::uint32_t seed) {
   Model m;
   EXPECT_TRUE(euler_box_with_hole(m, {0, 0, 0}, {3, 3, 1}, 1, 2, "block").ok());
-  const auto more = io::write_model(testing::build(testing::two_cubes_sharing_face()), Format::kJson);
+  const auto more =
+      io::write_model(testing::build(testing::two_cubes_sharing_face()), Format::kJson);
   EXPECT_TRUE(more.ok());
   EXPECT_TRUE(io::read_model(m, testing::bytes_of(*more), Format::kJson).ok());
   // A face and an edge made and killed: free slots.
   const FaceId top = testing::face_at(m, {0.5, 0.5, 2});
-  auto split = mef(m, m.outer_loop(top), testing::vertex_at(m, {0, 0, 2}), testing::vertex_at(m, {1, 1, 2}));
+  auto split =
+      mef(m, m.outer_loop(top), testing::vertex_at(m, {0, 0, 2}), testing::vertex_at(m, {1, 1, 2}));
   EXPECT_TRUE(split.ok());
   EXPECT_TRUE(kef(m, split->edge, split->face).ok());
   testing::add_every_property_type(m, seed);
@@ -130,7 +132,8 @@ TEST(JsonTables, ReadingIntoAModelJoinsItsTables) {
   ASSERT_TRUE(kept.is_valid());
   std::size_t k = 0;
   for (FaceId f : held.faces()) {
-    EXPECT_EQ(kept[f], k + 1 == faces_before ? std::vector<int>({4, 2}) : std::vector<int>()) << f.str();
+    EXPECT_EQ(kept[f], k + 1 == faces_before ? std::vector<int>({4, 2}) : std::vector<int>())
+        << f.str();
     ++k;
   }
 }
@@ -162,7 +165,9 @@ TEST(JsonTables, DamageIsAnErrorWithItsPlace) {
   const std::string head =
       "{\"format\":\"cellforge-model\",\"version\":2,\"groups\":[{\"name\":\"g\"}],\"cells\":[],"
       "\"vertices\":[[0,0,0,0]],\"edges\":[],\"faces\":[],\n";
-  const auto property = [&](const std::string& body) { return head + "\"properties\":[" + body + "]}"; };
+  const auto property = [&](const std::string& body) {
+    return head + "\"properties\":[" + body + "]}";
+  };
   const std::pair<std::string, std::string> cases[] = {
       {property(R"({"owner":"vertex","name":"a","type":"quaternion","default":0})"),
        "line 2:51: unknown property type 'quaternion'"},
@@ -186,15 +191,20 @@ TEST(JsonTables, DamageIsAnErrorWithItsPlace) {
        "expected an integer"},
       {property(R"({"owner":"vertex","name":"a","type":"colour","default":[1,1,1]})"),
        "expected 4 numbers, found 3"},
-      {property(R"({"owner":"vertex","name":"a","type":"string","default":"","values":[[0,"x"],[0,"y"]]})"),
+      {property(
+           R"({"owner":"vertex","name":"a","type":"string","default":"","values":[[0,"x"],[0,"y"]]})"),
        "property keys must increase (0 after 0)"},
       {property(R"({"owner":"vertex","name":"a","type":"string","default":"","values":[[1,"x"]]})"),
        "vertex property 'a': value 0 names vertex 1 (of 1"},
-      {property(R"({"owner":"face","name":"a","type":"int8","default":0},{"owner":"face","name":"a","type":"int8","default":1})"),
+      {property(
+           R"({"owner":"face","name":"a","type":"int8","default":0},{"owner":"face","name":"a","type":"int8","default":1})"),
        "face property 'a' is there twice"},
-      {head + R"("attachments":[{"name":"x","version":1}]})", "an attachment needs 'name', 'version' and 'data'"},
-      {head + R"("attachments":[{"name":"x","version":0,"data":""}]})", "integer 0 out of range [1, 2147483647]"},
-      {head + R"("attachments":[{"name":"x","version":1,"data":""},{"name":"x","version":1,"data":""}]})",
+      {head + R"("attachments":[{"name":"x","version":1}]})",
+       "an attachment needs 'name', 'version' and 'data'"},
+      {head + R"("attachments":[{"name":"x","version":0,"data":""}]})",
+       "integer 0 out of range [1, 2147483647]"},
+      {head +
+           R"("attachments":[{"name":"x","version":1,"data":""},{"name":"x","version":1,"data":""}]})",
        "attachment 'x' is there twice"},
       {head + R"("attachments":[{"name":"x","version":1,"data":"\ud800"}]})", "unpaired surrogate"},
       {head + R"("version":3})", "duplicate key 'version'"},
@@ -206,7 +216,8 @@ TEST(JsonTables, DamageIsAnErrorWithItsPlace) {
   // A version this reader does not know.
   std::string v3 = json_of(testing::build(testing::unit_cube()));
   v3.replace(v3.find("\"version\":1"), 11, "\"version\":3");
-  EXPECT_NE(read_error(v3).find("unsupported version 3 (this reader reads 1 to 2)"), std::string::npos);
+  EXPECT_NE(read_error(v3).find("unsupported version 3 (this reader reads 1 to 2)"),
+            std::string::npos);
 }
 
 }  // namespace

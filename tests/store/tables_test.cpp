@@ -23,7 +23,8 @@ using StoreTables = StoreTest;
 Model tagged_model(std::uint32_t seed) {
   Model cubes = build(two_cubes_sharing_face());
   const FaceId lid = face_at(cubes, {0.5, 0.5, 2});
-  auto split = mef(cubes, cubes.outer_loop(lid), vertex_at(cubes, {0, 0, 2}), vertex_at(cubes, {1, 1, 2}));
+  auto split =
+      mef(cubes, cubes.outer_loop(lid), vertex_at(cubes, {0, 0, 2}), vertex_at(cubes, {1, 1, 2}));
   EXPECT_TRUE(split.ok());
   EXPECT_TRUE(kef(cubes, split->edge, split->face).ok());
   add_every_property_type(cubes, seed);
@@ -52,7 +53,8 @@ TEST_P(StoreTables, PropertiesOfEveryTypeComeBackBitForBit) {
   // User SQL sees the tables: the label of the stored first face.
   auto label = store_->query(
       "SELECT v.text_value FROM properties p JOIN property_values v ON v.volume_id = p.volume_id "
-      "AND v.property_key = p.property_key JOIN volumes w ON w.id = p.volume_id WHERE w.version = 2 "
+      "AND v.property_key = p.property_key JOIN volumes w ON w.id = p.volume_id WHERE w.version = "
+      "2 "
       "AND p.name = 'label' AND v.element_key = 0");
   ASSERT_OK(label);
   ASSERT_EQ(label->rows.size(), 1u);
@@ -68,7 +70,8 @@ TEST_P(StoreTables, PropertiesOfEveryTypeComeBackBitForBit) {
 
 TEST_P(StoreTables, AttachmentsComeBackByteForByte) {
   const Model m = build(unit_cube());
-  std::string data = "cellforge exact form 1\nexpr (union 0 1)\n \"quoted\" \\ \t \x01 na\xc3\xafve";
+  std::string data =
+      "cellforge exact form 1\nexpr (union 0 1)\n \"quoted\" \\ \t \x01 na\xc3\xafve";
   for (int c = 0x20; c < 0x7f; ++c) data += static_cast<char>(c);
   const std::vector<Attachment> two = {{"cellforge.exact", 1, data}, {"note", 3, ""}};
   ASSERT_OK(store_->put("cube", m, {.attachments = two}));
@@ -134,7 +137,8 @@ TEST_P(StoreTables, DamagedRowsAreErrorsThatSayWhere) {
   const std::pair<std::string, std::string> cases[] = {
       {"UPDATE properties SET type = 'quaternion' WHERE name = 'level'",
        "property 0 ('level') has an unknown owner or type ('face', 'quaternion')"},
-      {"UPDATE properties SET owner = 'volume' WHERE name = 'level'", "unknown owner or type ('volume'"},
+      {"UPDATE properties SET owner = 'volume' WHERE name = 'level'",
+       "unknown owner or type ('volume'"},
       {"UPDATE property_values SET int_value = 300 WHERE property_key = 0 AND element_key = 0",
        "face property 'level': value of face 0: 300 is out of the range of uint8"},
       {"UPDATE property_values SET int_value = NULL WHERE property_key = 0 AND element_key = 0",
@@ -147,7 +151,8 @@ TEST_P(StoreTables, DamagedRowsAreErrorsThatSayWhere) {
        "face property 'label': value 0 names face 6 (of 6"},
       {"UPDATE property_values SET property_key = 7 WHERE property_key = 1 AND element_key = 0",
        "a property value names property 7, element 0"},
-      {"UPDATE properties SET name = 'level' WHERE property_key = 1", "face property 'level' is there twice"},
+      {"UPDATE properties SET name = 'level' WHERE property_key = 1",
+       "face property 'level' is there twice"},
   };
   int n = 0;
   for (const auto& [damage, want] : cases) {

@@ -32,9 +32,12 @@ void fill(Model& m, const std::string& name, typename P::value_type def, const I
 
 bool same_bits(const PropertyValue& a, const PropertyValue& b) {
   if (a.index() != b.index()) return false;
-  if (const auto* d = std::get_if<double>(&a)) return std::memcmp(d, std::get_if<double>(&b), sizeof *d) == 0;
-  if (const auto* c = std::get_if<Colour>(&a)) return std::memcmp(c, std::get_if<Colour>(&b), sizeof *c) == 0;
-  if (const auto* v = std::get_if<Vec3>(&a)) return std::memcmp(v, std::get_if<Vec3>(&b), sizeof *v) == 0;
+  if (const auto* d = std::get_if<double>(&a))
+    return std::memcmp(d, std::get_if<double>(&b), sizeof *d) == 0;
+  if (const auto* c = std::get_if<Colour>(&a))
+    return std::memcmp(c, std::get_if<Colour>(&b), sizeof *c) == 0;
+  if (const auto* v = std::get_if<Vec3>(&a))
+    return std::memcmp(v, std::get_if<Vec3>(&b), sizeof *v) == 0;
   return a == b;
 }
 
@@ -51,17 +54,23 @@ void add_every_property_type(Model& m, std::uint32_t seed) {
 
   fill<VertexProperty<double>>(m, "weight", -1.0, m.vertices(),
                                {-0.0, kNaN, kInf, -kInf, 4.9e-324, 1.7976931348623157e308, 0.1},
-                               rng, [](std::mt19937& r) { return std::ldexp(double(r()), -20) - 2000; });
+                               rng,
+                               [](std::mt19937& r) { return std::ldexp(double(r()), -20) - 2000; });
   fill<VertexProperty<std::int8_t>>(m, "i8", 0, m.vertices(), {-128, 127}, rng,
                                     [](std::mt19937& r) { return std::int8_t(r() % 256 - 128); });
-  fill<VertexProperty<Vec3>>(m, "normal", Vec3{0, 0, -0.0}, m.vertices(), {{-0.0, kInf, 1e-310}}, rng,
-                             [](std::mt19937& r) { return Vec3{r() * 1e-3, -double(r()), 0.5}; });
-  fill<EdgeProperty<std::int64_t>>(m, "i64", I64::min(), m.edges(), {I64::max(), 0, -1}, rng,
-                                   [](std::mt19937& r) { return std::int64_t(r()) * 1000003 - (std::int64_t{1} << 40); });
-  fill<EdgeProperty<std::uint64_t>>(m, "u64", U64::max(), m.edges(), {0, U64::max() - 1, std::uint64_t{1} << 63},
-                                    rng, [](std::mt19937& r) { return std::uint64_t(r()) << 31; });
-  fill<EdgeProperty<std::int16_t>>(m, "i16", 7, m.edges(), {-32768, 32767}, rng,
-                                   [](std::mt19937& r) { return std::int16_t(r() % 60000 - 30000); });
+  fill<VertexProperty<Vec3>>(m, "normal", Vec3{0, 0, -0.0}, m.vertices(), {{-0.0, kInf, 1e-310}},
+                             rng, [](std::mt19937& r) {
+                               return Vec3{r() * 1e-3, -double(r()), 0.5};
+                             });
+  fill<EdgeProperty<std::int64_t>>(
+      m, "i64", I64::min(), m.edges(), {I64::max(), 0, -1}, rng,
+      [](std::mt19937& r) { return std::int64_t(r()) * 1000003 - (std::int64_t{1} << 40); });
+  fill<EdgeProperty<std::uint64_t>>(m, "u64", U64::max(), m.edges(),
+                                    {0, U64::max() - 1, std::uint64_t{1} << 63}, rng,
+                                    [](std::mt19937& r) { return std::uint64_t(r()) << 31; });
+  fill<EdgeProperty<std::int16_t>>(
+      m, "i16", 7, m.edges(), {-32768, 32767}, rng,
+      [](std::mt19937& r) { return std::int16_t(r() % 60000 - 30000); });
   fill<EdgeProperty<std::uint16_t>>(m, "u16", 7, m.edges(), {65535}, rng,
                                     [](std::mt19937& r) { return std::uint16_t(r()); });
   fill<FaceProperty<std::uint32_t>>(m, "source", kInvalidIndex, m.faces(), {0, 0xFFFFFFFEu}, rng,
@@ -75,12 +84,16 @@ void add_every_property_type(Model& m, std::uint32_t seed) {
                             [](std::mt19937& r) { return float(r()) * 1e-7f; });
   fill<FaceProperty<Colour>>(m, "colour", Colour{}, m.faces(),
                              {{1, 0, 0, 1}, {0.1f, -0.0f, kNaNF, 0.333333343f}}, rng,
-                             [](std::mt19937& r) { return Colour{float(r() % 256) / 255, 0.5f, 0.25f, 1}; });
-  fill<FaceProperty<std::string>>(m, "label", "none", m.faces(),
-                                  {"", "na\xc3\xafve \xe5\x90\x8d\xe5\x89\x8d", "quote\" back\\ nl\n tab\t \x01"},
-                                  rng, [](std::mt19937& r) { return "face " + std::to_string(r() % 1000); });
-  fill<VolumeProperty<std::string>>(m, "material", "steel", m.volumes(), {"brass"}, rng,
-                                    [](std::mt19937& r) { return std::string(r() % 2 ? "oak" : "ash"); });
+                             [](std::mt19937& r) {
+                               return Colour{float(r() % 256) / 255, 0.5f, 0.25f, 1};
+                             });
+  fill<FaceProperty<std::string>>(
+      m, "label", "none", m.faces(),
+      {"", "na\xc3\xafve \xe5\x90\x8d\xe5\x89\x8d", "quote\" back\\ nl\n tab\t \x01"}, rng,
+      [](std::mt19937& r) { return "face " + std::to_string(r() % 1000); });
+  fill<VolumeProperty<std::string>>(
+      m, "material", "steel", m.volumes(), {"brass"}, rng,
+      [](std::mt19937& r) { return std::string(r() % 2 ? "oak" : "ash"); });
   fill<VolumeProperty<double>>(m, "density", 7.85, m.volumes(), {-0.0}, rng,
                                [](std::mt19937& r) { return double(r()) / 3; });
   auto scratch = add_property<FaceProperty<std::vector<int>>>(m, "scratch");

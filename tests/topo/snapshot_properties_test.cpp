@@ -50,17 +50,33 @@ TEST(SnapshotProperties, TablesThatDoNotFitAreRefused) {
     EXPECT_NE(r.error().message.find(want), std::string::npos) << r.error().message;
   };
   using P = Snapshot::Property;
-  refused([](P& p) { p.fallback = std::uint64_t{256}; }, "face property 'tag': default: 256 is out of the range of uint8");
-  refused([](P& p) { p.fallback = std::int64_t{1}; }, "default: expected a non-negative integer (uint8)");
-  refused([](P& p) { p.values = {{6, std::uint64_t{2}}}; }, "face property 'tag': value 0 names face 6 (of 6");
-  refused([](P& p) { p.values = {{2, std::uint64_t{2}}, {2, std::uint64_t{3}}}; }, "value 1 names face 2");
-  refused([](P& p) { p.values = {{0, std::string("x")}}; }, "value of face 0: expected a non-negative integer");
-  refused([](P& p) { p.type = PropertyType::kFloat, p.fallback = 0.1; }, "default: the number is not a float");
+  refused([](P& p) { p.fallback = std::uint64_t{256}; },
+          "face property 'tag': default: 256 is out of the range of uint8");
+  refused([](P& p) { p.fallback = std::int64_t{1}; },
+          "default: expected a non-negative integer (uint8)");
+  refused(
+      [](P& p) {
+        p.values = {{6, std::uint64_t{2}}};
+      },
+      "face property 'tag': value 0 names face 6 (of 6");
+  refused(
+      [](P& p) {
+        p.values = {{2, std::uint64_t{2}}, {2, std::uint64_t{3}}};
+      },
+      "value 1 names face 2");
+  refused(
+      [](P& p) {
+        p.values = {{0, std::string("x")}};
+      },
+      "value of face 0: expected a non-negative integer");
+  refused([](P& p) { p.type = PropertyType::kFloat, p.fallback = 0.1; },
+          "default: the number is not a float");
   Snapshot twice = good;
   twice.properties.push_back(twice.properties.front());
   auto r = restore(twice);
   ASSERT_FALSE(r.ok());
-  EXPECT_NE(r.error().message.find("face property 'tag' is there twice"), std::string::npos) << r.error().message;
+  EXPECT_NE(r.error().message.find("face property 'tag' is there twice"), std::string::npos)
+      << r.error().message;
 }
 
 }  // namespace

@@ -32,10 +32,10 @@
 namespace cellforge {
 
 struct PutOptions {
-  std::string source;  // the CSG script the model came from, if any
-  std::string object;  // when not empty, the volume is also listed in this object (scene)
+  std::string source = {};  // the CSG script the model came from, if any
+  std::string object = {};  // when not empty, the volume is also listed in this object (scene)
   // Called now and then during a save with the number of rows written so far.
-  std::function<void(std::uint64_t rows)> progress;
+  std::function<void(std::uint64_t rows)> progress = {};
   // Kept with this version (table attachments): names and data valid UTF-8
   // without NUL, names distinct; otherwise the save is refused.
   std::vector<Attachment> attachments = {};

@@ -29,7 +29,8 @@ struct Attachment {
 };
 
 // The first attachment named `name`, or nullptr.
-inline const Attachment* find_attachment(const std::vector<Attachment>& all, std::string_view name) {
+inline const Attachment* find_attachment(const std::vector<Attachment>& all,
+                                         std::string_view name) {
   for (const Attachment& a : all)
     if (a.name == name) return &a;
   return nullptr;
