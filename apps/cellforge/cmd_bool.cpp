@@ -2,11 +2,15 @@
 // first minus the others) of solids and sheets read from files, regularized unless
 // --keep-lower-dim, written to OUT
 // (boolean/boolean.h). --report json prints the counts, validity, volume and the
-// time of each stage.
+// time of each stage. A JSON operand that keeps an exact form (boolean/exact.h)
+// enters as that form, and a JSON result keeps its own, so that a chain of
+// commands is exact end to end (--rounded: operands are their rounded models,
+// and the result keeps no exact form).
 #include <filesystem>
 #include <iostream>
 
 #include "cellforge/boolean/boolean.h"
+#include "cellforge/boolean/exact.h"
 #include "cellforge/io/mesh_io.h"
 #include "cellforge/shape/faceting.h"
 #include "cellforge/shape/mass.h"
@@ -19,13 +23,16 @@ namespace {
 constexpr const char* kUsage =
     "usage: cellforge bool union|intersection|difference A B [C ...] -o OUT\n"
     "                      [--threads N] [--report json] [--ascii] [--keep-lower-dim]\n"
-    "                      [--cells] [KEY=VALUE...]\n"
+    "                      [--cells] [--rounded] [KEY=VALUE...]\n"
     "  A, B, ...: solids and sheets in any format `info` reads (.stl .obj .off .3mf\n"
     "  .json); each file is one operand, the union of its cells and sheets. difference\n"
     "  is A minus all others. Regularized unless --keep-lower-dim: then faces, edges and\n"
     "  points of no volume stay (cubes sharing a face intersect in it), and the boundary\n"
     "  the set does not hold is counted as \"excluded\". --cells keeps the faces between\n"
     "  cells of different operands (one group, several volumes).\n"
+    "  A .json operand that keeps an exact form (a result of this command) enters\n"
+    "  exactly, and a .json OUT keeps the result's exact form beside its rounded\n"
+    "  model; --rounded uses and keeps rounded models only.\n"
     "  OUT: .stl .obj .off .3mf .json by extension. --report json prints counts,\n"
     "  validity, volume, the rounding check and seconds per stage as one JSON object.\n"
     "  KEY=VALUE import options as for `cellforge info` (weld_tolerance=T, ...).";
@@ -63,7 +70,7 @@ int run(const std::vector<std::string>& args) {
                "cellforge bool"};
   std::string operation, out, report;
   std::vector<std::string> words;
-  bool ascii = false;
+  bool ascii = false, rounded = false;
   boolean::Options options;
   app.add_option("OPERATION", operation, "union, intersection or difference")->required();
   app.add_option("OPERANDS", words, "the operand files, and KEY=VALUE import options");
@@ -74,6 +81,7 @@ int run(const std::vector<std::string>& args) {
   app.add_flag("--keep-lower-dim", options.keep_lower_dim,
                "not regularized: keep the faces, edges and points of no volume");
   app.add_flag("--cells", options.cells, "keep the faces between cells of different operands");
+  app.add_flag("--rounded", rounded, "ignore and write no exact forms (JSON operands and result)");
   app.footer(kUsage);
   if (auto code = parse(app, args)) return *code;
   boolean::Op op;
@@ -117,20 +125,29 @@ int run(const std::vector<std::string>& args) {
     std::cerr << "cellforge bool: " << f.error().message << '\n';
     return 2;
   }
-  std::vector<Model> models(inputs.size());
-  std::vector<const Model*> operands;
-  for (std::size_t i = 0; i < inputs.size(); ++i) {
-    if (auto r = io::read_file(models[i], inputs[i], read); !r) {
+  std::vector<boolean::Operand> operands;
+  for (const std::string& input : inputs) {
+    Model m;
+    auto r = io::read_file(m, input, read);
+    if (!r) {
       std::cerr << "cellforge bool: " << r.error().message << '\n';
       return 1;
     }
-    operands.push_back(&models[i]);
+    Result<std::shared_ptr<const boolean::ExactForm>> form = std::shared_ptr<const boolean::ExactForm>();
+    if (!rounded) form = boolean::find_exact(r->attachments);
+    if (!form) {
+      std::cerr << "cellforge bool: " << input << ": " << form.error().message << '\n';
+      return 1;
+    }
+    operands.push_back(*form ? boolean::Operand::of(*form) : boolean::Operand::of(m));
   }
-  auto r = boolean::apply(op, operands, options);
+  auto r = boolean::chain(operands, boolean::Expr::over(op, static_cast<int>(operands.size())), options);
   if (!r) {
     std::cerr << "cellforge bool: " << r.error().message << '\n';
     return 1;
   }
+  if (!rounded && io::format_from_path(out).value() == io::Format::kJson)
+    write.attachments.push_back(boolean::exact_attachment(*r->exact));
   const auto violations = validate(r->model);
   const double volume = r->model.num_faces() ? shape::mass_properties(r->model).volume : 0;
   if (Status s = io::write_file(r->model, out, write); !s) {

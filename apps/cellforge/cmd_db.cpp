@@ -64,7 +64,9 @@ int usage_error(const std::string& message) {
   return 2;
 }
 
-Result<Model> read_input(const std::string& in, const io::ReadOptions& options) {
+// The model of `in`, and the attachments its file keeps (a JSON file's exact form).
+Result<Model> read_input(const std::string& in, const io::ReadOptions& options,
+                         std::vector<Attachment>& attachments) {
   Model m;
   Status s;
   if (in == "example:box") {
@@ -83,6 +85,7 @@ Result<Model> read_input(const std::string& in, const io::ReadOptions& options) 
   } else {
     auto r = io::read_file(m, in, options);
     if (!r) return r.error();
+    attachments = std::move(r->attachments);
   }
   if (!s) return s.error();
   return m;
@@ -367,9 +370,9 @@ int run(const std::vector<std::string>& argv) {
       if (!f) return usage_error(f.error().message);
       read.format = *f;
     }
-    auto m = read_input(in, read);
-    if (!m) return fail(m.error().message);
     PutOptions o;
+    auto m = read_input(in, read, o.attachments);
+    if (!m) return fail(m.error().message);
     o.object = object;
     if (!source.empty()) {
       auto bytes = io::read_bytes(source);
@@ -383,10 +386,20 @@ int run(const std::vector<std::string>& argv) {
     return 0;
   }
   if (load->parsed()) {
+    io::WriteOptions write;
+    if (faces.empty() && version == 0) {  // the latest, named, so that both reads agree
+      auto latest = store.info(name, 0);
+      if (!latest) return fail(latest.error().message);
+      version = latest->version;
+    }
     auto m =
         !faces.empty() ? store.get_faces_where(name, faces, version) : store.get(name, version);
     if (!m) return fail(m.error().message);
-    io::WriteOptions write;
+    if (faces.empty()) {  // the attachments (an exact form) belong to the whole model
+      auto attachments = store.get_attachments(name, version);
+      if (!attachments) return fail(attachments.error().message);
+      write.attachments = std::move(*attachments);
+    }
     if (!format.empty()) {
       auto f = io::format_from_name(format);
       if (!f) return usage_error(f.error().message);

@@ -2,6 +2,7 @@
 // expression, and its text form.
 #include "cellforge/boolean/exact.h"
 
+#include <algorithm>
 #include <cctype>
 #include <charconv>
 #include <fstream>
@@ -66,8 +67,15 @@ void write_expr(const Expr& e, std::string& out) {
   out += ')';
 }
 
+int depth_of(const Expr& e) {
+  int d = 0;
+  for (const Expr& c : e.children) d = std::max(d, depth_of(c));
+  return e.kind == Expr::Kind::kOperand ? 0 : d + 1;
+}
+
 Error bad(std::string_view what, std::size_t offset) {
-  return Error{ErrorCode::kParse, "exact form: byte " + std::to_string(offset) + ": " + std::string(what)};
+  return Error{ErrorCode::kParse,
+               "exact form: byte " + std::to_string(offset) + ": " + std::string(what)};
 }
 
 struct ExprParser {
@@ -89,7 +97,9 @@ struct ExprParser {
       return Expr::of(v);
     }
     if (s[i] != '(') return bad("expected '(' or an operand number", base + i);
-    if (++depth > 10000) return bad("the expression nests too deeply", base + i);
+    if (++depth > kMaxExactDepth)
+      return bad("the expression nests deeper than " + std::to_string(kMaxExactDepth) + " levels",
+                 base + i);
     ++i;
     const std::size_t start = i;
     while (i < s.size() && std::isalpha(static_cast<unsigned char>(s[i]))) ++i;
@@ -123,7 +133,8 @@ constexpr std::string_view kMagic = "cellforge exact form 1\n";
 
 }  // namespace
 
-Result<BooleanResult> chain(std::span<const Operand> operands, const Expr& expr, const Options& options) {
+Result<BooleanResult> chain(std::span<const Operand> operands, const Expr& expr,
+                            const Options& options) {
   auto form = std::make_shared<ExactForm>();
   std::unordered_map<const Model*, int> index;  // an input shared by operands, once
   auto input = [&](const std::shared_ptr<const Model>& m) {
@@ -141,7 +152,8 @@ Result<BooleanResult> chain(std::span<const Operand> operands, const Expr& expr,
     } else if (o.model) {
       parts.push_back(Expr::of(input(o.model)));
     } else {
-      return Error{ErrorCode::kInvalidInput, "boolean: chain operand " + std::to_string(k) + " is empty"};
+      return Error{ErrorCode::kInvalidInput,
+                   "boolean: chain operand " + std::to_string(k) + " is empty"};
     }
   }
   if (expr.max_operand() >= static_cast<int>(parts.size()))
@@ -149,6 +161,11 @@ Result<BooleanResult> chain(std::span<const Operand> operands, const Expr& expr,
                                                std::to_string(expr.max_operand()) + " of " +
                                                std::to_string(parts.size())};
   form->expr = substituted(expr, parts);
+  if (const int depth = depth_of(form->expr); depth > kMaxExactDepth)
+    return Error{ErrorCode::kUnsupported,
+                 "boolean: the chain's expression would nest " + std::to_string(depth) +
+                     " levels; an exact form holds at most " + std::to_string(kMaxExactDepth) +
+                     " (make an operand of the rounded model, Operand::of(result.model))"};
   auto r = evaluate(*form, options);
   if (r) r->exact = std::move(form);
   return r;
@@ -176,11 +193,13 @@ std::string exact_to_string(const ExactForm& form) {
 }
 
 Result<std::shared_ptr<const ExactForm>> exact_from_string(std::string_view text) {
-  if (text.substr(0, kMagic.size()) != kMagic) return bad("not a cellforge exact form (no header)", 0);
+  if (text.substr(0, kMagic.size()) != kMagic)
+    return bad("not a cellforge exact form (no header)", 0);
   std::size_t at = kMagic.size();
   auto line_end = [&](std::size_t from) { return text.find('\n', from); };
   std::size_t e = line_end(at);
-  if (e == std::string_view::npos || text.substr(at, 5) != "expr ") return bad("expected 'expr (...)'", at);
+  if (e == std::string_view::npos || text.substr(at, 5) != "expr ")
+    return bad("expected 'expr (...)'", at);
   ExprParser p{text.substr(at + 5, e - at - 5), 0, at + 5};
   auto expr = p.parse();
   if (!expr) return expr.error();
@@ -191,20 +210,26 @@ Result<std::shared_ptr<const ExactForm>> exact_from_string(std::string_view text
   at = e + 1;
   while (at < text.size()) {
     e = line_end(at);
-    if (e == std::string_view::npos || text.substr(at, 6) != "input ") return bad("expected 'input LENGTH'", at);
+    if (e == std::string_view::npos || text.substr(at, 6) != "input ")
+      return bad("expected 'input LENGTH'", at);
     std::size_t length = 0;
     const auto [ptr, ec] = std::from_chars(text.data() + at + 6, text.data() + e, length);
-    if (ec != std::errc() || ptr != text.data() + e) return bad("expected the input's length in bytes", at + 6);
+    if (ec != std::errc() || ptr != text.data() + e)
+      return bad("expected the input's length in bytes", at + 6);
     const std::size_t body = e + 1;
     if (length > text.size() - body || body + length >= text.size() || text[body + length] != '\n')
-      return bad("input " + std::to_string(form->inputs.size()) + " is shorter than its length", body);
+      return bad("input " + std::to_string(form->inputs.size()) + " is shorter than its length",
+                 body);
     auto m = std::make_shared<Model>();
     const std::string_view json = text.substr(body, length);
-    auto r = io::read_model(*m, std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(json.data()), json.size()),
+    auto r = io::read_model(*m,
+                            std::span<const std::uint8_t>(
+                                reinterpret_cast<const std::uint8_t*>(json.data()), json.size()),
                             io::Format::kJson);
     if (!r)
-      return Error{ErrorCode::kParse, "exact form: input " + std::to_string(form->inputs.size()) + " (from byte " +
-                                          std::to_string(body) + "): " + r.error().message};
+      return Error{ErrorCode::kParse, "exact form: input " + std::to_string(form->inputs.size()) +
+                                          " (from byte " + std::to_string(body) +
+                                          "): " + r.error().message};
     form->inputs.push_back(std::move(m));
     at = body + length + 1;
   }
@@ -224,10 +249,51 @@ Status write_exact(const ExactForm& form, const std::string& path) {
   return {};
 }
 
+Attachment exact_attachment(const ExactForm& form) {
+  return {kExactAttachment, kExactAttachmentVersion, exact_to_string(form)};
+}
+
+Result<std::shared_ptr<const ExactForm>> exact_from_attachment(const Attachment& a) {
+  const std::string what = std::string("attachment '") + a.name + "'";
+  if (a.name != kExactAttachment)
+    return Error{ErrorCode::kInvalidInput,
+                 what + " is not an exact form ('" + kExactAttachment + "')"};
+  if (a.version != kExactAttachmentVersion)
+    return Error{ErrorCode::kUnsupported, what + " has version " + std::to_string(a.version) +
+                                              "; this cellforge reads version " +
+                                              std::to_string(kExactAttachmentVersion)};
+  auto form = exact_from_string(a.data);
+  if (!form) return Error{form.error().code, what + ": " + form.error().message};
+  return form;
+}
+
+Result<std::shared_ptr<const ExactForm>> find_exact(const std::vector<Attachment>& attachments) {
+  const Attachment* a = find_attachment(attachments, kExactAttachment);
+  if (!a) return std::shared_ptr<const ExactForm>();
+  return exact_from_attachment(*a);
+}
+
+Status write_result(const BooleanResult& result, const std::string& path) {
+  io::WriteOptions options{.format = io::Format::kJson};
+  if (result.exact) options.attachments.push_back(exact_attachment(*result.exact));
+  return io::write_file(result.model, path, options);
+}
+
+Result<BooleanResult> read_result(const std::string& path) {
+  BooleanResult out;
+  auto r = io::read_file(out.model, path);
+  if (!r) return r.error();
+  auto form = find_exact(r->attachments);
+  if (!form) return Error{form.error().code, path + ": " + form.error().message};
+  out.exact = std::move(*form);
+  return out;
+}
+
 Result<std::shared_ptr<const ExactForm>> read_exact(const std::string& path) {
   auto bytes = io::read_bytes(path);
   if (!bytes) return bytes.error();
-  auto r = exact_from_string(std::string_view(reinterpret_cast<const char*>(bytes->data()), bytes->size()));
+  auto r = exact_from_string(
+      std::string_view(reinterpret_cast<const char*>(bytes->data()), bytes->size()));
   if (!r) return Error{r.error().code, path + ": " + r.error().message};
   return r;
 }

@@ -46,7 +46,7 @@ Status check_zip_size(std::string_view format, std::span<const std::uint8_t> byt
                       std::uint64_t max_unpacked);
 // json.cpp
 Result<ReadResult> read_json(Model& m, std::string_view text);
-std::string write_json(const Model& m);
+std::string write_json(const Model& m, const std::vector<Attachment>& attachments);
 
 // Per face, the polygon to write: loops as indices into mesh.positions when the
 // face has a single loop and triangulation is not forced, else its triangles.

@@ -257,7 +257,16 @@ Result<Format> format_of(const std::string& path, const std::optional<Format>& g
 
 std::vector<std::string> format_losses(const Model& m, Format format) {
   std::vector<std::string> out;
-  if (format == Format::kJson) return out;
+  if (format == Format::kJson) {
+    const std::vector<std::string> unstored = unstored_properties(m);
+    if (!unstored.empty()) {
+      std::string names;
+      for (const std::string& n : unstored) names += (names.empty() ? "" : ", ") + n;
+      out.push_back(names + " not written: JSON keeps property values of the types of "
+                    "PropertyType only");
+    }
+    return out;
+  }
   std::size_t wires = 0, points = 0, groups = 0, attributes = 0;
   for (EdgeId e : m.edges()) wires += m.is_wire(e);
   for (VertexId v : m.vertices())
@@ -322,7 +331,7 @@ Result<std::string> write_model(const Model& m, Format format, const WriteOption
         return Error{ErrorCode::kInvalidInput,
                      "json: the model is invalid, so the file could not be read back: " +
                          to_string(violations)};
-      return write_json(m);
+      return write_json(m, options.attachments);
   }
   return Error{ErrorCode::kUnsupported, "unknown format"};
 }

@@ -1,7 +1,10 @@
 // The native JSON format (docs/io.md): the model's snapshot tables (topo/snapshot.h)
 // written as JSON, so that reading gives back the same topology and the same
 // coordinates bit for bit (doubles written with 17 significant digits). Faces carry
-// their loops as vertex cycles with the edge and radial position of each use.
+// their loops as vertex cycles with the edge and radial position of each use;
+// then come the property tables of the snapshot and the attachments beside the
+// model (topo/attachment.h). A file with either is version 2, one without them
+// version 1 (what earlier readers read); this reader reads both.
 //
 // The reader is a pull parser over the text (no document tree, nothing allocated
 // from a count in the file); the tables it fills go through restore(), which checks
@@ -12,7 +15,9 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <functional>
+#include <limits>
 #include <unordered_map>
 
 #include "cellforge/topo/snapshot.h"
@@ -24,7 +29,10 @@ namespace cellforge::io {
 namespace {
 
 constexpr std::string_view kFormat = "cellforge-model";
-constexpr int kVersion = 1;
+constexpr int kVersion = 2;  // 1: no properties, no attachments
+
+// Non-finite doubles of property values, which JSON numbers cannot hold.
+constexpr std::string_view kNaN = "NaN", kInfinity = "Infinity", kMinusInfinity = "-Infinity";
 
 // ---- writing
 
@@ -65,6 +73,43 @@ void put_vec(std::string& out, Vec3 v) {
   out += ']';
 }
 
+// A property value's double: a number, or a string for the non-finite ones (the
+// sign and payload of a NaN are not kept).
+void put_real(std::string& out, double d) {
+  if (std::isfinite(d)) return put_number(out, d);
+  out += '"';
+  out += std::isnan(d) ? kNaN : d > 0 ? kInfinity : kMinusInfinity;
+  out += '"';
+}
+
+void put_value(std::string& out, const PropertyValue& v) {
+  if (const auto* i = std::get_if<std::int64_t>(&v)) {
+    out += std::to_string(*i);
+  } else if (const auto* u = std::get_if<std::uint64_t>(&v)) {
+    out += std::to_string(*u);
+  } else if (const auto* d = std::get_if<double>(&v)) {
+    put_real(out, *d);
+  } else if (const auto* t = std::get_if<std::string>(&v)) {
+    put_string(out, *t);
+  } else if (const auto* c = std::get_if<Colour>(&v)) {
+    out += '[';
+    const float parts[] = {c->r, c->g, c->b, c->a};
+    for (int k = 0; k < 4; ++k) {
+      if (k) out += ',';
+      put_real(out, parts[k]);
+    }
+    out += ']';
+  } else if (const auto* p = std::get_if<Vec3>(&v)) {
+    out += '[';
+    put_real(out, p->x);
+    out += ',';
+    put_real(out, p->y);
+    out += ',';
+    put_real(out, p->z);
+    out += ']';
+  }
+}
+
 template <class T, class F>
 void put_list(std::string& out, const std::vector<T>& xs, F each, const char* sep = ",") {
   out += '[';
@@ -77,10 +122,11 @@ void put_list(std::string& out, const std::vector<T>& xs, F each, const char* se
 
 }  // namespace
 
-std::string write_json(const Model& m) {
+std::string write_json(const Model& m, const std::vector<Attachment>& attachments) {
   const Snapshot s = snapshot(m);
+  const int version = s.properties.empty() && attachments.empty() ? 1 : kVersion;
   std::string out = "{\"format\":\"" + std::string(kFormat) +
-                    "\",\"version\":" + std::to_string(kVersion) + ",\n\"groups\":";
+                    "\",\"version\":" + std::to_string(version) + ",\n\"groups\":";
   std::vector<std::vector<const Snapshot::Parameter*>> params(s.groups.size());
   for (const auto& p : s.parameters) params[p.group].push_back(&p);
   for (std::size_t g = 0; g < s.groups.size(); ++g) {
@@ -172,7 +218,40 @@ std::string write_json(const Model& m) {
     });
     out += '}';
   }
-  out += "]}\n";
+  out += ']';
+  if (!s.properties.empty()) {
+    out += ",\n\"properties\":";
+    put_list(
+        out, s.properties,
+        [&](const Snapshot::Property& p) {
+          out += "{\"owner\":\"" + std::string(owner_name(p.owner)) + "\",\"name\":";
+          put_string(out, p.name);
+          out += ",\"type\":\"" + std::string(type_name(p.type)) + "\",\"default\":";
+          put_value(out, p.fallback);
+          out += ",\"values\":";
+          put_list(out, p.values, [&](const std::pair<std::uint32_t, PropertyValue>& kv) {
+            out += '[' + std::to_string(kv.first) + ',';
+            put_value(out, kv.second);
+            out += ']';
+          });
+          out += '}';
+        },
+        ",\n ");
+  }
+  if (!attachments.empty()) {
+    out += ",\n\"attachments\":";
+    put_list(
+        out, attachments,
+        [&](const Attachment& a) {
+          out += "{\"name\":";
+          put_string(out, a.name);
+          out += ",\"version\":" + std::to_string(a.version) + ",\"data\":";
+          put_string(out, a.data);
+          out += '}';
+        },
+        ",\n ");
+  }
+  out += "}\n";
   return out;
 }
 
@@ -210,6 +289,11 @@ class JsonReader {
       return Status::Ok();
     }
     return error(std::string("expected '") + c + "', found " + found());
+  }
+  // Whether the next character (after white space) is c; nothing is consumed.
+  bool at(char c) {
+    skip_ws();
+    return i_ < text_.size() && text_[i_] == c;
   }
   bool accept(char c) {
     skip_ws();
@@ -305,6 +389,37 @@ class JsonReader {
     if (out < lo || out > hi)
       return error_at(start, "integer " + std::string(tok) + " out of range [" +
                                  std::to_string(lo) + ", " + std::to_string(hi) + "]");
+    return Status::Ok();
+  }
+  Status unsigned_integer(std::uint64_t& out, std::uint64_t hi) {
+    skip_ws();
+    const std::size_t start = i_;
+    while (i_ < text_.size() && std::isdigit(static_cast<unsigned char>(text_[i_]))) ++i_;
+    const std::string_view tok = text_.substr(start, i_ - start);
+    const auto [end, ec] = std::from_chars(tok.data(), tok.data() + tok.size(), out);
+    if (tok.empty() || ec == std::errc::invalid_argument || end != tok.data() + tok.size())
+      return error_at(
+          start, "expected a non-negative integer, found " + (tok.empty() ? found() : quote(tok)));
+    if (ec == std::errc::result_out_of_range || out > hi)
+      return error_at(
+          start, "integer " + std::string(tok) + " out of range [0, " + std::to_string(hi) + "]");
+    return Status::Ok();
+  }
+  // A number, or one of the strings "NaN", "Infinity", "-Infinity".
+  Status real(double& out) {
+    if (!at('"')) return number(out);
+    const std::size_t start = i_;
+    std::string word;
+    if (Status s = string(word); !s) return s;
+    if (word == kNaN) {
+      out = std::numeric_limits<double>::quiet_NaN();
+    } else if (word == kInfinity || word == kMinusInfinity) {
+      out = word == kInfinity ? std::numeric_limits<double>::infinity()
+                              : -std::numeric_limits<double>::infinity();
+    } else {
+      return error_at(
+          start, "expected a number, \"NaN\", \"Infinity\" or \"-Infinity\", found " + quote(word));
+    }
     return Status::Ok();
   }
   Status index(std::uint32_t& out) {
@@ -439,6 +554,202 @@ Status numbers(JsonReader& r, double* out, std::size_t n) {
   return Status::Ok();
 }
 
+// ---- property values and attachments
+
+// A double of a float value, rounded to the nearest float (what the writer writes
+// is one already).
+Status to_float(JsonReader& r, std::size_t at, double& d) {
+  if (std::isfinite(d) && std::abs(d) > std::numeric_limits<float>::max())
+    return r.error_at(at, "number out of the range of a float");
+  d = static_cast<float>(d);
+  return Status::Ok();
+}
+
+// A vector of exactly n property doubles (floats when `floats`).
+Status reals(JsonReader& r, double* out, std::size_t n, bool floats) {
+  std::size_t k = 0;
+  const std::size_t at = r.offset();
+  Status s = r.array([&]() -> Status {
+    if (k == n) return r.error("more than " + std::to_string(n) + " numbers");
+    const std::size_t here = r.offset();
+    if (Status a = r.real(out[k]); !a) return a;
+    if (floats)
+      if (Status a = to_float(r, here, out[k]); !a) return a;
+    ++k;
+    return Status::Ok();
+  });
+  if (!s) return s;
+  if (k != n)
+    return r.error_at(at, "expected " + std::to_string(n) + " numbers, found " + std::to_string(k));
+  return Status::Ok();
+}
+
+Status read_value(JsonReader& r, PropertyType type, PropertyValue& out) {
+  using P = PropertyType;
+  const auto signed_value = [&](std::int64_t lo, std::int64_t hi) -> Status {
+    std::int64_t v = 0;
+    if (Status s = r.integer(v, lo, hi); !s) return s;
+    out = v;
+    return Status::Ok();
+  };
+  const auto unsigned_value = [&](std::uint64_t hi) -> Status {
+    std::uint64_t v = 0;
+    if (Status s = r.unsigned_integer(v, hi); !s) return s;
+    out = v;
+    return Status::Ok();
+  };
+  switch (type) {
+    case P::kInt8:
+      return signed_value(INT8_MIN, INT8_MAX);
+    case P::kInt16:
+      return signed_value(INT16_MIN, INT16_MAX);
+    case P::kInt32:
+      return signed_value(INT32_MIN, INT32_MAX);
+    case P::kInt64:
+      return signed_value(INT64_MIN, INT64_MAX);
+    case P::kUInt8:
+      return unsigned_value(UINT8_MAX);
+    case P::kUInt16:
+      return unsigned_value(UINT16_MAX);
+    case P::kUInt32:
+      return unsigned_value(UINT32_MAX);
+    case P::kUInt64:
+      return unsigned_value(UINT64_MAX);
+    case P::kFloat:
+    case P::kDouble: {
+      const std::size_t at = r.offset();
+      double d = 0;
+      if (Status s = r.real(d); !s) return s;
+      if (type == P::kFloat)
+        if (Status s = to_float(r, at, d); !s) return s;
+      out = d;
+      return Status::Ok();
+    }
+    case P::kString: {
+      std::string t;
+      if (Status s = r.string(t); !s) return s;
+      out = std::move(t);
+      return Status::Ok();
+    }
+    case P::kColour: {
+      double c[4];
+      if (Status s = reals(r, c, 4, true); !s) return s;
+      out = Colour{static_cast<float>(c[0]), static_cast<float>(c[1]), static_cast<float>(c[2]),
+                   static_cast<float>(c[3])};
+      return Status::Ok();
+    }
+    case P::kVec3: {
+      double c[3];
+      if (Status s = reals(r, c, 3, false); !s) return s;
+      out = Vec3{c[0], c[1], c[2]};
+      return Status::Ok();
+    }
+  }
+  return r.error("unknown property type");
+}
+
+// {"owner": ..., "name": ..., "type": ..., "default": value, "values": [[key, value], ...]},
+// "type" before the values it types.
+Status read_property(JsonReader& r, Snapshot& s) {
+  const std::size_t at = r.offset();
+  Snapshot::Property p{};
+  bool has_owner = false, has_name = false, has_type = false, has_default = false;
+  Status st = r.object([&](const std::string& key) -> Status {
+    if (key == "owner" || key == "type") {
+      r.skip_ws();
+      const std::size_t here = r.offset();
+      std::string word;
+      if (Status a = r.string(word); !a) return a;
+      if (key == "owner") {
+        const auto owner = owner_from_name(word);
+        if (!owner)
+          return r.error_at(
+              here, "unknown property owner " + quote(word) + " (vertex, edge, face or cell)");
+        p.owner = *owner;
+        has_owner = true;
+      } else {
+        const auto type = type_from_name(word);
+        if (!type)
+          return r.error_at(here, "unknown property type " + quote(word) +
+                                      " (int8 to int64, uint8 to uint64, float, double, string, "
+                                      "colour, vec3)");
+        p.type = *type;
+        has_type = true;
+      }
+      return Status::Ok();
+    }
+    if (key == "name") {
+      has_name = true;
+      return r.string(p.name);
+    }
+    if (key == "default" || key == "values") {
+      if (!has_type) return r.error("a property's 'type' must come before its '" + key + "'");
+      if (key == "default") {
+        has_default = true;
+        return read_value(r, p.type, p.fallback);
+      }
+      return r.array([&]() -> Status {
+        r.skip_ws();
+        const std::size_t here = r.offset();
+        std::uint32_t k = 0;
+        PropertyValue v;
+        if (Status a = r.expect('['); !a) return a;
+        if (Status a = r.index(k); !a) return a;
+        if (!p.values.empty() && k <= p.values.back().first)
+          return r.error_at(here, "property keys must increase (" + std::to_string(k) + " after " +
+                                      std::to_string(p.values.back().first) + ")");
+        if (Status a = r.expect(','); !a) return a;
+        if (Status a = read_value(r, p.type, v); !a) return a;
+        p.values.emplace_back(k, std::move(v));
+        return r.expect(']');
+      });
+    }
+    return r.skip_value();
+  });
+  if (!st) return st;
+  if (!has_owner || !has_name || !has_type || !has_default)
+    return r.error_at(at, "a property needs 'owner', 'name', 'type' and 'default'");
+  for (const Snapshot::Property& q : s.properties) {
+    if (q.owner == p.owner && q.name == p.name)
+      return r.error_at(
+          at, std::string(owner_name(p.owner)) + " property " + quote(p.name) + " is there twice");
+  }
+  s.properties.push_back(std::move(p));
+  return Status::Ok();
+}
+
+// {"name": ..., "version": n, "data": "..."}
+Status read_attachment(JsonReader& r, std::vector<Attachment>& out) {
+  const std::size_t at = r.offset();
+  Attachment a;
+  bool has_name = false, has_version = false, has_data = false;
+  Status st = r.object([&](const std::string& key) -> Status {
+    if (key == "name") {
+      has_name = true;
+      return r.string(a.name);
+    }
+    if (key == "version") {
+      has_version = true;
+      std::int64_t v = 0;
+      if (Status b = r.integer(v, 1, INT32_MAX); !b) return b;
+      a.version = static_cast<int>(v);
+      return Status::Ok();
+    }
+    if (key == "data") {
+      has_data = true;
+      return r.string(a.data);
+    }
+    return r.skip_value();
+  });
+  if (!st) return st;
+  if (!has_name || !has_version || !has_data)
+    return r.error_at(at, "an attachment needs 'name', 'version' and 'data'");
+  if (find_attachment(out, a.name))
+    return r.error_at(at, "attachment " + quote(a.name) + " is there twice");
+  out.push_back(std::move(a));
+  return Status::Ok();
+}
+
 Status read_loop(JsonReader& r, Snapshot& s, std::uint32_t face, std::uint32_t ord) {
   const std::size_t at = r.offset();
   std::vector<std::uint32_t> vertices, edges, radial;
@@ -514,7 +825,7 @@ Status read_face(JsonReader& r, Snapshot& s) {
   return Status::Ok();
 }
 
-Status read_snapshot(JsonReader& r, Snapshot& s) {
+Status read_snapshot(JsonReader& r, Snapshot& s, std::vector<Attachment>& attachments) {
   std::string format;
   std::int64_t version = 0;
   bool edges_read = false;
@@ -602,18 +913,69 @@ Status read_snapshot(JsonReader& r, Snapshot& s) {
       if (!edges_read) return r.error("'faces' must come after 'edges'");
       return r.array([&] { return read_face(r, s); });
     }
+    if (key == "properties") return r.array([&] { return read_property(r, s); });
+    if (key == "attachments") return r.array([&] { return read_attachment(r, attachments); });
     return r.skip_value();
   });
   if (!st) return st;
   if (format != kFormat)
     return r.error_at(0, "not a cellforge model ('format' is " + quote(format) + ", expected '" +
                              std::string(kFormat) + "')");
-  if (version != kVersion) return r.error_at(0, "unsupported version " + std::to_string(version));
+  if (version < 1 || version > kVersion)
+    return r.error_at(0, "unsupported version " + std::to_string(version) +
+                             " (this reader reads 1 to " + std::to_string(kVersion) + ")");
   return r.end();
 }
 
+// Equal bit for bit (doubles and floats: -0.0 is not 0.0).
+bool same_value(const PropertyValue& a, const PropertyValue& b) {
+  if (a.index() != b.index()) return false;
+  if (const auto* d = std::get_if<double>(&a))
+    return std::memcmp(d, std::get_if<double>(&b), sizeof *d) == 0;
+  if (const auto* c = std::get_if<Colour>(&a))
+    return std::memcmp(c, std::get_if<Colour>(&b), sizeof *c) == 0;
+  if (const auto* p = std::get_if<Vec3>(&a))
+    return std::memcmp(p, std::get_if<Vec3>(&b), sizeof *p) == 0;
+  return a == b;
+}
+
+// b's property tables after a's: keys shifted by base (per owner kind); a table
+// of the same owner and name joins a's (the same type required), with b's default
+// written out for each of b's elements when the two defaults differ.
+Status append_properties(Snapshot& a, const Snapshot& b, const std::uint32_t (&base)[4]) {
+  const std::size_t count[4] = {b.vertices.size(), b.edges.size(), b.faces.size(), b.cells.size()};
+  for (const Snapshot::Property& p : b.properties) {
+    const auto o = static_cast<std::size_t>(p.owner);
+    Snapshot::Property* into = nullptr;
+    for (auto& q : a.properties)
+      if (q.owner == p.owner && q.name == p.name) into = &q;
+    if (!into) {
+      Snapshot::Property q = p;
+      for (auto& kv : q.values) kv.first += base[o];
+      a.properties.push_back(std::move(q));
+      continue;
+    }
+    if (into->type != p.type) {
+      return Error{ErrorCode::kInvalidInput,
+                   "json: " + std::string(owner_name(p.owner)) + " property '" + p.name + "' is " +
+                       std::string(type_name(p.type)) + " in the file and " +
+                       std::string(type_name(into->type)) + " in the model it is read into"};
+    }
+    if (same_value(into->fallback, p.fallback)) {
+      for (const auto& [k, v] : p.values) into->values.emplace_back(k + base[o], v);
+      continue;
+    }
+    std::size_t next = 0;
+    for (std::uint32_t k = 0; k < count[o]; ++k) {
+      const bool listed = next < p.values.size() && p.values[next].first == k;
+      into->values.emplace_back(k + base[o], listed ? p.values[next++].second : p.fallback);
+    }
+  }
+  return Status::Ok();
+}
+
 // Appends the tables of b to a, shifting b's keys past a's.
-void append(Snapshot& a, const Snapshot& b) {
+Status append(Snapshot& a, const Snapshot& b) {
   const auto g0 = static_cast<std::uint32_t>(a.groups.size());
   const auto c0 = static_cast<std::int64_t>(a.cells.size());
   const auto v0 = static_cast<std::uint32_t>(a.vertices.size());
@@ -635,6 +997,36 @@ void append(Snapshot& a, const Snapshot& b) {
   for (auto l : b.loops) a.loops.push_back({l.face + f0, l.ord, shift(l.point_vertex, v0)});
   for (auto u : b.uses)
     a.uses.push_back({u.loop + l0, u.ord, u.edge + e0, u.reversed, u.radial_ord});
+  return append_properties(a, b, {v0, e0, f0, static_cast<std::uint32_t>(c0)});
+}
+
+// The property tables of `before` that snapshots leave out (value types without a
+// PropertyType), carried to `after`, which holds before's elements first, in id
+// order, renumbered (restore of before's snapshot and more).
+void keep_memory_only_properties(const Model& before, Model& after) {
+  const auto ids = [](const Model& m, int kind) {
+    std::vector<std::uint32_t> out;
+    if (kind == detail::kVertexProperty)
+      for (VertexId v : m.vertices()) out.push_back(v.value);
+    if (kind == detail::kEdgeProperty)
+      for (EdgeId e : m.edges()) out.push_back(e.value);
+    if (kind == detail::kFaceProperty)
+      for (FaceId f : m.faces()) out.push_back(f.value);
+    if (kind == detail::kVolumeProperty)
+      for (VolumeId c : m.volumes()) out.push_back(c.value);
+    return out;
+  };
+  for (int kind = 0; kind < detail::kPropertyKinds; ++kind) {
+    std::vector<std::uint32_t> from, to;
+    for (const auto& column : before.property_store().columns(kind)) {
+      if (property_type_of(column->type())) continue;
+      if (from.empty()) from = ids(before, kind), to = ids(after, kind);
+      auto copy = column->empty_like();
+      for (std::size_t k = 0; k < from.size() && k < to.size(); ++k)
+        column->copy_to(from[k], *copy, to[k]);
+      after.property_store().add(kind, std::move(copy));
+    }
+  }
 }
 
 }  // namespace
@@ -644,14 +1036,17 @@ Result<ReadResult> read_json(Model& m, std::string_view text) {
   if (Status s = check_utf8("json", text); !s) return s.error();
   JsonReader reader(text);
   Snapshot file;
-  if (Status s = read_snapshot(reader, file); !s) return s.error();
+  std::vector<Attachment> attachments;
+  if (Status s = read_snapshot(reader, file, attachments); !s) return s.error();
   Snapshot all = snapshot(m);
   const auto first_group = static_cast<std::uint32_t>(all.groups.size());
-  append(all, file);
+  if (Status s = append(all, file); !s) return s.error();
   auto restored = restore(all);
   if (!restored) return Error{ErrorCode::kInvalidInput, "json: " + restored.error().message};
+  keep_memory_only_properties(m, *restored);
   m = std::move(*restored);
   ReadResult result;
+  result.attachments = std::move(attachments);
   std::uint32_t k = 0;
   for (GroupId g : m.groups())
     if (k++ == first_group) result.group = g;

@@ -2,12 +2,15 @@
 // once over a Connection (sqlite_connection.cpp, pg_connection.cpp).
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <ctime>
+#include <limits>
 #include <map>
 #include <thread>
+#include <variant>
 
 #include "cellforge/topo/validate.h"
 #include "store/connection.h"
@@ -19,9 +22,10 @@ namespace {
 
 // 1: the first layout; 2: SQLite tables clustered on their keys with doubles
 // kept bit for bit, face boxes and the spatial indexes; 3: PostgreSQL keeps the
-// five large tables as blocks under views (SQLite as in 2). Older databases are
-// migrated when opened (migrate below).
-constexpr int kSchemaVersion = 3;
+// five large tables as blocks under views (SQLite as in 2); 4: the property
+// tables of a model (properties, property_values) and the attachments of a
+// version. Older databases are migrated when opened (migrate below).
+constexpr int kSchemaVersion = 4;
 
 // Faces per entry of the face_tiles spatial index: a tile is a run of
 // consecutive face keys, indexed by the box of their boxes.
@@ -123,6 +127,28 @@ constexpr const char* kSchema[] = {
   reversed INTEGER NOT NULL,
   radial_ord INTEGER NOT NULL,
   PRIMARY KEY (volume_id, loop_key, ord)){clustered})",
+    R"(CREATE TABLE properties (
+  volume_id BIGINT NOT NULL,
+  property_key INTEGER NOT NULL,
+  owner TEXT NOT NULL,
+  name TEXT NOT NULL,
+  type TEXT NOT NULL,
+  PRIMARY KEY (volume_id, property_key)){clustered})",
+    R"(CREATE TABLE property_values (
+  volume_id BIGINT NOT NULL,
+  property_key INTEGER NOT NULL,
+  element_key BIGINT NOT NULL,
+  int_value BIGINT,
+  text_value TEXT,
+  x {double}, y {double}, z {double}, w {double},
+  PRIMARY KEY (volume_id, property_key, element_key)){clustered})",
+    R"(CREATE TABLE attachments (
+  volume_id BIGINT NOT NULL,
+  ord INTEGER NOT NULL,
+  name TEXT NOT NULL,
+  version INTEGER NOT NULL,
+  data TEXT NOT NULL,
+  PRIMARY KEY (volume_id, ord)){clustered})",
     R"(CREATE VIEW latest_volumes AS
 SELECT * FROM volumes v
 WHERE v.version = (SELECT MAX(w.version) FROM volumes w WHERE w.name = v.name))",
@@ -147,9 +173,71 @@ JOIN vertices p ON p.volume_id = u.volume_id
 };
 
 // Child tables of a stored volume, for removal.
-constexpr const char* kVolumeTables[] = {"model_groups", "parameters", "cells",
-                                         "vertices",     "edges",      "surfaces",
-                                         "faces",        "loops",      "loop_edges"};
+constexpr const char* kVolumeTables[] = {
+    "model_groups", "parameters", "cells",      "vertices",        "edges",      "surfaces",
+    "faces",        "loops",      "loop_edges", "property_values", "properties", "attachments"};
+
+// ---- property values in the columns of table property_values
+
+// int_value, text_value, x, y, z, w: integers in int_value (an unsigned 64-bit
+// value above 2^63 - 1 as the signed integer of its bits), strings in text_value,
+// a float or double in x, a colour in x y z w (r g b a), a vector in x y z. A NaN
+// component is NULL (SQLite keeps no NaN; its sign and payload are not kept).
+void write_value(RowWriter& w, const PropertyValue& v) {
+  const auto real = [&](double d) { std::isnan(d) ? w.null() : w.d(d); };
+  const auto nulls = [&](int n) {
+    for (int k = 0; k < n; ++k) w.null();
+  };
+  if (const auto* i = std::get_if<std::int64_t>(&v)) {
+    w.i(*i), nulls(5);
+  } else if (const auto* u = std::get_if<std::uint64_t>(&v)) {
+    w.i(static_cast<std::int64_t>(*u)), nulls(5);
+  } else if (const auto* d = std::get_if<double>(&v)) {
+    nulls(2), real(*d), nulls(3);
+  } else if (const auto* t = std::get_if<std::string>(&v)) {
+    w.null(), w.s(*t), nulls(4);
+  } else if (const auto* c = std::get_if<Colour>(&v)) {
+    nulls(2), real(c->r), real(c->g), real(c->b), real(c->a);
+  } else if (const auto* p = std::get_if<Vec3>(&v)) {
+    nulls(2), real(p->x), real(p->y), real(p->z), w.null();
+  }
+}
+
+// The value of `type` in columns c ... c+5 of r (as write_value puts it); an
+// error names what is missing. restore() checks the range.
+Result<PropertyValue> read_value(PropertyType type, const Row& r, int c) {
+  using P = PropertyType;
+  const auto real = [&](int k) {
+    return r.is_null(c + 2 + k) ? std::numeric_limits<double>::quiet_NaN() : r.d(c + 2 + k);
+  };
+  switch (type) {
+    case P::kInt8:
+    case P::kInt16:
+    case P::kInt32:
+    case P::kInt64:
+    case P::kUInt8:
+    case P::kUInt16:
+    case P::kUInt32:
+    case P::kUInt64: {
+      if (r.is_null(c)) return db_error("int_value is NULL");
+      const std::int64_t i = r.i(c);
+      if (type >= P::kUInt8) return PropertyValue(static_cast<std::uint64_t>(i));
+      return PropertyValue(i);
+    }
+    case P::kFloat:
+    case P::kDouble:
+      return PropertyValue(real(0));
+    case P::kString:
+      if (r.is_null(c + 1)) return db_error("text_value is NULL");
+      return PropertyValue(r.s(c + 1));
+    case P::kColour:
+      return PropertyValue(Colour{static_cast<float>(real(0)), static_cast<float>(real(1)),
+                                  static_cast<float>(real(2)), static_cast<float>(real(3))});
+    case P::kVec3:
+      return PropertyValue(Vec3{real(0), real(1), real(2)});
+  }
+  return db_error("unknown type");
+}
 
 constexpr const char* kVolumeColumns =
     "id, name, version, type, cx, cy, cz, volume, area, min_x, min_y, min_z, max_x, max_y, max_z, "
@@ -215,6 +303,30 @@ Status check_strings(const std::string& name, const ModelRows& rows, const PutOp
   for (const auto& sf : rows.surfaces) {
     if (Status s = check_text("surface kind", sf.kind); !s) return s;
   }
+  for (const auto& p : rows.properties) {
+    const std::string what = "property '" + p.name + "'";
+    if (Status s = check_text("a property name", p.name); !s) return s;
+    if (p.type != PropertyType::kString) continue;
+    if (Status s = check_text(what + ": the default", std::get<std::string>(p.fallback)); !s)
+      return s;
+    for (const auto& [key, value] : p.values) {
+      if (Status s = check_text(what + ": the value of " + std::string(owner_name(p.owner)) + " " +
+                                    std::to_string(key),
+                                std::get<std::string>(value));
+          !s) {
+        return s;
+      }
+    }
+  }
+  for (std::size_t i = 0; i < o.attachments.size(); ++i) {
+    const Attachment& a = o.attachments[i];
+    if (Status s = check_text("attachment " + std::to_string(i) + "'s name", a.name); !s) return s;
+    if (Status s = check_text("attachment '" + a.name + "'", a.data); !s) return s;
+    for (std::size_t j = 0; j < i; ++j) {
+      if (o.attachments[j].name == a.name)
+        return Error{ErrorCode::kInvalidInput, "attachment '" + a.name + "' is there twice"};
+    }
+  }
   return Status::Ok();
 }
 
@@ -266,11 +378,24 @@ class SqlStore final : public Store {
     return to_model(rows);
   }
 
+  Result<std::vector<Attachment>> get_attachments(const std::string& name, int version) override {
+    std::vector<Attachment> out;
+    Status s = read(name, version, [&](std::int64_t id) {
+      return db_->select(
+          "SELECT name, version, data FROM attachments WHERE volume_id = $1 ORDER BY ord", {id},
+          [&](const Row& r) {
+            out.push_back({r.s(0), static_cast<int>(r.i(1)), r.s(2)});
+          });
+    });
+    if (!s) return s.error();
+    return out;
+  }
+
   Result<Model> get_faces_where(const std::string& name, const std::string& condition,
                                 int version) override {
     ModelRows rows;
-    Status s = read(name, version,
-                    [&](std::int64_t id) { return read_face_rows(id, condition, rows); });
+    Status s =
+        read(name, version, [&](std::int64_t id) { return read_face_rows(id, condition, rows); });
     if (!s) return s.error();
     return to_model(rows);
   }
@@ -598,18 +723,21 @@ class SqlStore final : public Store {
                      {std::int64_t{kSchemaVersion}});
   }
 
-  // Brings a database of schema version `from` (1 or 2) to the current one, in
-  // the schema's write transaction (so a failure or a kill leaves it as it was):
-  // the tables whose layout changed are renamed to <name>_old, the current
-  // schema's tables, indexes and views are created, the rows are copied (PostgreSQL
-  // packs them into blocks on the server; version 1 gains the face boxes, computed
-  // from the loops' points, and the spatial indexes), and the old tables are dropped.
+  // Brings a database of schema version `from` (1, 2 or 3) to the current one, in
+  // the schema's write transaction (so a failure or a kill leaves it as it was).
+  // From 1 or 2: the tables whose layout changed are renamed to <name>_old, the
+  // current schema's tables, indexes and views are created, the rows are copied
+  // (PostgreSQL packs them into blocks on the server; version 1 gains the face
+  // boxes, computed from the loops' points, and the spatial indexes), and the old
+  // tables are dropped. From 3 (and on the way from 1 or 2): the tables that 4
+  // added (properties, property_values, attachments) are created empty, since no
+  // earlier version stored properties or attachments.
   Status migrate(int from) {
     const bool pg = db_->backend() == "postgresql";
     // SQLite 1 -> 2 rebuilt every table (clustered, doubles without affinity); on
     // PostgreSQL only the packed tables change (faces also gained its box in 2).
     std::vector<std::string> rebuilt;
-    if (pg) {
+    if (pg && from < 3) {
       rebuilt = {"vertices", "edges", "faces", "loops", "loop_edges"};
     } else if (from == 1) {
       rebuilt = {"objects",    "volumes", "object_volumes", "model_groups",
@@ -617,29 +745,36 @@ class SqlStore final : public Store {
                  "surfaces",   "faces",   "loops",          "loop_edges"};
     }
     std::vector<std::string> steps;
-    for (const char* view :
-         {"face_edge_points", "edge_vertices", "face_loops", "volume_faces", "latest_volumes"}) {
-      steps.push_back(std::string("DROP VIEW IF EXISTS ") + view);
+    if (from < 3) {
+      for (const char* view :
+           {"face_edge_points", "edge_vertices", "face_loops", "volume_faces", "latest_volumes"}) {
+        steps.push_back(std::string("DROP VIEW IF EXISTS ") + view);
+      }
+      steps.push_back("DROP INDEX IF EXISTS loop_edges_by_edge");
     }
-    steps.push_back("DROP INDEX IF EXISTS loop_edges_by_edge");
     if (!pg && from == 1) steps.push_back("DROP INDEX IF EXISTS object_volumes_by_name");
     for (const std::string& t : rebuilt)
       steps.push_back("ALTER TABLE " + t + " RENAME TO " + t + "_old");
     for (const std::string& step : steps) {
       if (Status s = db_->exec(step); !s) return s;
     }
-    // The current schema: what is missing (every view; the tables renamed above;
-    // in version 1 the spatial indexes).
-    for (const auto& [table, sql] : current_ddl()) {
-      if (!table.empty()) {
-        bool exists = false;
-        Status s = pg ? db_->select("SELECT 1 WHERE to_regclass($1) IS NOT NULL", {table},
-                                    [&](const Row&) { exists = true; })
-                      : db_->select("SELECT 1 FROM sqlite_master WHERE name = $1", {table},
-                                    [&](const Row&) { exists = true; });
-        if (!s) return s;
-        if (exists) continue;
-      }
+    // The current schema: what is missing (the tables renamed above or added
+    // since `from`, with their indexes; in version 1 the spatial indexes; every
+    // view unless from 3, whose views stand).
+    const auto ddl = current_ddl();
+    std::map<std::string, bool> exists;
+    for (const auto& [table, sql] : ddl) {
+      if (table.empty() || exists.count(table)) continue;
+      bool found = false;
+      Status s = pg ? db_->select("SELECT 1 WHERE to_regclass($1) IS NOT NULL", {table},
+                                  [&](const Row&) { found = true; })
+                    : db_->select("SELECT 1 FROM sqlite_master WHERE name = $1", {table},
+                                  [&](const Row&) { found = true; });
+      if (!s) return s;
+      exists[table] = found;
+    }
+    for (const auto& [table, sql] : ddl) {
+      if (table.empty() ? from >= 3 : exists[table]) continue;
       if (Status s = db_->exec(sql); !s) return s;
     }
     steps.clear();
@@ -715,6 +850,7 @@ FROM faces_old f JOIN (
         [&](const Row& r) { info.id = r.i(0); });
     if (!s) return s;
     if (s = write_rows(info.id, rows, {info.bbox_min, info.bbox_max}, o.progress); !s) return s;
+    if (s = write_attachments(info.id, o.attachments); !s) return s;
     if (!o.object.empty()) s = add_to_object(o.object, info.name);
     return s;
   }
@@ -801,8 +937,8 @@ FROM faces_old f JOIN (
         const QueryBox& b = r.boxes[i];
         w.i(id), w.i(static_cast<std::int64_t>(i)), w.i(f.group), w.opt(f.front), w.opt(f.back),
             w.opt(f.surface), w.d(r.planes[i].normal.x), w.d(r.planes[i].normal.y),
-            w.d(r.planes[i].normal.z), w.d(r.planes[i].d), w.d(b.min.x), w.d(b.min.y),
-            w.d(b.min.z), w.d(b.max.x), w.d(b.max.y), w.d(b.max.z);
+            w.d(r.planes[i].normal.z), w.d(r.planes[i].d), w.d(b.min.x), w.d(b.min.y), w.d(b.min.z),
+            w.d(b.max.x), w.d(b.max.y), w.d(b.max.z);
       });
     }
     if (s) {
@@ -819,14 +955,15 @@ FROM faces_old f JOIN (
         w.i(id), w.i(u.loop), w.i(u.ord), w.i(u.edge), w.i(u.reversed ? 1 : 0), w.i(u.radial_ord);
       });
     }
+    if (s) s = write_properties(id, r, insert);
     const std::vector<QueryBox> tiles = tile_boxes(r.boxes);
     if (s) {
       s = insert("face_tiles", 10, tiles.size(), [&](std::size_t t, RowWriter& w) {
         const QueryBox& b = tiles[t];
         const auto first = static_cast<std::int64_t>(t * kTileFaces);
-        const auto last = static_cast<std::int64_t>(std::min<std::size_t>(
-                              (t + 1) * kTileFaces, r.faces.size())) -
-                          1;
+        const auto last =
+            static_cast<std::int64_t>(std::min<std::size_t>((t + 1) * kTileFaces, r.faces.size())) -
+            1;
         w.i(tile_id(id, t)), w.d(b.min.x), w.d(b.max.x), w.d(b.min.y), w.d(b.max.y), w.d(b.min.z),
             w.d(b.max.z), w.i(id), w.i(first), w.i(last);
       });
@@ -838,6 +975,109 @@ FROM faces_old f JOIN (
       });
     }
     return s;
+  }
+
+  // The property tables of r: one row each in properties, and in property_values
+  // its default (element_key -1) and the values that differ from it.
+  template <class Insert>
+  static Status write_properties(std::int64_t id, const ModelRows& r, Insert& insert) {
+    static const std::string kOwners[] = {std::string(owner_name(PropertyOwner::kVertex)),
+                                          std::string(owner_name(PropertyOwner::kEdge)),
+                                          std::string(owner_name(PropertyOwner::kFace)),
+                                          std::string(owner_name(PropertyOwner::kCell))};
+    std::vector<std::string> types;
+    for (const auto& p : r.properties) types.emplace_back(type_name(p.type));
+    Status s = insert("properties", 5, r.properties.size(), [&](std::size_t i, RowWriter& w) {
+      const auto& p = r.properties[i];
+      w.i(id), w.i(static_cast<std::int64_t>(i)), w.s(kOwners[static_cast<std::size_t>(p.owner)]),
+          w.s(p.name), w.s(types[i]);
+    });
+    struct ValueRow {
+      std::int64_t property, element;
+      const PropertyValue* value;
+    };
+    std::vector<ValueRow> values;
+    for (std::size_t i = 0; i < r.properties.size(); ++i) {
+      const auto& p = r.properties[i];
+      values.push_back({static_cast<std::int64_t>(i), -1, &p.fallback});
+      for (const auto& [key, value] : p.values)
+        values.push_back({static_cast<std::int64_t>(i), key, &value});
+    }
+    if (s) {
+      s = insert("property_values", 9, values.size(), [&](std::size_t i, RowWriter& w) {
+        w.i(id), w.i(values[i].property), w.i(values[i].element);
+        write_value(w, *values[i].value);
+      });
+    }
+    return s;
+  }
+
+  Status write_attachments(std::int64_t id, const std::vector<Attachment>& attachments) {
+    return db_->bulk_insert("attachments", 5, attachments.size(),
+                            [&](std::size_t i, RowWriter& w) {
+                              const Attachment& a = attachments[i];
+                              w.i(id), w.i(static_cast<std::int64_t>(i)), w.s(a.name),
+                                  w.i(a.version), w.s(a.data);
+                            },
+                            {});
+  }
+
+  // The property tables of stored volume `id` into r.
+  Status read_properties(std::int64_t id, ModelRows& r) {
+    Status bad = Status::Ok();
+    Status s = db_->select(
+        "SELECT property_key, owner, name, type FROM properties WHERE volume_id = $1 ORDER BY "
+        "property_key",
+        {id}, [&](const Row& row) {
+          const auto owner = owner_from_name(row.s(1));
+          const auto type = type_from_name(row.s(3));
+          if (bad &&
+              (row.i(0) != static_cast<std::int64_t>(r.properties.size()) || !owner || !type)) {
+            bad = db_error("stored volume: property " + std::to_string(row.i(0)) + " ('" +
+                           row.s(2) + "') has an unknown owner or type ('" + row.s(1) + "', '" +
+                           row.s(3) + "') or is out of key order");
+          }
+          if (bad) r.properties.push_back({owner.value(), row.s(2), type.value(), {}, {}});
+        });
+    if (!s) return s;
+    if (!bad) return bad;
+    std::vector<bool> has_default(r.properties.size(), false);
+    s = db_->bulk_select(
+        "SELECT property_key, element_key, int_value, text_value, x, y, z, w FROM property_values "
+        "WHERE volume_id = $1 ORDER BY property_key, element_key",
+        {id}, [&](const Row& row) {
+          if (!bad) return;
+          const std::int64_t k = row.i(0), element = row.i(1);
+          if (k < 0 || k >= static_cast<std::int64_t>(r.properties.size()) || element < -1 ||
+              element > std::int64_t{0xFFFFFFFF}) {
+            bad = db_error("stored volume: a property value names property " + std::to_string(k) +
+                           ", element " + std::to_string(element));
+            return;
+          }
+          Snapshot::Property& p = r.properties[static_cast<std::size_t>(k)];
+          auto value = read_value(p.type, row, 2);
+          if (!value) {
+            bad = db_error(
+                "stored volume: property '" + p.name + "', " +
+                (element < 0 ? std::string("its default")
+                             : std::string(owner_name(p.owner)) + " " + std::to_string(element)) +
+                ": " + value.error().message + " for a " + std::string(type_name(p.type)));
+            return;
+          }
+          if (element < 0) {
+            has_default[static_cast<std::size_t>(k)] = true;
+            p.fallback = std::move(*value);
+          } else {
+            p.values.emplace_back(static_cast<std::uint32_t>(element), std::move(*value));
+          }
+        });
+    if (!s) return s;
+    if (!bad) return bad;
+    for (std::size_t k = 0; k < has_default.size(); ++k) {
+      if (!has_default[k])
+        return db_error("stored volume: property '" + r.properties[k].name + "' has no default");
+    }
+    return Status::Ok();
   }
 
   // The id of tile t of a stored volume in face_tiles: one range per volume.
@@ -924,6 +1164,7 @@ FROM faces_old f JOIN (
         r.loops.push_back({key(row, 0), key(row, 1), opt(row, 2)});
       });
     }
+    if (s) s = read_properties(id, r);
     if (helper.joinable()) helper.join();
     if (s) s = helper_status;
     if (s && !helper_) s = read_uses(*db_, id, r.uses);
@@ -945,8 +1186,8 @@ FROM faces_old f JOIN (
     Connection& db = *helper_;
     if (Status s = db.begin_read(); !s) return s;
     bool found = false;
-    Status s = db.select("SELECT id FROM volumes WHERE id = $1", {id},
-                         [&](const Row&) { found = true; });
+    Status s =
+        db.select("SELECT id FROM volumes WHERE id = $1", {id}, [&](const Row&) { found = true; });
     if (s && !found) s = db_error("the volume was removed while it was read");
     if (s) s = read_uses(db, id, uses);
     if (!s) {
@@ -1045,7 +1286,8 @@ FROM faces_old f JOIN (
           "edge_key", &edge_keys);
     }
     for (const auto& l : r.loops) {
-      if (l.point_vertex != kNone) vertex_keys.push_back(static_cast<std::uint32_t>(l.point_vertex));
+      if (l.point_vertex != kNone)
+        vertex_keys.push_back(static_cast<std::uint32_t>(l.point_vertex));
     }
     std::sort(vertex_keys.begin(), vertex_keys.end());
     vertex_keys.erase(std::unique(vertex_keys.begin(), vertex_keys.end()), vertex_keys.end());
@@ -1071,8 +1313,27 @@ FROM faces_old f JOIN (
         l.point_vertex = renumber(vertex_keys, static_cast<std::uint32_t>(l.point_vertex));
       }
     }
-    for (auto& u : r.uses) u.loop = renumber(loop_keys, u.loop), u.edge = renumber(edge_keys, u.edge);
-    for (auto& e : r.edges) e.start = renumber(vertex_keys, e.start), e.end = renumber(vertex_keys, e.end);
+    for (auto& u : r.uses)
+      u.loop = renumber(loop_keys, u.loop), u.edge = renumber(edge_keys, u.edge);
+    for (auto& e : r.edges)
+      e.start = renumber(vertex_keys, e.start), e.end = renumber(vertex_keys, e.end);
+    // The property tables, with the values of the elements loaded (renumbered);
+    // a cell table keeps its default alone, as there are no cells.
+    ModelRows all;
+    if (Status p = read_properties(id, all); !p) return p;
+    const std::vector<std::uint32_t> no_cells;
+    for (Snapshot::Property& p : all.properties) {
+      const std::vector<std::uint32_t>& keys = p.owner == PropertyOwner::kVertex ? vertex_keys
+                                               : p.owner == PropertyOwner::kEdge ? edge_keys
+                                               : p.owner == PropertyOwner::kFace ? face_keys
+                                                                                 : no_cells;
+      Snapshot::Property kept{p.owner, p.name, p.type, std::move(p.fallback), {}};
+      for (auto& [k, v] : p.values) {
+        const std::uint32_t dense = renumber(keys, k);
+        if (dense < keys.size()) kept.values.emplace_back(dense, std::move(v));
+      }
+      r.properties.push_back(std::move(kept));
+    }
     return Status::Ok();
   }
 

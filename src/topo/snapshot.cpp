@@ -4,8 +4,11 @@
 #include "cellforge/topo/snapshot.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstring>
 #include <numeric>
+#include <type_traits>
 
 #include "cellforge/topo/validate.h"
 #include "topo/model_editor.h"
@@ -31,6 +34,148 @@ std::int64_t opt_key(const std::vector<std::uint32_t>& keys, std::uint32_t id) {
 
 Error inconsistent(const std::string& what) {
   return Error{ErrorCode::kInvalidInput, "inconsistent model tables: " + what};
+}
+
+// ---- property tables of the stored value types
+
+static_assert(static_cast<int>(PropertyOwner::kVertex) == detail::kVertexProperty &&
+              static_cast<int>(PropertyOwner::kEdge) == detail::kEdgeProperty &&
+              static_cast<int>(PropertyOwner::kFace) == detail::kFaceProperty &&
+              static_cast<int>(PropertyOwner::kCell) == detail::kVolumeProperty);
+
+// f(std::type_identity<T>{}) for the C++ type T of `type`.
+template <class F>
+auto with_type(PropertyType type, F&& f) {
+  using P = PropertyType;
+  switch (type) {
+    case P::kInt8:
+      return f(std::type_identity<std::int8_t>{});
+    case P::kInt16:
+      return f(std::type_identity<std::int16_t>{});
+    case P::kInt32:
+      return f(std::type_identity<std::int32_t>{});
+    case P::kInt64:
+      return f(std::type_identity<std::int64_t>{});
+    case P::kUInt8:
+      return f(std::type_identity<std::uint8_t>{});
+    case P::kUInt16:
+      return f(std::type_identity<std::uint16_t>{});
+    case P::kUInt32:
+      return f(std::type_identity<std::uint32_t>{});
+    case P::kUInt64:
+      return f(std::type_identity<std::uint64_t>{});
+    case P::kFloat:
+      return f(std::type_identity<float>{});
+    case P::kDouble:
+      return f(std::type_identity<double>{});
+    case P::kString:
+      return f(std::type_identity<std::string>{});
+    case P::kColour:
+      return f(std::type_identity<Colour>{});
+    case P::kVec3:
+      break;
+  }
+  return f(std::type_identity<Vec3>{});
+}
+
+template <class T>
+PropertyValue to_value(const T& v) {
+  if constexpr (std::is_integral_v<T> && std::is_signed_v<T>)
+    return std::int64_t{v};
+  else if constexpr (std::is_integral_v<T>)
+    return std::uint64_t{v};
+  else if constexpr (std::is_floating_point_v<T>)
+    return double{v};
+  else
+    return v;
+}
+
+// v must hold T's alternative, in T's range (check_value).
+template <class T>
+T from_value(const PropertyValue& v) {
+  if constexpr (std::is_integral_v<T> && std::is_signed_v<T>)
+    return static_cast<T>(std::get<std::int64_t>(v));
+  else if constexpr (std::is_integral_v<T>)
+    return static_cast<T>(std::get<std::uint64_t>(v));
+  else if constexpr (std::is_floating_point_v<T>)
+    return static_cast<T>(std::get<double>(v));
+  else
+    return std::get<T>(v);
+}
+
+// Equal bit for bit (floating-point values: -0.0 is not 0.0, a NaN is itself).
+template <class T>
+bool same_bits(const T& a, const T& b) {
+  if constexpr (std::is_floating_point_v<T> || std::is_same_v<T, Colour> || std::is_same_v<T, Vec3>)
+    return std::memcmp(&a, &b, sizeof(T)) == 0;
+  else
+    return a == b;
+}
+
+// The table of column c (of stored type T) over the live elements `live`.
+template <class T, class Range>
+void take_values(const detail::PropertyColumn& c, const Range& live, Snapshot::Property& out) {
+  const auto& column = static_cast<const detail::TypedColumn<T>&>(c);
+  out.fallback = to_value(column.default_value());
+  std::uint32_t key = 0;
+  for (auto id : live) {
+    const T& v = column.get(id.value);
+    if (!same_bits(v, column.default_value())) out.values.emplace_back(key, to_value(v));
+    ++key;
+  }
+}
+
+template <class Range>
+void take_properties(const Model& m, PropertyOwner owner, const Range& live, Snapshot& r) {
+  for (const auto& c : m.property_store().columns(static_cast<int>(owner))) {
+    const std::optional<PropertyType> type = property_type_of(c->type());
+    if (!type) continue;
+    Snapshot::Property p{owner, c->name(), *type, {}, {}};
+    with_type(*type, [&]<class T>(std::type_identity<T>) { take_values<T>(*c, live, p); });
+    r.properties.push_back(std::move(p));
+  }
+}
+
+// Every property table checked against the counts of its owner kind.
+Status check_properties(const Snapshot& r, const std::size_t (&count)[4]) {
+  for (std::size_t i = 0; i < r.properties.size(); ++i) {
+    const Snapshot::Property& p = r.properties[i];
+    const auto owner = static_cast<std::size_t>(p.owner);
+    if (owner >= 4) return inconsistent("property " + std::to_string(i) + " has no owner kind");
+    const std::string what = std::string(owner_name(p.owner)) + " property '" + p.name + "'";
+    for (std::size_t j = 0; j < i; ++j) {
+      if (r.properties[j].owner == p.owner && r.properties[j].name == p.name)
+        return inconsistent(what + " is there twice");
+    }
+    if (Status s = check_value(p.type, p.fallback); !s)
+      return inconsistent(what + ": default: " + s.error().message);
+    for (std::size_t k = 0; k < p.values.size(); ++k) {
+      const std::uint32_t key = p.values[k].first;
+      const PropertyValue& value = p.values[k].second;
+      if (key >= count[owner] || (k > 0 && key <= p.values[k - 1].first)) {
+        return inconsistent(what + ": value " + std::to_string(k) + " names " +
+                            std::string(owner_name(p.owner)) + " " + std::to_string(key) + " (of " +
+                            std::to_string(count[owner]) + ", keys increasing)");
+      }
+      if (Status s = check_value(p.type, value); !s)
+        return inconsistent(what + ": value of " + std::string(owner_name(p.owner)) + " " +
+                            std::to_string(key) + ": " + s.error().message);
+    }
+  }
+  return Status::Ok();
+}
+
+// The checked tables into m; slots[owner][key] is the slot of element `key`.
+void put_properties(const Snapshot& r, const std::vector<std::uint32_t> (&slots)[4], Model& m) {
+  for (const Snapshot::Property& p : r.properties) {
+    with_type(p.type, [&]<class T>(std::type_identity<T>) {
+      auto column = std::make_unique<detail::TypedColumn<T>>(p.name, from_value<T>(p.fallback));
+      const auto owner = static_cast<std::size_t>(p.owner);
+      for (const auto& [key, value] : p.values)
+        column->at(slots[owner][key]) = from_value<T>(value);
+      m.property_store().add(static_cast<int>(p.owner), std::move(column));
+    });
+  }
 }
 
 }  // namespace
@@ -59,7 +204,8 @@ Snapshot snapshot(const Model& m) {
   // below they are counted from the edge's use that comes first in the tables,
   // so that the rows do not depend on which use holds which slot.
   std::vector<std::uint32_t> radial_ord(m.use_slots(), 0);
-  std::vector<std::uint32_t> cycle_length(m.edge_slots(), 0), radial_base(m.edge_slots(), kInvalidIndex);
+  std::vector<std::uint32_t> cycle_length(m.edge_slots(), 0),
+      radial_base(m.edge_slots(), kInvalidIndex);
   r.edges.reserve(m.num_edges());
   for (EdgeId e : m.edges()) {
     std::uint32_t n = 0;
@@ -99,6 +245,10 @@ Snapshot snapshot(const Model& m) {
       ++ord;
     }
   }
+  take_properties(m, PropertyOwner::kVertex, m.vertices(), r);
+  take_properties(m, PropertyOwner::kEdge, m.edges(), r);
+  take_properties(m, PropertyOwner::kFace, m.faces(), r);
+  take_properties(m, PropertyOwner::kCell, m.volumes(), r);
   return r;
 }
 
@@ -173,6 +323,8 @@ Result<Model> restore(const Snapshot& r) {
       return inconsistent("loop " + std::to_string(i) + " has no edge use");
     }
   }
+  const std::size_t count[4] = {nv, ne, nf, nc};
+  if (Status s = check_properties(r, count); !s) return s.error();
 
   Model m;
   {  // the editor ends (making the face marks exact) before m is checked and returned
@@ -237,6 +389,12 @@ Result<Model> restore(const Snapshot& r) {
       }
       ed.set_radial_cycle(edges[e], cycle);
     }
+    std::vector<std::uint32_t> slots[4];
+    for (VertexId v : vertices) slots[0].push_back(v.value);
+    for (EdgeId e : edges) slots[1].push_back(e.value);
+    for (FaceId f : faces) slots[2].push_back(f.value);
+    for (VolumeId c : cells) slots[3].push_back(c.value);
+    put_properties(r, slots, m);
   }
 
   if (auto violations = validate(m); !violations.empty()) {

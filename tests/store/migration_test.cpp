@@ -9,6 +9,8 @@
 #include <tuple>
 
 #include "cellforge/topo/builder.h"
+#include "cellforge/topo/property.h"
+#include "cellforge/topo/snapshot.h"
 #include "store/connection.h"
 #include "store/model_rows.h"
 #include "store/store_fixture.h"
@@ -291,7 +293,7 @@ TEST_P(Migration, Schema1OpensWithItsModelsIntact) {
   {
     auto c = connect(GetParam(), db_);
     ASSERT_TRUE(c);
-    EXPECT_EQ(schema_version(*c), 3);
+    EXPECT_EQ(schema_version(*c), 4);
   }
   for (const auto& [name, version, model] :
        {std::tuple<const char*, int, const Model*>{"cube", 1, &cube},
@@ -387,6 +389,69 @@ TEST_P(Migration, AFailedMigrationChangesNothing) {
   auto got = store_->get("cube");
   ASSERT_OK(got);
   expect_same_model(cube, got.value());
+}
+
+// Schema 4 added three tables to schema 3 (properties, property_values,
+// attachments) and changed nothing else, so a database of version 3 is this
+// one without them. It opens with its models intact and then keeps properties
+// and attachments, which user SQL can read.
+TEST_P(Migration, Schema3GainsPropertiesAndAttachments) {
+  const Model cube = build(unit_cube()), pages = build(book());
+  ASSERT_OK(store_->put("cube", cube, {.source = "cube();"}));
+  ASSERT_OK(store_->put("book", pages));
+  store_.reset();
+  {
+    auto c = connect(GetParam(), db_);
+    ASSERT_TRUE(c);
+    ASSERT_OK(c->begin_write("to 3"));
+    for (const char* t : {"properties", "property_values", "attachments"})
+      ASSERT_OK(c->exec(std::string("DROP TABLE ") + t));
+    ASSERT_OK(c->exec("UPDATE cellforge_schema SET version = 3"));
+    ASSERT_OK(c->commit());
+  }
+  auto opened = open_store(db_);
+  ASSERT_OK(opened);
+  store_ = std::move(opened.value());
+  {
+    auto c = connect(GetParam(), db_);
+    ASSERT_TRUE(c);
+    EXPECT_EQ(schema_version(*c), 4);
+  }
+  for (const auto& [name, model] : {std::pair<const char*, const Model*>{"cube", &cube}, {"book", &pages}}) {
+    SCOPED_TRACE(name);
+    auto got = store_->get(name);
+    ASSERT_OK(got);
+    expect_same_model(*model, got.value());
+    auto attached = store_->get_attachments(name);
+    ASSERT_OK(attached);
+    EXPECT_TRUE(attached->empty());
+  }
+  EXPECT_EQ(store_->info("cube")->source, "cube();");
+  // The views stand: seed 004's Table 1 over the old rows.
+  auto table1 = store_->query("SELECT face FROM face_edge_points WHERE volume = 'cube'");
+  ASSERT_OK(table1);
+  EXPECT_EQ(table1->rows.size(), 48u);
+
+  Model tagged = cube;
+  auto tag = add_property<FaceProperty<std::int32_t>>(tagged, "tag", -1);
+  ASSERT_OK(tag);
+  tag->set(*tagged.faces().begin(), 5);
+  ASSERT_OK(store_->put("cube", tagged, {.attachments = {{"note", 1, "made before 4"}}}));
+  auto back = store_->get("cube");
+  ASSERT_OK(back);
+  EXPECT_EQ(snapshot(back.value()), snapshot(tagged));
+  EXPECT_EQ(store_->get_attachments("cube").value(),
+            (std::vector<Attachment>{{"note", 1, "made before 4"}}));
+  auto rows = store_->query(
+      "SELECT p.name, v.element_key, v.int_value FROM properties p JOIN property_values v ON "
+      "v.volume_id = p.volume_id AND v.property_key = p.property_key ORDER BY v.element_key");
+  ASSERT_OK(rows);
+  ASSERT_EQ(rows->rows.size(), 2u);  // the default and face 0
+  EXPECT_EQ(*rows->rows[1][2], "5");
+  auto notes = store_->query("SELECT data FROM attachments");
+  ASSERT_OK(notes);
+  ASSERT_EQ(notes->rows.size(), 1u);
+  EXPECT_EQ(*notes->rows[0][0], "made before 4");
 }
 
 TEST_P(Migration, NewerSchemaIsRefused) {

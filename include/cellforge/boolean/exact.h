@@ -11,6 +11,15 @@
 // expression over them. write_exact and read_exact store it losslessly (each input in
 // the native JSON, which keeps every double bit for bit), so that a chain saved and
 // reloaded between steps gives the result it gives in one run, bit for bit.
+//
+// Beside a rounded model, the exact form travels as an attachment (topo/attachment.h,
+// name "cellforge.exact", version 1, data the text of exact_to_string), which the
+// native JSON and the model database keep byte for byte without knowing what it is:
+// io/ and store/ sit below boolean/, so boolean/ alone writes and reads it.
+//
+//   io::write_file(r.model, "r.json", {.attachments = {boolean::exact_attachment(*r.exact)}});
+//   store.put("part", r.model, {.attachments = {boolean::exact_attachment(*r.exact)}});
+//   auto form = boolean::find_exact(store.get_attachments("part").value());  // or read_result
 #pragma once
 #include <memory>
 #include <span>
@@ -18,6 +27,7 @@
 #include <vector>
 
 #include "cellforge/boolean/boolean.h"
+#include "cellforge/topo/attachment.h"
 
 namespace cellforge::boolean {
 
@@ -36,8 +46,14 @@ struct Operand {
   static Operand of(std::shared_ptr<const ExactForm> form);
 };
 
+// How deep an exact form's expression may nest (a step of a chain adds a level at
+// most): deeper forms are refused by chain() and by the reader, whose recursion must
+// stay well inside a thread's stack.
+inline constexpr int kMaxExactDepth = 2000;
+
 // evaluate() over operands that may be earlier results; the result carries its exact
 // form (BooleanResult::exact). Inputs shared by several operands are one input.
+// An error (kUnsupported) when the expression would nest deeper than kMaxExactDepth.
 Result<BooleanResult> chain(std::span<const Operand> operands, const Expr& expr,
                             const Options& options = {});
 
@@ -48,6 +64,24 @@ std::string exact_to_string(const ExactForm& form);
 Result<std::shared_ptr<const ExactForm>> exact_from_string(std::string_view text);
 Status write_exact(const ExactForm& form, const std::string& path);
 Result<std::shared_ptr<const ExactForm>> read_exact(const std::string& path);
+
+// The exact form as an attachment, and back. The name and version are checked
+// (another version is refused, naming it); an error in the data names the byte
+// (in the data) and what was expected.
+inline constexpr const char* kExactAttachment = "cellforge.exact";
+inline constexpr int kExactAttachmentVersion = 1;
+Attachment exact_attachment(const ExactForm& form);
+Result<std::shared_ptr<const ExactForm>> exact_from_attachment(const Attachment& attachment);
+// The exact form among a model's attachments: nullptr when there is none, an
+// error when the one there cannot be read.
+Result<std::shared_ptr<const ExactForm>> find_exact(const std::vector<Attachment>& attachments);
+
+// A result as a native JSON file: the rounded model, and its exact form (when it
+// has one) as an attachment.
+Status write_result(const BooleanResult& result, const std::string& path);
+// A native JSON file (or any format io/ reads) as a chain operand: its model, and
+// the exact form the file keeps, if any. An error names the file.
+Result<BooleanResult> read_result(const std::string& path);
 
 // Re-evaluates an exact form (what reading a saved chain gives back).
 Result<BooleanResult> evaluate(const ExactForm& form, const Options& options = {});

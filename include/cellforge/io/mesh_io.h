@@ -5,7 +5,8 @@
 // polygon soup (positions, polygons, wires, points), and import() welds the
 // positions and builds the soup into one new group through build_mesh. The native
 // JSON format is lossless and bypasses the soup: it restores the model's tables
-// (topo/snapshot.h) exactly.
+// (topo/snapshot.h, property tables of the stored value types included) exactly,
+// and keeps attachments beside the model.
 //
 // Errors name where the input went wrong: "line 12:7" for text, "byte 184" for
 // binary data. No parser allocates from a count it has not checked against the
@@ -21,6 +22,7 @@
 #include <vector>
 
 #include "cellforge/result.h"
+#include "cellforge/topo/attachment.h"
 #include "cellforge/topo/model.h"
 #include "cellforge/topo/property.h"
 
@@ -119,6 +121,9 @@ Status set_option(ReadOptions& options, std::string_view key, std::string_view v
 struct ReadResult {
   GroupId group;  // the first group read (formats other than JSON make one)
   ImportReport report;
+  // JSON: the attachments the file keeps beside its model (topo/attachment.h),
+  // byte for byte; other formats have none.
+  std::vector<Attachment> attachments;
 };
 
 // Parses the bytes of a mesh format (not kJson) into a soup.
@@ -149,6 +154,10 @@ struct WriteOptions {
   // OpenSCAD's default face color, #F9D72C. Empty: no materials are written. Other
   // formats ignore it.
   std::vector<std::optional<std::array<double, 4>>> face_colors = {};
+  // JSON: attachments kept beside the model (topo/attachment.h; e.g. the exact
+  // form of a Boolean result, boolean/exact.h), read back in ReadResult. The mesh
+  // formats have no place for them: they round on the way out.
+  std::vector<Attachment> attachments = {};
 };
 
 // The bytes of m in a format. Mesh formats triangulate faces as needed and write

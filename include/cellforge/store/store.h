@@ -11,7 +11,10 @@
 // Guarantees: a save is one transaction (a process killed mid-save leaves the
 // previous versions intact); names and values are bound parameters, never SQL
 // text; put/get is lossless (same topology including loop order, edge direction
-// and radial order, bit-identical coordinates). A loaded model is validated.
+// and radial order, bit-identical coordinates, the property tables of the stored
+// value types, topo/property.h). A loaded model is validated. A version may keep
+// attachments beside its model (topo/attachment.h: the exact form of a Boolean
+// result, boolean/exact.h), given back byte for byte by get_attachments.
 #pragma once
 
 #include <cstdint>
@@ -23,15 +26,19 @@
 
 #include "cellforge/geom/vec.h"
 #include "cellforge/result.h"
+#include "cellforge/topo/attachment.h"
 #include "cellforge/topo/model.h"
 
 namespace cellforge {
 
 struct PutOptions {
-  std::string source;  // the CSG script the model came from, if any
-  std::string object;  // when not empty, the volume is also listed in this object (scene)
+  std::string source = {};  // the CSG script the model came from, if any
+  std::string object = {};  // when not empty, the volume is also listed in this object (scene)
   // Called now and then during a save with the number of rows written so far.
-  std::function<void(std::uint64_t rows)> progress;
+  std::function<void(std::uint64_t rows)> progress = {};
+  // Kept with this version (table attachments): names and data valid UTF-8
+  // without NUL, names distinct; otherwise the save is refused.
+  std::vector<Attachment> attachments = {};
 };
 
 // One stored version of a named model: the row of table `volumes`.
@@ -129,6 +136,10 @@ class Store {
                                  const PutOptions& options = {}) = 0;
   // Loads a version (0: the latest).
   virtual Result<Model> get(const std::string& name, int version = 0) = 0;
+  // The attachments of a version (0: the latest), in the order they were saved;
+  // empty when it has none.
+  virtual Result<std::vector<Attachment>> get_attachments(const std::string& name,
+                                                          int version = 0) = 0;
   virtual Result<std::vector<StoredPoint>> get_points(const std::string& name, int version = 0) = 0;
   virtual Result<std::vector<StoredEdge>> get_edges(const std::string& name, int version = 0) = 0;
   virtual Result<std::vector<StoredFace>> get_faces(const std::string& name, int version = 0) = 0;
@@ -136,7 +147,8 @@ class Store {
   // condition on the row `f` of table faces and the row `v` of table volumes
   // (e.g. "f.group_key = 1", or a spatial query on face_tiles, docs/database.md),
   // with their loops, edges and vertices, as a sheet model (no 3-cells, no wires,
-  // no isolated points; every group and surface kept), validated. Edge directions,
+  // no isolated points; every group and surface kept; the property tables with
+  // the values of the elements loaded, a cell table with its default alone), validated. Edge directions,
   // loop starts and radial order are the stored ones. The condition runs
   // read-only; a condition that is not one read-only SQL expression is refused.
   virtual Result<Model> get_faces_where(const std::string& name, const std::string& condition,

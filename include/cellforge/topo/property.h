@@ -11,14 +11,23 @@
 // value goes back to the default, so the slot is reusable. (Edge uses and loops,
 // whose ids change when they move, have no tables.) Copying the model copies its
 // tables; extract() and append() (parts.h) carry them with the elements.
-// The JSON format and the database do not store them.
+//
+// Columns whose value type is one of PropertyType's (fixed-width integers, float,
+// double, std::string, Colour, Vec3) are part of the model's snapshot
+// (snapshot.h), and so of the native JSON and the database, losslessly; columns
+// of any other type live in memory only.
 //
 // A handle names one column of one model and stays valid until remove_property or
 // the model's end (moving the model keeps it valid; a copy has its own columns).
 #pragma once
 
+#include <cstdint>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <type_traits>
+#include <typeinfo>
+#include <variant>
 
 #include "cellforge/result.h"
 #include "cellforge/topo/model.h"
@@ -136,5 +145,57 @@ struct Colour {
   float r = 1, g = 1, b = 1, a = 1;
   friend bool operator==(const Colour&, const Colour&) = default;
 };
+
+// The element kinds that carry properties, as files and the database name them:
+// "vertex", "edge", "face", "cell" (a VolumeId, a 3-cell).
+enum class PropertyOwner : std::uint8_t { kVertex, kEdge, kFace, kCell };
+std::string_view owner_name(PropertyOwner owner);
+std::optional<PropertyOwner> owner_from_name(std::string_view name);
+
+// The value types that snapshots, files and the database keep, by name: "int8"
+// ... "int64", "uint8" ... "uint64", "float", "double", "string", "colour", "vec3".
+enum class PropertyType : std::uint8_t {
+  kInt8, kInt16, kInt32, kInt64, kUInt8, kUInt16, kUInt32, kUInt64,
+  kFloat, kDouble, kString, kColour, kVec3,
+};
+std::string_view type_name(PropertyType type);
+std::optional<PropertyType> type_from_name(std::string_view name);
+
+// PropertyType of T, or nullopt for a type that stays in memory only.
+template <class T>
+constexpr std::optional<PropertyType> property_type_of() {
+  using P = PropertyType;
+  if constexpr (std::is_same_v<T, std::int8_t>) return P::kInt8;
+  else if constexpr (std::is_same_v<T, std::int16_t>) return P::kInt16;
+  else if constexpr (std::is_same_v<T, std::int32_t>) return P::kInt32;
+  else if constexpr (std::is_same_v<T, std::int64_t>) return P::kInt64;
+  else if constexpr (std::is_same_v<T, std::uint8_t>) return P::kUInt8;
+  else if constexpr (std::is_same_v<T, std::uint16_t>) return P::kUInt16;
+  else if constexpr (std::is_same_v<T, std::uint32_t>) return P::kUInt32;
+  else if constexpr (std::is_same_v<T, std::uint64_t>) return P::kUInt64;
+  else if constexpr (std::is_same_v<T, float>) return P::kFloat;
+  else if constexpr (std::is_same_v<T, double>) return P::kDouble;
+  else if constexpr (std::is_same_v<T, std::string>) return P::kString;
+  else if constexpr (std::is_same_v<T, Colour>) return P::kColour;
+  else if constexpr (std::is_same_v<T, Vec3>) return P::kVec3;
+  else return std::nullopt;
+}
+
+// The same for a column's value type at run time (detail::PropertyColumn::type()).
+std::optional<PropertyType> property_type_of(const std::type_info& type);
+
+// The names of the properties of every kind whose value type stays in memory only
+// (no PropertyType), as "face property 'tag'": what snapshots, files and the
+// database leave out.
+std::vector<std::string> unstored_properties(const Model& m);
+
+// One stored value: signed integers as int64, unsigned ones as uint64, float and
+// double as double (a float is exact in a double); the PropertyType beside it
+// says which C++ type it is.
+using PropertyValue = std::variant<std::int64_t, std::uint64_t, double, std::string, Colour, Vec3>;
+
+// Whether v is a value of `type` (the right alternative, in the type's range: a
+// double of a float column must be a float). The message names what is wrong.
+Status check_value(PropertyType type, const PropertyValue& v);
 
 }  // namespace cellforge::inline topo

@@ -8,6 +8,10 @@
 //
 // Keys are dense: the live entities of each kind numbered 0, 1, ... in increasing
 // id order; loops in face order, then loop order; uses in loop order.
+//
+// Property tables (property.h) of the stored value types are kept too, each with
+// its default and the values of the elements that differ from it (bit for bit:
+// -0.0 differs from 0.0), by key; tables of other value types are left out.
 #pragma once
 
 #include <cstdint>
@@ -16,6 +20,7 @@
 
 #include "cellforge/result.h"
 #include "cellforge/topo/model.h"
+#include "cellforge/topo/property.h"
 
 namespace cellforge::inline topo {
 
@@ -60,6 +65,16 @@ struct Snapshot {
     friend bool operator==(const Use&, const Use&) = default;
   };
 
+  struct Property {
+    PropertyOwner owner;
+    std::string name;  // unique among the properties of one owner kind
+    PropertyType type;
+    PropertyValue fallback;  // the default
+    // (key, value) of the elements whose value is not the default, keys increasing.
+    std::vector<std::pair<std::uint32_t, PropertyValue>> values;
+    friend bool operator==(const Property&, const Property&) = default;
+  };
+
   std::vector<Group> groups;
   std::vector<Parameter> parameters;  // in group, then attribute order
   std::vector<std::uint32_t> cells;   // the group of each 3-cell
@@ -69,13 +84,14 @@ struct Snapshot {
   std::vector<Face> faces;
   std::vector<Loop> loops;
   std::vector<Use> uses;
+  std::vector<Property> properties;  // by owner kind, then in the order they were added
   friend bool operator==(const Snapshot&, const Snapshot&) = default;
 };
 
 Snapshot snapshot(const Model& m);
-// Rebuilds the model. Every key is checked before anything is built, and the
-// result must pass validate(); otherwise an error (kInvalidInput) names the first
-// offending row.
+// Rebuilds the model. Every key (and every property value's type and range) is
+// checked before anything is built, and the result must pass validate();
+// otherwise an error (kInvalidInput) names the first offending row.
 Result<Model> restore(const Snapshot& s);
 
 }  // namespace cellforge::inline topo
