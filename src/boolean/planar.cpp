@@ -169,6 +169,45 @@ class Planar {
            });
   }
 
+  // The segment other than `seg` that crossing p lies on.
+  std::uint32_t other(const Pt& p, std::uint32_t seg) const { return p.s == seg ? p.u : p.s; }
+
+  // Side of line (a, b) of segment w that point p lies on (orient2d(a, b, p)).
+  int side(std::uint32_t w, std::uint32_t p) const {
+    const Seg& l = segs_[w];
+    const Pt& q = pts_[p];
+    if (q.s == kNone) return orient2d(l.a, l.b, q.p);
+    for (std::uint32_t t : {q.s, q.u})  // on a line through one of q's segments
+      if (t == w || (orient2d(l.a, l.b, segs_[t].a) == 0 && orient2d(l.a, l.b, segs_[t].b) == 0))
+        return 0;
+    return q.wsign * decide([&]<class T>() {
+             const Hom<T> h = hom<T>(p);
+             return (T(l.b.x) - T(l.a.x)) * (h.y - T(l.a.y) * h.w) -
+                    (T(l.b.y) - T(l.a.y)) * (h.x - T(l.a.x) * h.w);
+           });
+  }
+
+  // Order along segment seg (a -> b) of two points on it: -1 when p comes first. A
+  // crossing of seg with u comes before a point q exactly when q lies on the side of u
+  // that b lies on: an orientation test on q, of low degree, and orient2d itself when q
+  // is explicit (so that an input vertex at a crossing is found equal cheaply).
+  int along(std::uint32_t seg, std::uint32_t p, std::uint32_t q) const {
+    if (p == q) return 0;
+    const Seg& s = segs_[seg];
+    const Pt &a = pts_[p], &b = pts_[q];
+    if (a.s == kNone && b.s == kNone) {
+      const int axis = std::fabs(s.b.x - s.a.x) >= std::fabs(s.b.y - s.a.y) ? 0 : 1;
+      const int forward = axis == 0 ? sign_diff(s.b.x, s.a.x) : sign_diff(s.b.y, s.a.y);
+      return forward * (axis == 0 ? sign_diff(a.p.x, b.p.x) : sign_diff(a.p.y, b.p.y));
+    }
+    if (a.s != kNone) {  // p is the crossing of seg with u
+      const std::uint32_t u = other(a, seg);
+      const int sq = side(u, q);
+      return sq == 0 ? 0 : (sq == orient2d(segs_[u].a, segs_[u].b, s.b) ? -1 : 1);
+    }
+    return -along(seg, q, p);
+  }
+
   // Lexicographic (x, then y).
   bool lex_less(std::uint32_t p, std::uint32_t q) const {
     const int c = compare(p, q, 0);
@@ -179,6 +218,8 @@ class Planar {
   int compare_y(std::uint32_t p, double y) const {
     const Pt& a = pts_[p];
     if (a.s == kNone) return (a.p.y > y) - (a.p.y < y);
+    for (std::uint32_t t : {a.s, a.u})  // on a horizontal segment
+      if (segs_[t].a.y == segs_[t].b.y) return sign_diff(segs_[t].a.y, y);
     return a.wsign * decide([&]<class T>() {
              const Hom<T> h = hom<T>(p);
              return h.y - T(y) * h.w;
@@ -261,6 +302,7 @@ class Planar {
       }
     }
     operands_ = static_cast<std::uint32_t>(ops_.size());
+    explicit_count_ = static_cast<std::uint32_t>(pts_.size());
     return Status::Ok();
   }
 
@@ -320,14 +362,12 @@ class Planar {
       auto& list = on_[si];
       list.push_back(s.va);
       list.push_back(s.vb);
-      const int axis = std::fabs(s.b.x - s.a.x) >= std::fabs(s.b.y - s.a.y) ? 0 : 1;
-      const int forward = sign_diff(axis == 0 ? s.b.x : s.b.y, axis == 0 ? s.a.x : s.a.y);
-      std::sort(list.begin(), list.end(), [&](std::uint32_t p, std::uint32_t q) {
-        return compare(p, q, axis) * forward < 0;
-      });
+      const auto seg = static_cast<std::uint32_t>(si);
+      std::sort(list.begin(), list.end(),
+                [&](std::uint32_t p, std::uint32_t q) { return along(seg, p, q) < 0; });
       std::size_t k = 0;
       for (std::size_t i = 1; i < list.size(); ++i) {
-        if (compare(list[k], list[i], axis) == 0) {
+        if (along(seg, list[k], list[i]) == 0) {
           uf_.unite(list[k], list[i]);
         } else {
           list[++k] = list[i];
@@ -457,21 +497,24 @@ class Planar {
     // Components of the edge graph and their least vertices.
     UnionFind comp(static_cast<std::uint32_t>(pts_.size()));
     for (const Edge& e : edges_) comp.unite(e.u, e.v);
-    std::vector<std::uint32_t> verts;
-    for (std::uint32_t v = 0; v < pts_.size(); ++v)
-      if (out_begin_[v + 1] > out_begin_[v]) verts.push_back(v);
-    std::sort(verts.begin(), verts.end(),
-              [&](std::uint32_t p, std::uint32_t q) { return lex_less(p, q); });
-    rank_.assign(pts_.size(), kNone);
-    for (std::size_t i = 0; i < verts.size(); ++i) rank_[verts[i]] = static_cast<std::uint32_t>(i);
-    std::vector<bool> seen(pts_.size(), false);
+    // The least point of a component is an input vertex, so only those are compared
+    // (in doubles, exactly).
+    auto explicit_less = [&](std::uint32_t p, std::uint32_t q) {
+      const Vec2 a = pts_[p].p, b = pts_[q].p;
+      return a.x != b.x ? a.x < b.x : a.y < b.y;
+    };
+    std::vector<std::uint32_t> least(pts_.size(), kNone);
+    for (std::uint32_t v = 0; v < explicit_count_; ++v) {
+      if (out_begin_[v + 1] == out_begin_[v]) continue;
+      std::uint32_t& l = least[comp.find(v)];
+      if (l == kNone || explicit_less(v, l)) l = v;
+    }
+    std::vector<std::uint32_t> starts;
+    for (std::uint32_t l : least)
+      if (l != kNone) starts.push_back(l);
+    std::sort(starts.begin(), starts.end(), explicit_less);
     std::vector<std::uint32_t> queue;
-    for (std::uint32_t v : verts) {  // each component at its least vertex, in order
-      const std::uint32_t root = comp.find(v);
-      if (seen[root]) continue;
-      seen[root] = true;
-      if (pts_[v].s != kNone)
-        return Error{ErrorCode::kPrecondition, "2D Boolean: a component's least point is a crossing"};
+    for (std::uint32_t v : starts) {  // each component at its least vertex, in order
       // The face left of v: the cycle of the last outgoing half-edge at an angle
       // below pi (or of the last one).
       std::uint32_t h0 = out_[out_begin_[v + 1] - 1];
@@ -542,14 +585,21 @@ class Planar {
       x = e.x.to_double() / e.w.to_double();
       y = e.y.to_double() / e.w.to_double();
     }
-    moved = decide([&]<class T>() {
+    // On a vertical (horizontal) segment, x (y) is that segment's, exactly.
+    bool x_exact = false, y_exact = false;
+    for (std::uint32_t t : {q.s, q.u}) {
+      const Seg& g = segs_[t];
+      if (g.a.x == g.b.x) x = g.a.x, x_exact = true;
+      if (g.a.y == g.b.y) y = g.a.y, y_exact = true;
+    }
+    moved = (!x_exact && decide([&]<class T>() {
               const Hom<T> g = hom<T>(id);
               return g.x - T(x) * g.w;
-            }) != 0 ||
-            decide([&]<class T>() {
+            }) != 0) ||
+            (!y_exact && decide([&]<class T>() {
               const Hom<T> g = hom<T>(id);
               return g.y - T(y) * g.w;
-            }) != 0;
+            }) != 0);
     return {x, y};
   }
 
@@ -607,7 +657,7 @@ class Planar {
       const std::size_t n = l.h.size();
       std::size_t least = 0;
       for (std::size_t i = 1; i < n; ++i)
-        if (rank_[origin(l.h[i])] < rank_[origin(l.h[least])]) least = i;
+        if (lex_less(origin(l.h[i]), origin(l.h[least]))) least = i;
       l.outer = cross(dir(l.h[(least + n - 1) % n]), dir(l.h[least])) > 0;
       l.group = groups.find(cycle_[l.h[0]]);
       for (std::size_t i = 0; i < n; ++i) {
@@ -684,7 +734,7 @@ class Planar {
   // ------------------------------------------------------------------ data
   std::span<const Shape2D> ops_;
   const Expr& expr_;
-  std::uint32_t operands_ = 0;
+  std::uint32_t operands_ = 0, explicit_count_ = 0;
   std::vector<Seg> segs_;
   std::vector<Pt> pts_;
   MinUnionFind uf_;
@@ -694,7 +744,7 @@ class Planar {
   std::vector<std::vector<std::uint32_t>> on_;  // by segment: its points, then its chain
   std::vector<Edge> edges_;
   std::unordered_map<std::uint64_t, std::uint32_t> edge_of_;
-  std::vector<std::uint32_t> out_begin_, out_, pos_, next_, cycle_, cycle_first_, rank_;
+  std::vector<std::uint32_t> out_begin_, out_, pos_, next_, cycle_, cycle_first_;
   std::vector<Winding> winding_;
   std::vector<bool> known_, kept_;
   std::vector<std::uint32_t> face_parent_;
