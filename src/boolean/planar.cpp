@@ -123,6 +123,103 @@ struct Edge {
   Winding delta;               // winding left of u -> v minus winding right of it
 };
 
+// The expression evaluated on a set of inside operands given as a short list, in time
+// proportional to the list and the expression's inner nodes (not its leaves): an n-ary
+// union of a thousand operands is asked once per face of the arrangement.
+class SparseExpr {
+ public:
+  SparseExpr(const Expr& e, std::uint32_t operands) : leaf_of_(operands) { add(e); }
+
+  bool contains(const Winding& w) {
+    for (const auto& [o, n] : w)
+      if (n > 0) {
+        inside_.push_back(o);
+        for (std::uint32_t node : leaf_of_[o]) ++count_[node];
+      }
+    const bool r = eval(0);
+    for (std::uint32_t o : inside_)
+      for (std::uint32_t node : leaf_of_[o]) --count_[node];
+    inside_.clear();
+    return r;
+  }
+
+ private:
+  struct Node {
+    Expr::Kind kind = Expr::Kind::kOperand;
+    std::uint32_t leaves = 0;           // operand children
+    int first = -1;                     // difference: the first child as an operand, or
+    std::uint32_t first_node = 0;       // as a node (first < 0)
+    std::vector<std::uint32_t> kids;    // inner-node children, the first excluded
+  };
+
+  std::uint32_t add(const Expr& e) {
+    const auto id = static_cast<std::uint32_t>(nodes_.size());
+    Node fresh;
+    fresh.kind = e.kind;
+    nodes_.push_back(std::move(fresh));
+    count_.push_back(0);
+    if (e.kind == Expr::Kind::kOperand) {
+      leaf_of_[static_cast<std::size_t>(e.operand)].push_back(id);
+      nodes_[id].leaves = 1;
+      return id;
+    }
+    for (std::size_t i = 0; i < e.children.size(); ++i) {
+      const Expr& c = e.children[i];
+      if (e.kind == Expr::Kind::kDifference && i == 0) {
+        if (c.kind == Expr::Kind::kOperand) {
+          nodes_[id].first = c.operand;
+        } else {
+          nodes_[id].first_node = add(c);
+        }
+        continue;
+      }
+      if (c.kind == Expr::Kind::kOperand) {
+        leaf_of_[static_cast<std::size_t>(c.operand)].push_back(id);
+        ++nodes_[id].leaves;
+      } else {
+        const std::uint32_t k = add(c);
+        nodes_[id].kids.push_back(k);
+      }
+    }
+    return id;
+  }
+
+  bool is_inside(int operand) const {
+    return std::find(inside_.begin(), inside_.end(), static_cast<std::uint32_t>(operand)) !=
+           inside_.end();
+  }
+
+  bool eval(std::uint32_t id) const {
+    const Node& n = nodes_[id];
+    switch (n.kind) {
+      case Expr::Kind::kOperand:
+        return count_[id] > 0;
+      case Expr::Kind::kUnion:
+        if (count_[id] > 0) return true;
+        for (std::uint32_t k : n.kids)
+          if (eval(k)) return true;
+        return false;
+      case Expr::Kind::kIntersection:
+        if (n.leaves + n.kids.size() == 0 || count_[id] < n.leaves) return false;
+        for (std::uint32_t k : n.kids)
+          if (!eval(k)) return false;
+        return true;
+      case Expr::Kind::kDifference:
+        if (!(n.first >= 0 ? is_inside(n.first) : eval(n.first_node))) return false;
+        if (count_[id] > 0) return false;
+        for (std::uint32_t k : n.kids)
+          if (eval(k)) return false;
+        return true;
+    }
+    return false;
+  }
+
+  std::vector<Node> nodes_;
+  std::vector<std::uint32_t> count_;                    // by node: inside operand children
+  std::vector<std::vector<std::uint32_t>> leaf_of_;     // by operand: nodes it is a child of
+  std::vector<std::uint32_t> inside_;
+};
+
 class Planar {
  public:
   Planar(std::span<const Shape2D> operands, const Expr& expr) : ops_(operands), expr_(expr) {}
@@ -549,13 +646,9 @@ class Planar {
         } while (h != cycle_first_[c]);
       }
     }
-    std::vector<bool> inside(operands_, false);
+    SparseExpr expr(expr_, operands_);
     kept_.assign(nc, false);
-    for (std::size_t c = 0; c < nc; ++c) {
-      for (const auto& [o, w] : winding_[c]) inside[o] = w > 0;
-      kept_[c] = expr_.contains(inside);
-      for (const auto& [o, w] : winding_[c]) inside[o] = false;
-    }
+    for (std::size_t c = 0; c < nc; ++c) kept_[c] = expr.contains(winding_[c]);
     return Status::Ok();
   }
 

@@ -476,6 +476,50 @@ TEST(Boolean2D, AreaIdentitiesAndMembershipOnGridPolygons) {
   check_identities(Kind::kGridPolygons, 2000001, cases());
 }
 
+// A random expression over operands 0..n-1: nested unions, intersections and
+// differences of one to three children, operands repeated at times.
+Expr random_expr(std::mt19937& rng, int n, int depth) {
+  if (depth == 0 || rng() % 4 == 0) return Expr::of(static_cast<int>(rng() % n));
+  const Op ops[] = {Op::kUnion, Op::kIntersection, Op::kDifference};
+  std::vector<Expr> kids;
+  const int k = 1 + static_cast<int>(rng() % 3);
+  for (int i = 0; i < k; ++i) kids.push_back(random_expr(rng, n, depth - 1));
+  return Expr::op(ops[rng() % 3], std::move(kids));
+}
+
+// Whether the expression is one operand under nodes of one child (evaluate_2d returns
+// that operand as given).
+bool single_operand(const Expr& e) {
+  if (e.kind == Expr::Kind::kOperand) return true;
+  return e.children.size() == 1 && single_operand(e.children[0]);
+}
+
+TEST(Boolean2D, NestedExpressionsAgreeWithMembershipOnTheOperands) {
+  const int count = cases() / 5;
+  for (int i = 0; i < count; ++i) {
+    const unsigned seed = 3000001 + static_cast<unsigned>(i);
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    std::mt19937 rng(seed);
+    std::vector<Shape2D> ops;
+    for (int k = 0; k < 4; ++k)
+      ops.push_back(random_shape(rng, k % 2 ? Kind::kGridPolygons : Kind::kFree));
+    const Expr e = random_expr(rng, 4, 3);
+    auto r = evaluate_2d(ops, e);
+    ASSERT_TRUE(r.ok()) << r.error().message;
+    if (!single_operand(e)) expect_oriented_and_not_crossing(*r);  // else returned as given
+    std::uniform_real_distribution<double> pu(-4, 10);
+    std::vector<const Shape2D*> all = {&*r};
+    for (const Shape2D& s : ops) all.push_back(&s);
+    for (int k = 0; k < 40; ++k) {
+      const Vec2 p{pu(rng), pu(rng)};
+      if (on_some_loop(all, p)) continue;
+      std::vector<bool> in;
+      for (const Shape2D& s : ops) in.push_back(inside_operand(s, p));
+      EXPECT_EQ(membership(*r, p) != 0, e.contains(in)) << p.x << " " << p.y;
+    }
+  }
+}
+
 // ---------------------------------------------------------------- offset
 
 TEST(Offset, RoundGrowsASquareByStripsAndAFacetedCircle) {
