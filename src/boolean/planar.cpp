@@ -383,8 +383,6 @@ class Planar {
           for (std::size_t i = 0; i < loop.size(); ++i) {
             if (!std::isfinite(loop[i].x) || !std::isfinite(loop[i].y))
               return invalid(name + " vertex " + std::to_string(i) + " is not finite");
-            if (loop[i] == loop[(i + 1) % loop.size()])
-              return invalid(name + " repeats vertex " + std::to_string(i) + " at once");
           }
           const int want = li == 0 ? 1 : -1;
           const bool reverse = area_sign(loop) == -want;
@@ -392,6 +390,7 @@ class Planar {
           for (std::size_t i = 0; i < n; ++i) {
             Vec2 a = loop[i], b = loop[(i + 1) % n];
             if (reverse) std::swap(a, b);
+            if (a == b) continue;  // a vertex repeated at once: no edge
             Seg s{a, b, vertex(a), vertex(b), static_cast<std::uint32_t>(o)};
             segs_.push_back(s);
           }
@@ -794,6 +793,10 @@ class Planar {
         loop.erase(std::unique(loop.begin(), loop.end()), loop.end());
         while (loop.size() > 1 && loop.front() == loop.back()) loop.pop_back();
         if (loop.size() < 3 || area_sign(loop) != (li == 0 ? 1 : -1)) ++bad;
+        std::vector<Vec2> sorted = loop;  // a point passed twice: the loop touches itself
+        std::sort(sorted.begin(), sorted.end(),
+                  [](Vec2 p, Vec2 q) { return p.x != q.x ? p.x < q.x : p.y < q.y; });
+        bad += static_cast<std::size_t>(sorted.end() - std::unique(sorted.begin(), sorted.end()));
         for (std::size_t i = 0; i < loop.size(); ++i) {
           es.push_back({loop[i], loop[(i + 1) % loop.size()]});
           Box b;

@@ -16,7 +16,8 @@ namespace cellforge::boolean {
 
 // `expr` over the operands, evaluated on the exact arrangement of all their edges.
 // Errors (kInvalidInput) name the operand, region, loop and vertex at fault: fewer
-// than 3 vertices, a coordinate that is not finite, a vertex repeated at once.
+// than 3 vertices, a coordinate that is not finite. A vertex repeated at once makes no
+// edge (a projected face with a vertical edge has one).
 Result<Evaluated2D> planar_boolean(std::span<const shape::Shape2D> operands, const Expr& expr);
 
 // The same through prisms and the 3D Boolean (the route ops2d took before planar.cpp).
