@@ -451,7 +451,25 @@ class Planar {
 
   // ------------------------------------------------------------------ 2. edges
 
+  struct Key {
+    double v, e;  // |coordinate * forward - v| <= e
+    std::uint32_t id;
+  };
+
+  Key key(std::uint32_t p, int axis, double forward) const {
+    const Pt& q = pts_[p];
+    if (q.s == kNone) return {(axis == 0 ? q.p.x : q.p.y) * forward, 0, p};
+    const Hom<Fp> h = hom<Fp>(p);
+    const Fp& c = axis == 0 ? h.x : h.y;
+    const double w = std::fabs(h.w.v) - h.w.e;
+    if (!(w > 0)) return {0, INFINITY, p};
+    const double v = c.v / h.w.v;
+    const double e = ((c.e + std::fabs(v) * h.w.e) / w + std::fabs(v) * 0x1p-51) * kGrow;
+    return {v * forward, std::isfinite(e) ? e : INFINITY, p};
+  }
+
   void build_edges() {
+    std::vector<Key> keys;
     // Sort each segment's points along it and identify equal ones.
     for (std::size_t si = 0; si < segs_.size(); ++si) {
       const Seg& s = segs_[si];
@@ -459,14 +477,25 @@ class Planar {
       list.push_back(s.va);
       list.push_back(s.vb);
       const auto seg = static_cast<std::uint32_t>(si);
-      std::sort(list.begin(), list.end(),
-                [&](std::uint32_t p, std::uint32_t q) { return along(seg, p, q) < 0; });
+      // Keys along the segment's dominant axis with error bounds: the exact order is
+      // asked only where two keys' intervals overlap.
+      const int axis = std::fabs(s.b.x - s.a.x) >= std::fabs(s.b.y - s.a.y) ? 0 : 1;
+      const double forward = axis == 0 ? sign_diff(s.b.x, s.a.x) : sign_diff(s.b.y, s.a.y);
+      keys.clear();
+      for (std::uint32_t p : list) keys.push_back(key(p, axis, forward));
+      std::sort(keys.begin(), keys.end(), [&](const Key& p, const Key& q) {
+        if (std::fabs(p.v - q.v) > p.e + q.e) return p.v < q.v;
+        return along(seg, p.id, q.id) < 0;
+      });
+      for (std::size_t i = 0; i < list.size(); ++i) list[i] = keys[i].id;
       std::size_t k = 0;
       for (std::size_t i = 1; i < list.size(); ++i) {
-        if (along(seg, list[k], list[i]) == 0) {
+        if (std::fabs(keys[i].v - keys[k].v) <= keys[i].e + keys[k].e &&
+            along(seg, list[k], list[i]) == 0) {
           uf_.unite(list[k], list[i]);
         } else {
           list[++k] = list[i];
+          keys[k] = keys[i];
         }
       }
       list.resize(k + 1);
