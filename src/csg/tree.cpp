@@ -845,8 +845,27 @@ class Builder {
       s = from_shape(to_shape(*s, n));
       if (!s) return Model();
       several = s->regions.size() > 1;
+    } else if (several) {
+      // The 2D Boolean is cheap (planar.cpp): the profile evaluated first and its
+      // disjoint regions swept is the same solid as the set operation of the swept
+      // regions, without a 3D Boolean. A region the sweep refuses (a hole touching its
+      // outer loop) falls back to the 3D route.
+      auto flat = from_shape(to_shape(*s, n));
+      if (!flat) return Model();
+      if (auto m = sweep(n, *flat, false)) return std::move(*m);
     }
-    std::vector<Leaf> leaves(s->regions.size());
+    return *sweep(n, *s, true);
+  }
+
+  // The regions of s swept as n says and combined by s's expression; with strict, a
+  // sweep's error is the build's, otherwise it gives nullopt.
+  std::optional<Model> sweep(const Node& n, const Shape2& s, bool strict) {
+    const bool several = s.regions.size() > 1;
+    std::vector<Leaf> leaves(s.regions.size());
+    auto swept = [&](const auto& r) {
+      if (strict) check(r, n);
+      return r.ok();
+    };
     if (n.kind == NodeKind::kLinearExtrude) {
       if (n.linear.height <= 0) return Model();
       shape::LinearExtrudeOptions o = n.linear;
@@ -855,19 +874,19 @@ class Builder {
       if (several && o.slices == 0) {
         // OpenSCAD's slice count is the whole profile's.
         shape::Region all;
-        for (const auto& reg : s->regions)
+        for (const auto& reg : s.regions)
           all.loops.insert(all.loops.end(), reg.loops.begin(), reg.loops.end());
         o.slices = shape::extrude_slices(all, o);
       }
-      for (std::size_t i = 0; i < s->regions.size(); ++i) {
-        check(shape::linear_extrude(leaves[i].model, s->regions[i], o), n);
+      for (std::size_t i = 0; i < s.regions.size(); ++i) {
+        if (!swept(shape::linear_extrude(leaves[i].model, s.regions[i], o))) return std::nullopt;
       }
     } else {
       shape::RotateExtrudeOptions o = n.rotate;
       if (o.angle == 0) return Model();
       o.angle = std::clamp(o.angle, -360.0, 360.0);
       double r = 0;
-      for (const auto& reg : s->regions) {
+      for (const auto& reg : s.regions) {
         for (const auto& l : reg.loops) {
           for (Vec2 p : l) r = std::max(r, std::fabs(p.x));
         }
@@ -878,11 +897,11 @@ class Builder {
         o.faceting =
             shape::Faceting{.fn = static_cast<double>(shape::fragments(r, n.rotate.faceting))};
       }
-      for (std::size_t i = 0; i < s->regions.size(); ++i) {
-        check(shape::rotate_extrude(leaves[i].model, s->regions[i], o), n);
+      for (std::size_t i = 0; i < s.regions.size(); ++i) {
+        if (!swept(shape::rotate_extrude(leaves[i].model, s.regions[i], o))) return std::nullopt;
       }
     }
-    return combine(s->expr, leaves, n.pos, nullptr);
+    return combine(s.expr, leaves, n.pos, nullptr);
   }
 
   const BuildOptions& options_;
