@@ -710,8 +710,14 @@ class Planar {
     bool x_exact = false, y_exact = false;
     for (std::uint32_t t : {q.s, q.u}) {
       const Seg& g = segs_[t];
-      if (g.a.x == g.b.x) x = g.a.x, x_exact = true;
-      if (g.a.y == g.b.y) y = g.a.y, y_exact = true;
+      if (g.a.x == g.b.x) {
+        x = g.a.x;
+        x_exact = true;
+      }
+      if (g.a.y == g.b.y) {
+        y = g.a.y;
+        y_exact = true;
+      }
     }
     moved = (!x_exact && decide([&]<class T>() {
               const Hom<T> g = hom<T>(id);

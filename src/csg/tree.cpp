@@ -1,11 +1,13 @@
 // build(): the CSG tree to a Model. Each run of set operations, with the transforms
 // and colors in it pushed down to its leaves, is one n-ary boolean::evaluate. Leaves
 // are primitives, imports, sweeps and resize (a sweep or resize builds its own
-// subtree first). 2D subtrees are kept as expressions over regions: a straight
-// linear_extrude (no twist, equal x and y scale) of a 2D union, difference or
-// intersection is that set operation of the extruded regions, exactly, and the
-// same holds for rotate_extrude of a union when every region is turned with the same
-// segments; other uses of 2D set operations need 2D Booleans and are refused.
+// subtree first). 2D subtrees are kept as expressions over regions and evaluated by
+// the planar 2D Booleans (boolean/ops2d.h) where a 2D shape is needed; a sweep of a
+// set operation sweeps the evaluated profile's disjoint regions. When the sweep refuses
+// such a region (one touching itself), a straight linear_extrude (no twist, equal x and
+// y scale) of a 2D union, difference or intersection is that set operation of the
+// extruded regions, exactly, and the same holds for rotate_extrude of a union when every
+// region is turned with the same segments.
 #include "cellforge/csg/tree.h"
 
 #include <chrono>
