@@ -444,8 +444,7 @@ class Planar {
       boxes[i].add(Vec3{segs_[i].b.x, segs_[i].b.y, 0});
     }
     on_.assign(segs_.size(), {});
-    bvh_ = Bvh(boxes);
-    boxes_ = std::move(boxes);
+    bvh_ = Bvh(std::move(boxes));
     bvh_.pairs([&](std::uint32_t i, std::uint32_t j) { test_pair(i, j); });
   }
 
@@ -870,7 +869,6 @@ class Planar {
   std::vector<Pt> pts_;
   MinUnionFind uf_;
   std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> vertex_ids_;
-  std::vector<Box> boxes_;
   Bvh bvh_;
   std::vector<std::vector<std::uint32_t>> on_;  // by segment: its points, then its chain
   std::vector<Edge> edges_;
