@@ -1,5 +1,9 @@
-// 2D operations through the exact 3D Boolean (ops2d.h): shapes lifted to prisms over
-// z in [0, 1], the expression evaluated, the result's faces on z = 0 read back.
+// 2D operations (ops2d.h). The Booleans, offset, the 2D Minkowski sum and the shadow
+// projection run on the planar arrangement of planar.cpp. The section projection
+// (cut) intersects the solid with a slab in 3D and reads the result's faces on z = 0
+// back; lifted_boolean (planar.h) evaluates 2D Booleans that way too — shapes lifted
+// to prisms over z in [0, 1], the 3D expression evaluated, z = 0 read back — as the
+// oracle the tests and the benchmark compare the planar route with.
 //
 // Reading back: the faces on z = 0 point down (-z), so their loops reversed run with
 // the result's interior on the left seen from +z. Faces of one region may come apart
@@ -15,6 +19,7 @@
 #include "cellforge/boolean/ops2d.h"
 
 #include <algorithm>
+#include <cstdlib>
 #include <cmath>
 #include <cstring>
 #include <numbers>
@@ -30,6 +35,7 @@
 #include "cellforge/shape/hull.h"
 #include "cellforge/shape/primitives.h"
 #include "cellforge/topo/builder.h"
+#include "boolean/planar.h"
 
 namespace cellforge::boolean {
 
@@ -342,24 +348,45 @@ Result<Evaluated2D> evaluate_counted(std::span<const Model* const> models, const
   return Evaluated2D{read_plane(r->model), r->report.rounding_self_intersections};
 }
 
-Result<Shape2D> evaluate_lifted(std::span<const Model* const> models, const Expr& e) {
-  auto r = evaluate_counted(models, e);
+// Every region of `shape` normalized: the union of its regions, disjoint.
+Result<Shape2D> normalized(std::vector<Region> regions) {
+  if (regions.empty()) return Shape2D{};
+  const Shape2D one[] = {Shape2D{std::move(regions)}};
+  auto r = planar_boolean(one, Expr::of(0));
   if (!r) return r.error();
   return std::move(r->shape);
-}
-
-// Every region of `shape` normalized: the union of its regions, disjoint.
-Result<Shape2D> normalized(const Shape2D& shape, const std::string& what) {
-  if (shape.empty()) return shape;
-  auto m = lift(shape.regions, what);
-  if (!m) return m.error();
-  const Model* ms[] = {&*m};
-  return evaluate_lifted(ms, Expr::of(0));
 }
 
 }  // namespace
 
 Result<Evaluated2D> evaluate_2d_counted(std::span<const Shape2D> operands, const Expr& expr) {
+  if (expr.max_operand() >= static_cast<int>(operands.size()))
+    return invalid("2D Boolean: the expression names operand " +
+                   std::to_string(expr.max_operand()) + " of " + std::to_string(operands.size()));
+  std::vector<bool> empty;
+  for (const Shape2D& s : operands) empty.push_back(s.empty());
+  std::vector<int> used;
+  const std::optional<Expr> e = without_empties(expr, empty, used);
+  if (!e) return Evaluated2D{};
+  if (e->kind == Expr::Kind::kOperand)
+    return Evaluated2D{operands[static_cast<std::size_t>(used[0])], 0};
+  std::vector<Shape2D> kept;
+  for (int i : used) kept.push_back(operands[static_cast<std::size_t>(i)]);
+  auto r = planar_boolean(kept, *e);
+  if (!r) {  // name the operand as the caller numbered it
+    std::string m = r.error().message;
+    const std::string tag = "2D operand ";
+    if (m.rfind(tag, 0) == 0) {
+      const std::size_t end = m.find(' ', tag.size());
+      const int k = std::atoi(m.substr(tag.size(), end - tag.size()).c_str());
+      m = tag + std::to_string(used[static_cast<std::size_t>(k)]) + m.substr(end);
+    }
+    return Error{r.error().code, m};
+  }
+  return r;
+}
+
+Result<Evaluated2D> lifted_boolean(std::span<const Shape2D> operands, const Expr& expr) {
   if (expr.max_operand() >= static_cast<int>(operands.size()))
     return invalid("2D Boolean: the expression names operand " +
                    std::to_string(expr.max_operand()) + " of " + std::to_string(operands.size()));
@@ -496,7 +523,7 @@ Result<Shape2D> offset(const Shape2D& shape, const OffsetOptions& options) {
   if (options.amount == 0 || shape.empty()) return shape;
   Shape2D base = shape;
   if (shape.regions.size() > 1) {
-    auto n = normalized(shape, "offset operand");
+    auto n = normalized(shape.regions);
     if (!n) return n.error();
     base = std::move(*n);
   }
@@ -505,12 +532,11 @@ Result<Shape2D> offset(const Shape2D& shape, const OffsetOptions& options) {
       if (area_sign(r.loops[li]) == (li == 0 ? -1 : 1))
         std::reverse(r.loops[li].begin(), r.loops[li].end());
   const std::vector<Region> pieces = offset_pieces(base, options);
-  auto a = lift(base.regions, "offset operand");
-  if (!a) return a.error();
-  auto b = lift(pieces, "offset pieces");
-  if (!b) return b.error();
-  const Model* ms[] = {&*a, &*b};
-  return evaluate_lifted(ms, Expr::over(options.amount > 0 ? Op::kUnion : Op::kDifference, 2));
+  const Shape2D both[] = {std::move(base), Shape2D{pieces}};
+  auto r =
+      planar_boolean(both, Expr::over(options.amount > 0 ? Op::kUnion : Op::kDifference, 2));
+  if (!r) return r.error();
+  return std::move(r->shape);
 }
 
 // ---------------------------------------------------------------- minkowski
@@ -589,10 +615,7 @@ Result<Shape2D> minkowski_pair(const Shape2D& a, const Shape2D& b) {
       }
     }
   }
-  auto m = lift(pieces, "minkowski pieces");
-  if (!m) return m.error();
-  const Model* ms[] = {&*m};
-  return evaluate_lifted(ms, Expr::of(0));
+  return normalized(std::move(pieces));
 }
 
 }  // namespace
@@ -652,10 +675,7 @@ Result<Shape2D> projection(const Model& solid, const ProjectionOptions& options)
     faces.push_back(std::move(r));
   }
   if (faces.empty()) return Shape2D{};
-  auto m = lift(faces, "projected faces");
-  if (!m) return m.error();
-  const Model* ms[] = {&*m};
-  return evaluate_lifted(ms, Expr::of(0));
+  return normalized(std::move(faces));
 }
 
 }  // namespace cellforge::boolean

@@ -1,11 +1,13 @@
 // build(): the CSG tree to a Model. Each run of set operations, with the transforms
 // and colors in it pushed down to its leaves, is one n-ary boolean::evaluate. Leaves
 // are primitives, imports, sweeps and resize (a sweep or resize builds its own
-// subtree first). 2D subtrees are kept as expressions over regions: a straight
-// linear_extrude (no twist, equal x and y scale) of a 2D union, difference or
-// intersection is that set operation of the extruded regions, exactly, and the
-// same holds for rotate_extrude of a union when every region is turned with the same
-// segments; other uses of 2D set operations need 2D Booleans and are refused.
+// subtree first). 2D subtrees are kept as expressions over regions and evaluated by
+// the planar 2D Booleans (boolean/ops2d.h) where a 2D shape is needed; a sweep of a
+// set operation sweeps the evaluated profile's disjoint regions. When the sweep refuses
+// such a region (one touching itself), a straight linear_extrude (no twist, equal x and
+// y scale) of a 2D union, difference or intersection is that set operation of the
+// extruded regions, exactly, and the same holds for rotate_extrude of a union when every
+// region is turned with the same segments.
 #include "cellforge/csg/tree.h"
 
 #include <chrono>
@@ -845,8 +847,27 @@ class Builder {
       s = from_shape(to_shape(*s, n));
       if (!s) return Model();
       several = s->regions.size() > 1;
+    } else if (several) {
+      // The 2D Boolean is cheap (planar.cpp): the profile evaluated first and its
+      // disjoint regions swept is the same solid as the set operation of the swept
+      // regions, without a 3D Boolean. A region the sweep refuses (a hole touching its
+      // outer loop) falls back to the 3D route.
+      auto flat = from_shape(to_shape(*s, n));
+      if (!flat) return Model();
+      if (auto m = sweep(n, *flat, false)) return std::move(*m);
     }
-    std::vector<Leaf> leaves(s->regions.size());
+    return *sweep(n, *s, true);
+  }
+
+  // The regions of s swept as n says and combined by s's expression; with strict, a
+  // sweep's error is the build's, otherwise it gives nullopt.
+  std::optional<Model> sweep(const Node& n, const Shape2& s, bool strict) {
+    const bool several = s.regions.size() > 1;
+    std::vector<Leaf> leaves(s.regions.size());
+    auto swept = [&](const auto& r) {
+      if (strict) check(r, n);
+      return r.ok();
+    };
     if (n.kind == NodeKind::kLinearExtrude) {
       if (n.linear.height <= 0) return Model();
       shape::LinearExtrudeOptions o = n.linear;
@@ -855,19 +876,19 @@ class Builder {
       if (several && o.slices == 0) {
         // OpenSCAD's slice count is the whole profile's.
         shape::Region all;
-        for (const auto& reg : s->regions)
+        for (const auto& reg : s.regions)
           all.loops.insert(all.loops.end(), reg.loops.begin(), reg.loops.end());
         o.slices = shape::extrude_slices(all, o);
       }
-      for (std::size_t i = 0; i < s->regions.size(); ++i) {
-        check(shape::linear_extrude(leaves[i].model, s->regions[i], o), n);
+      for (std::size_t i = 0; i < s.regions.size(); ++i) {
+        if (!swept(shape::linear_extrude(leaves[i].model, s.regions[i], o))) return std::nullopt;
       }
     } else {
       shape::RotateExtrudeOptions o = n.rotate;
       if (o.angle == 0) return Model();
       o.angle = std::clamp(o.angle, -360.0, 360.0);
       double r = 0;
-      for (const auto& reg : s->regions) {
+      for (const auto& reg : s.regions) {
         for (const auto& l : reg.loops) {
           for (Vec2 p : l) r = std::max(r, std::fabs(p.x));
         }
@@ -878,11 +899,11 @@ class Builder {
         o.faceting =
             shape::Faceting{.fn = static_cast<double>(shape::fragments(r, n.rotate.faceting))};
       }
-      for (std::size_t i = 0; i < s->regions.size(); ++i) {
-        check(shape::rotate_extrude(leaves[i].model, s->regions[i], o), n);
+      for (std::size_t i = 0; i < s.regions.size(); ++i) {
+        if (!swept(shape::rotate_extrude(leaves[i].model, s.regions[i], o))) return std::nullopt;
       }
     }
-    return combine(s->expr, leaves, n.pos, nullptr);
+    return combine(s.expr, leaves, n.pos, nullptr);
   }
 
   const BuildOptions& options_;

@@ -2,16 +2,15 @@
 // and the projection of a solid onto the plane z = 0 (OpenSCAD's union, difference,
 // intersection, offset, minkowski and projection on 2D children).
 //
-// Route: every 2D Boolean runs on the exact 3D arrangement of boolean.h. Each operand
-// is lifted to prisms between z = 0 and z = 1 (one cell per region, all regions of an
-// operand in one operand model: its union), the 3D expression is evaluated, and the
-// result's faces on z = 0 are read back as regions. The prisms' side walls are
-// vertical, so every intersection point the arrangement makes on z = 0 is the meeting
-// of two vertical planes with z = 0: its z is exactly 0 and its x, y are the planar
-// intersection point, rounded once when the result is built; the arrangement's
-// rounding check (Report::rounding_self_intersections) covers the rounded result.
-// This reuses one exact, tested arrangement rather than keeping a second one for the
-// plane; the cost is the extra side walls (a constant factor).
+// Route: the Booleans (and the unions inside offset, minkowski_2d and the shadow
+// projection) run on one exact arrangement of all operands' loop edges in the plane
+// (src/boolean/planar.cpp): crossings are implicit points decided by exact predicates,
+// every face gets each operand's winding number, the expression picks the faces, and
+// their boundary comes out as outer loops with holes. Each operand is the union of its
+// regions (winding number > 0). Crossings are rounded to doubles once, when the result is
+// built, and the rounded loops are checked exactly (Evaluated2D::rounding_crossings). The
+// section projection (cut) intersects the solid with a slab by the 3D Boolean and reads
+// its faces on z = 0 back.
 //
 // Offset builds, for every loop edge, the strip swept by the edge along its outward
 // normal (inward for a negative amount) and, at every vertex where the boundary turns
@@ -41,10 +40,11 @@ namespace cellforge::boolean {
 // expression that reduces to one operand returns it as given.
 Result<shape::Shape2D> evaluate_2d(std::span<const shape::Shape2D> operands, const Expr& expr);
 
-// The same with the Boolean's rounding check: the number of pairs of result triangles
-// that rounding to doubles made cross (Report::rounding_self_intersections). When it is
-// 0 the regions' loops are simple and meet only at shared vertices; otherwise a loop
-// may touch or cross itself or another near the rounded points (docs/boolean.md).
+// The same with the rounding check: the number of defects that rounding crossings to
+// doubles made — pairs of result edges that cross or overlap, loops that collapsed or
+// turned over, points a loop passes twice. When it is 0 the regions' loops are simple
+// and meet only at shared vertices; otherwise a loop may touch or cross itself or
+// another near the rounded points (docs/shape-ops.md).
 struct Evaluated2D {
   shape::Shape2D shape;
   std::size_t rounding_crossings = 0;
