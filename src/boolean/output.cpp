@@ -136,10 +136,16 @@ struct LineClasses {
 
 LineClasses line_classes(Arrangement& a, const std::vector<std::uint32_t>& canon) {
   std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;  // (root key, point)
+  std::vector<std::uint32_t> on_line;
   for (const Cluster& c : a.clusters)
     for (const Line& l : c.lines) {
+      // A line records a point once per piece it met there: each point once here.
+      on_line.clear();
+      for (std::uint32_t p : l.points) on_line.push_back(canon[p]);
+      std::sort(on_line.begin(), on_line.end());
+      on_line.erase(std::unique(on_line.begin(), on_line.end()), on_line.end());
       const std::uint32_t root = a.line_root(l.key);
-      for (std::uint32_t p : l.points) pairs.push_back({root, canon[p]});
+      for (std::uint32_t p : on_line) pairs.push_back({root, p});
     }
   for (auto [key, p] : a.edge_points) pairs.push_back({a.line_root(key), canon[p]});
   std::sort(pairs.begin(), pairs.end());
