@@ -467,52 +467,64 @@ bool covers(const Arrangement& a, std::uint32_t t, const RepPoint& r) {
 // part: none lies along the edge (a contact edge, an input vertex inside it, an end
 // on another's edge) and one crossing it makes a point of it, an end of the part. By
 // job (index into `jobs`): the smallest job of its group, whose ray decides.
-std::vector<std::uint32_t> shared_rays(const Arrangement& a, const std::vector<std::array<std::uint32_t, 2>>& jobs) {
-  std::vector<std::uint32_t> root(jobs.size());
-  std::iota(root.begin(), root.end(), 0u);
-  // The input edges of touched one-triangle clusters, with their triangle.
-  struct Use {
-    std::uint64_t edge;
-    std::uint32_t tri;
-    bool forward;
-  };
-  std::vector<Use> uses;
-  for (const Cluster& c : a.clusters) {
-    if (!c.touched || c.tris.size() != 1) continue;
-    const Tri& t = a.tris[c.tris[0]];
+// Every triangle edge of the arrangement, sorted by edge (then triangle), and the input
+// vertices found on another triangle's edge: what the patches of untouched triangles
+// and the groups of pieces that share a ray both ask of an edge.
+struct HalfEdge {
+  std::uint64_t key;  // ordered(p, q)
+  std::uint32_t tri;
+  bool forward;  // the triangle runs p -> q with p < q
+};
+struct EdgeUses {
+  std::vector<HalfEdge> halves;
+  std::vector<char> on_other_edge;  // by input vertex
+};
+
+EdgeUses edge_uses(const Arrangement& a) {
+  EdgeUses u;
+  u.halves.reserve(a.tris.size() * 3);
+  for (std::uint32_t t = 0; t < a.tris.size(); ++t)
     for (int e = 0; e < 3; ++e) {
-      const std::uint32_t p = t.v[e], q = t.v[(e + 1) % 3];
-      uses.push_back({ordered(p, q), c.tris[0], p < q});
+      const std::uint32_t p = a.tris[t].v[e], q = a.tris[t].v[(e + 1) % 3];
+      u.halves.push_back({ordered(p, q), t, p < q});
     }
-  }
-  if (uses.empty()) return root;
-  std::sort(uses.begin(), uses.end(), [](const Use& x, const Use& y) { return x.edge < y.edge || (x.edge == y.edge && x.tri < y.tri); });
-  // Edges that other triangles use too (any triangle: untouched ones are not above).
-  std::vector<std::uint64_t> all_edges;
-  all_edges.reserve(a.tris.size() * 3);
-  for (const Tri& t : a.tris)
-    for (int e = 0; e < 3; ++e) all_edges.push_back(ordered(t.v[e], t.v[(e + 1) % 3]));
-  std::sort(all_edges.begin(), all_edges.end());
-  std::vector<char> on_other_edge(a.pos.size(), 0);
+  std::sort(u.halves.begin(), u.halves.end(),
+            [](const HalfEdge& x, const HalfEdge& y) { return x.key < y.key || (x.key == y.key && x.tri < y.tri); });
+  u.on_other_edge.assign(a.pos.size(), 0);
+  for (auto [key, v] : a.edge_points)
+    if (v < u.on_other_edge.size()) u.on_other_edge[v] = 1;  // implicit ones (wires) have keys
+  return u;
+}
+
+std::vector<std::uint32_t> shared_rays(const Arrangement& a, const std::vector<std::array<std::uint32_t, 2>>& jobs,
+                                       const EdgeUses& uses) {
   std::vector<std::uint32_t> keys_with_vertex;
-  for (auto [key, v] : a.edge_points) {
-    if (v >= a.pos.size()) continue;
-    on_other_edge[v] = 1;
-    keys_with_vertex.push_back(key);
-  }
+  for (auto [key, v] : a.edge_points)
+    if (v < a.pos.size()) keys_with_vertex.push_back(key);
   std::sort(keys_with_vertex.begin(), keys_with_vertex.end());
+  const auto cut_alone = [&](std::uint32_t t) {
+    const Cluster& c = a.clusters[a.cluster_of[t]];
+    return c.touched && c.tris.size() == 1;
+  };
   std::vector<std::uint64_t> good;  // edges across which groups may form
-  for (std::size_t i = 0; i + 1 < uses.size(); ++i) {
-    const Use &x = uses[i], &y = uses[i + 1];
-    if (x.edge != y.edge || (i + 2 < uses.size() && uses[i + 2].edge == x.edge) || (i > 0 && uses[i - 1].edge == x.edge))
+  const std::vector<HalfEdge>& halves = uses.halves;
+  for (std::size_t i = 0; i < halves.size();) {
+    std::size_t j = i;
+    while (j < halves.size() && halves[j].key == halves[i].key) ++j;
+    if (j - i != 2) {
+      i = j;
       continue;
-    const auto [lo, hi] = std::equal_range(all_edges.begin(), all_edges.end(), x.edge);
-    if (hi - lo != 2 || x.forward == y.forward || a.tris[x.tri].operand != a.tris[y.tri].operand) continue;
-    const std::uint32_t p = static_cast<std::uint32_t>(x.edge >> 32), q = static_cast<std::uint32_t>(x.edge);
-    if (on_other_edge[p] || on_other_edge[q] || a.is_contact_edge(p, q)) continue;
+    }
+    const HalfEdge &x = halves[i], &y = halves[i + 1];
+    i = j;
+    if (!cut_alone(x.tri) || !cut_alone(y.tri) || x.forward == y.forward ||
+        a.tris[x.tri].operand != a.tris[y.tri].operand)
+      continue;
+    const std::uint32_t p = static_cast<std::uint32_t>(x.key >> 32), q = static_cast<std::uint32_t>(x.key);
+    if (uses.on_other_edge[p] || uses.on_other_edge[q] || a.is_contact_edge(p, q)) continue;
     const std::uint32_t key = a.find_edge_key(p, q);
     if (key != kInvalidIndex && std::binary_search(keys_with_vertex.begin(), keys_with_vertex.end(), key)) continue;
-    good.push_back(x.edge);
+    good.push_back(x.key);
   }
   // The pieces' sides along those edges: (edge, the side's two points, job).
   struct Side {
@@ -540,14 +552,10 @@ std::vector<std::uint32_t> shared_rays(const Arrangement& a, const std::vector<s
     const Side &x = sides[i], &y = sides[i + 1];
     if (x.edge != y.edge || x.part != y.part || jobs[x.job][0] == jobs[y.job][0]) continue;
     if (i + 2 < sides.size() && sides[i + 2].edge == x.edge && sides[i + 2].part == x.part) continue;
-    groups.unite(x.job, y.job);
+    groups.unite_to_smaller(x.job, y.job);
   }
-  std::vector<std::uint32_t> first(jobs.size(), kInvalidIndex);
-  for (std::uint32_t k = 0; k < jobs.size(); ++k) {
-    std::uint32_t& f = first[groups.find(k)];
-    if (f == kInvalidIndex) f = k;
-    root[k] = f;
-  }
+  std::vector<std::uint32_t> root(jobs.size());
+  for (std::uint32_t k = 0; k < jobs.size(); ++k) root[k] = groups.find(k);
   return root;
 }
 
@@ -622,7 +630,8 @@ Selection classify_and_select(const Arrangement& a, const Expr& expr, const Opti
     report.touched_triangles += c.tris.size();
     for (std::uint32_t pi = 0; pi < c.pieces.size(); ++pi) jobs.push_back({ci, pi});
   }
-  const std::vector<std::uint32_t> ray_of = shared_rays(a, jobs);
+  const EdgeUses uses = edge_uses(a);
+  const std::vector<std::uint32_t> ray_of = shared_rays(a, jobs, uses);
   // Clusters of many triangles (coplanar faces of many operands: a Menger sponge's
   // planes): a tree of their triangles' boxes, so that a piece tests only the
   // triangles whose boxes hold its corners' box.
@@ -703,25 +712,9 @@ Selection classify_and_select(const Arrangement& a, const Expr& expr, const Opti
   }
 
   // Untouched triangles, a patch at a time.
-  struct HalfEdge {
-    std::uint64_t key;
-    std::uint32_t tri;
-    bool forward;
-  };
-  std::vector<HalfEdge> halves;
-  halves.reserve(a.tris.size() * 3);
-  for (std::uint32_t t = 0; t < a.tris.size(); ++t) {
-    for (int e = 0; e < 3; ++e) {
-      const std::uint32_t p = a.tris[t].v[e], q = a.tris[t].v[(e + 1) % 3];
-      halves.push_back({(static_cast<std::uint64_t>(std::min(p, q)) << 32) | std::max(p, q), t, p < q});
-    }
-  }
-  std::sort(halves.begin(), halves.end(),
-            [](const HalfEdge& x, const HalfEdge& y) { return x.key < y.key || (x.key == y.key && x.tri < y.tri); });
+  const std::vector<HalfEdge>& halves = uses.halves;
+  const std::vector<char>& on_other_edge = uses.on_other_edge;
   UnionFind patches(a.tris.size());
-  std::vector<char> on_other_edge(a.pos.size(), 0);
-  for (auto [key, v] : a.edge_points)
-    if (v < on_other_edge.size()) on_other_edge[v] = 1;  // implicit ones (wires) have keys
   auto untouched = [&](std::uint32_t t) { return !a.clusters[a.cluster_of[t]].touched; };
   for (std::size_t i = 0; i < halves.size();) {
     std::size_t j = i;

@@ -79,26 +79,6 @@ struct Pt {
   int wsign = 1;                   // sign of W
 };
 
-// Smallest id as root, so that an explicit point (ids below the crossings') names a
-// class that holds one.
-struct MinUnionFind {
-  std::vector<std::uint32_t> parent;
-  std::uint32_t add() {
-    parent.push_back(static_cast<std::uint32_t>(parent.size()));
-    return parent.back();
-  }
-  std::uint32_t find(std::uint32_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  }
-  void unite(std::uint32_t a, std::uint32_t b) {
-    a = find(a);
-    b = find(b);
-    if (a < b) std::swap(a, b);
-    if (a != b) parent[a] = b;
-  }
-};
-
 template <class T>
 struct Hom {
   T x, y, w;
@@ -491,7 +471,7 @@ class Planar {
       for (std::size_t i = 1; i < list.size(); ++i) {
         if (std::fabs(keys[i].v - keys[k].v) <= keys[i].e + keys[k].e &&
             along(seg, list[k], list[i]) == 0) {
-          uf_.unite(list[k], list[i]);
+          uf_.unite_to_smaller(list[k], list[i]);
         } else {
           list[++k] = list[i];
           keys[k] = keys[i];
@@ -867,7 +847,8 @@ class Planar {
   std::uint32_t operands_ = 0, explicit_count_ = 0;
   std::vector<Seg> segs_;
   std::vector<Pt> pts_;
-  MinUnionFind uf_;
+  UnionFind uf_;  // smallest id as root, so that an explicit point (ids below the
+                  // crossings') names a class that holds one
   std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> vertex_ids_;
   Bvh bvh_;
   std::vector<std::vector<std::uint32_t>> on_;  // by segment: its points, then its chain

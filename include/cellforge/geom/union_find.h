@@ -17,6 +17,11 @@ class UnionFind {
     parent_.resize(n);
     std::iota(parent_.begin(), parent_.end(), std::uint32_t{0});
   }
+  // A new singleton; its element.
+  std::uint32_t add() {
+    parent_.push_back(static_cast<std::uint32_t>(parent_.size()));
+    return parent_.back();
+  }
   std::uint32_t find(std::uint32_t x) {
     while (parent_[x] != x) x = parent_[x] = parent_[parent_[x]];
     return x;
@@ -26,6 +31,16 @@ class UnionFind {
     a = find(a);
     b = find(b);
     if (a == b) return false;
+    parent_[b] = a;
+    return true;
+  }
+  // Joins the sets of a and b under the smaller root: used alone, every set's root is
+  // its smallest element (a canonical name that does not depend on the joins' order).
+  bool unite_to_smaller(std::uint32_t a, std::uint32_t b) {
+    a = find(a);
+    b = find(b);
+    if (a == b) return false;
+    if (b < a) std::swap(a, b);
     parent_[b] = a;
     return true;
   }
