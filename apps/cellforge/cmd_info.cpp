@@ -28,9 +28,11 @@ constexpr const char* kUsage =
     "  closed, manifold, volume, area, centroid, bbox, warnings and the detailed\n"
     "  findings (docs/io.md). Without cells (an open mesh) volume is the signed volume\n"
     "  of the surface, with a warning.\n"
-    "  --strict exits 1 when the model is not valid (after printing the report).\n"
-    "  The geometric findings (self_crossing_faces, non_planar_faces) are reported\n"
-    "  apart from validity. On a terminal a run longer than a second shows its stage\n"
+    "  --strict exits 1 (after printing the report) when the model is not valid, when\n"
+    "  faces of it intersect (self_intersections) or when a face's loop crosses itself\n"
+    "  (self_crossing_faces): what a slicer or a Boolean would refuse. Non-planar faces\n"
+    "  (faceted curved primitives are planar only in exact arithmetic) are reported and\n"
+    "  do not fail it. On a terminal a run longer than a second shows its stage\n"
     "  on standard error.";
 
 std::string report_json(const io::ImportReport& r) {
@@ -54,7 +56,9 @@ int run(const std::vector<std::string>& args) {
   app.add_option("FILE", file, "the model file, or - for standard input")->required();
   app.add_option("KEY=VALUE", options, "import options and read limits (below)");
   app.add_flag("--json", json, "print one JSON object");
-  app.add_flag("--strict", strict, "exit 1 when the model is not valid");
+  app.add_flag("--strict", strict,
+               "exit 1 when the model is not valid, intersects itself or has a "
+               "self-crossing face");
   app.add_flag("--no-self-intersections", no_self, "skip the self-intersection check");
   bool no_geometry = false;
   app.add_flag("--no-geometry", no_geometry, "skip the crossing-loop and planarity findings");
@@ -110,7 +114,8 @@ int run(const std::vector<std::string>& args) {
               << " degenerate polygons dropped, " << rep.flipped_faces << " faces flipped, "
               << rep.closed_shells << " closed shells\n";
   }
-  return strict && !d.valid ? 1 : 0;
+  const bool sound = d.valid && d.self_intersections.empty() && d.self_crossing_faces.empty();
+  return strict && !sound ? 1 : 0;
 }
 
 const CommandRegistration kInfo{Command{"info", kSummary, kUsage, run, true}};

@@ -87,12 +87,39 @@ TEST(Cli, InfoStrictFailsOnAnInvalidModel) {
   const CliRun loose = run("info " + path);
   ASSERT_EQ(loose.status, 0) << loose.out;
   // Import now nests cells exactly and this mesh reads as a valid sheet model (no
-  // mesh found by a random search of 400 more reads as invalid): the exit code follows
-  // the report.
-  const bool invalid = loose.out.find("valid: no") != std::string::npos;
+  // mesh found by a random search of 400 more reads as invalid), but two of its
+  // triangles cross (f2/f7): --strict fails it for that.
+  EXPECT_NE(loose.out.find("valid: yes"), std::string::npos) << loose.out;
+  EXPECT_NE(loose.out.find("self_intersections: 1 (f2/f7)"), std::string::npos) << loose.out;
   const CliRun strict = run("info " + path + " --strict");
-  EXPECT_EQ(strict.status, invalid ? 1 : 0) << strict.out;
-  EXPECT_EQ(run("info " + path + " --strict --json").status, invalid ? 1 : 0);
+  EXPECT_EQ(strict.status, 1) << strict.out;
+  EXPECT_EQ(run("info " + path + " --strict --json").status, 1);
+
+  // Two closed cubes that pass through each other: a valid model (two cells) whose
+  // faces intersect, which a slicer would refuse. --strict fails it; without the
+  // self-intersection check there is nothing left to fail.
+  const std::string crossing = (dir / "crossing_cubes.obj").string();
+  {
+    std::ofstream out(crossing);
+    const double offsets[2] = {0, 0.5};
+    for (double o : offsets)
+      for (int i = 0; i < 8; ++i)
+        out << "v " << o + (i & 1) << ' ' << o + ((i >> 1) & 1) << ' ' << o + ((i >> 2) & 1)
+            << '\n';
+    const int quads[6][4] = {{1, 3, 4, 2}, {5, 6, 8, 7}, {1, 2, 6, 5},
+                             {3, 7, 8, 4}, {1, 5, 7, 3}, {2, 4, 8, 6}};
+    for (int c = 0; c < 2; ++c)
+      for (const auto& q : quads)
+        out << "f " << q[0] + 8 * c << ' ' << q[1] + 8 * c << ' ' << q[2] + 8 * c << ' '
+            << q[3] + 8 * c << '\n';
+  }
+  const CliRun report = run("info " + crossing);
+  ASSERT_EQ(report.status, 0) << report.out;
+  EXPECT_NE(report.out.find("valid: yes"), std::string::npos) << report.out;
+  EXPECT_EQ(run("info " + crossing + " --strict").status, 1);
+  EXPECT_EQ(run("info " + crossing + " --strict --json").status, 1);
+  EXPECT_EQ(run("info " + crossing + " --strict --no-self-intersections").status, 0);
+  EXPECT_EQ(run("info " + valid + " --strict --json").status, 0);
 }
 
 TEST(Cli, DashIsStandardInputAndOutput) {
