@@ -297,12 +297,50 @@ int Arrangement::orient2(const Cluster& c, std::uint32_t p, std::uint32_t q,
   return s * w2_sign(c, p) * w2_sign(c, q) * w2_sign(c, r);
 }
 
+bool Arrangement::known_coordinate(std::uint32_t p, int axis, double& x) const {
+  auto constant = [&](std::uint32_t s, std::uint32_t t) {
+    if (pos[s][axis] != pos[t][axis]) return false;
+    x = pos[s][axis];
+    return true;
+  };
+  auto on_plane = [&](const Tri& t) {
+    return constant(t.v[0], t.v[1]) && constant(t.v[0], t.v[2]);
+  };
+  if (p < pos.size()) {
+    x = pos[p][axis];
+    return true;
+  }
+  const PointDef& d = points[p - pos.size()];
+  switch (d.kind) {
+    case PointKind::kVertex:
+      x = pos[d.a][axis];
+      return true;
+    case PointKind::kLpi:
+      return constant(d.a, d.b) || on_plane(tris[d.c]);
+    case PointKind::kCross: {
+      const Cluster& c = clusters[d.a];
+      if (on_plane(tris[c.ref])) return true;
+      for (std::uint32_t li : {d.b, d.c}) {
+        const Line& l = c.lines[li];
+        if ((l.kind == LineKind::kAxisU && axis == (c.k + 1) % 3) ||
+            (l.kind == LineKind::kAxisV && axis == (c.k + 2) % 3)) {
+          x = l.c;
+          return true;
+        }
+        if (l.kind == LineKind::kThrough && constant(l.a, l.b)) return true;
+      }
+      return false;
+    }
+    case PointKind::kMeet:
+      return constant(d.a, d.b) || constant(meets[d.c][0], meets[d.c][1]);
+  }
+  return false;
+}
+
 int Arrangement::compare3(std::uint32_t p, std::uint32_t q, int axis) const {
   if (p == q) return 0;
-  if (p < pos.size() && q < pos.size()) {
-    const double a = pos[p][axis], b = pos[q][axis];
+  if (double a, b; known_coordinate(p, axis, a) && known_coordinate(q, axis, b))
     return a < b ? -1 : (a > b ? 1 : 0);
-  }
   const int s = decide([&]<class T>() {
     const H3<T> a = point3<T>(p), b = point3<T>(q);
     return a.c[axis] * b.c[3] - b.c[axis] * a.c[3];
@@ -507,6 +545,18 @@ std::uint32_t Arrangement::crossing_point(std::uint32_t ci, std::uint32_t li, st
   if (through->kind != LineKind::kThrough) std::swap(through, trace);
   if (through->kind == LineKind::kThrough && trace->kind == LineKind::kTrace)
     return lpi_point(through->a, through->b, cluster_of[trace->a]);
+  // The traces of two triangles that share an edge pq (neighbours in a mesh, on two
+  // planes) cross where pq's line meets this plane: that edge's lpi point, which the
+  // clusters of the two triangles find on their common edge too. As a crossing it
+  // would be a second id for the point, told apart only by an exact comparison.
+  if (through->kind == LineKind::kTrace && trace->kind == LineKind::kTrace) {
+    const Tri& x = tris[through->a];
+    const Tri& y = tris[trace->a];
+    std::uint32_t common[3], n = 0;
+    for (std::uint32_t v : x.v)
+      if (v == y.v[0] || v == y.v[1] || v == y.v[2]) common[n++] = v;
+    if (n == 2) return lpi_point(common[0], common[1], ci);
+  }
   return new_point({PointKind::kCross, ci, std::min(li, m), std::max(li, m)}, &c);
 }
 
@@ -566,6 +616,26 @@ bool coplanar_overlap(const Arrangement& A, const Tri& a, const Tri& b, int k) {
 // corners (the exact stage would run for every neighbour in a mesh).
 int Arrangement::side_of(const Tri& x, std::uint32_t v) const {
   if (v == x.v[0] || v == x.v[1] || v == x.v[2]) return 0;
+  // The fourth vertex of x's quad: the quad's fold sign, times the parity of the
+  // permutation that takes the quad's loop to (x, v) (orient3d alternates in its four
+  // arguments). Near-planar quads would each go to the exact stage.
+  const SoupFace& f = faces[x.input_face];
+  if (f.quad[0] != SoupFace::kNoQuad) {
+    const std::uint32_t order[4] = {x.v[0], x.v[1], x.v[2], v};
+    int at[4], found = 0;
+    for (int i = 0; i < 4; ++i)
+      for (int j = 0; j < 4; ++j)
+        if (order[i] == f.quad[j]) {
+          at[i] = j;
+          ++found;
+        }
+    if (found == 4) {
+      int inversions = 0;
+      for (int i = 0; i < 4; ++i)
+        for (int j = i + 1; j < 4; ++j) inversions += at[i] > at[j];
+      return inversions % 2 == 0 ? f.fold : -f.fold;
+    }
+  }
   return orient3d(pos[x.v[0]], pos[x.v[1]], pos[x.v[2]], pos[v]);
 }
 
@@ -609,9 +679,15 @@ void Arrangement::test_pair(std::uint32_t i, std::uint32_t j, PairEvents& ev) co
   const Tri& a = tris[i];
   const Tri& b = tris[j];
   const Vec3 a0 = pos[a.v[0]], a1 = pos[a.v[1]], a2 = pos[a.v[2]];
+  int shared = 0;
+  for (std::uint32_t v : b.v) shared += v == a.v[0] || v == a.v[1] || v == a.v[2];
+  // Two tiles of one face that share an edge lie on either side of it: they meet in
+  // it alone, and they are coplanar exactly when the face is planar (decided once).
+  const bool one_face = a.input_face == b.input_face && shared == 2;
+  if (one_face && !faces[a.input_face].planar) return;
   int ob[3], pos_b = 0, neg_b = 0;
   for (int k = 0; k < 3; ++k) {
-    ob[k] = side_of(a, b.v[k]);
+    ob[k] = one_face ? 0 : side_of(a, b.v[k]);
     pos_b += ob[k] > 0;
     neg_b += ob[k] < 0;
   }
@@ -619,8 +695,6 @@ void Arrangement::test_pair(std::uint32_t i, std::uint32_t j, PairEvents& ev) co
   // Neighbours in one mesh, the common case: sharing an edge and not coplanar, they
   // meet in that edge alone; sharing a corner with the rest of b on one side of a's
   // plane, in that corner alone. Either is each one's own boundary already.
-  int shared = 0;
-  for (std::uint32_t v : b.v) shared += v == a.v[0] || v == a.v[1] || v == a.v[2];
   if ((shared == 2 && pos_b + neg_b == 1) || (shared == 1 && (pos_b == 2 || neg_b == 2))) return;
   if (pos_b == 0 && neg_b == 0) {
     ev.same_plane.push_back({i, j});

@@ -59,6 +59,17 @@ struct SoupFace {
   bool flipped = false;  // the model's face points into its cell: reversed here
   bool sheet = false;    // a face with no cell on either side: it bounds nothing, and
                          // its points are the operand's (non-regularized operations)
+  // Every vertex of the loops on the plane of the first triangle, exactly. Decided once
+  // here: a faceted curved primitive's quads are planar only in exact arithmetic, so
+  // each of their tests goes to the exact stage, and the pair tests, the patch
+  // classification and the merge all ask it.
+  bool planar = true;
+  // A face of one loop of four vertices (a quad of a faceted curved primitive): the
+  // loop, and the sign of orient3d over it in that order, so that any tile's test of
+  // the fourth vertex is a permutation of it (side_of).
+  std::array<std::uint32_t, 4> quad{kNoQuad, kNoQuad, kNoQuad, kNoQuad};
+  std::int8_t fold = 0;
+  static constexpr std::uint32_t kNoQuad = 0xffffffffu;
 };
 
 enum class LineKind : std::uint8_t { kThrough, kTrace, kAxisU, kAxisV };
@@ -212,6 +223,10 @@ class Arrangement {
   int orient2(const Cluster& c, std::uint32_t p, std::uint32_t q, std::uint32_t r) const;
   // sign(coordinate axis of p - coordinate axis of q)
   int compare3(std::uint32_t p, std::uint32_t q, int axis) const;
+  // Whether coordinate `axis` of p is a double known from how p was made, without
+  // arithmetic (an input vertex; a point of a segment, line or plane on which that
+  // coordinate is constant), and then x is it.
+  bool known_coordinate(std::uint32_t p, int axis, double& x) const;
   bool equal3(std::uint32_t p, std::uint32_t q) const;
   bool collinear3(std::uint32_t a, std::uint32_t b, std::uint32_t c) const;
   // Side of point p of the plane of input triangle t: sign n_t . (p - t0).

@@ -225,6 +225,24 @@ Result<Arrangement> make_soup(std::span<const Model* const> operands, int thread
       return Error{ErrorCode::kInvalidInput,
                    "boolean: operand " + std::to_string(k) + " is empty (no face, edge or point)"};
   }
+  parallel_ranges<char>(faces.size(), threads, [&](std::size_t lo, std::size_t hi, char&) {
+    for (std::size_t i = lo; i < hi; ++i) {
+      SoupFace& f = faces[i];
+      if (f.tris.empty()) continue;
+      if (f.loops.size() == 1 && f.loops[0].size() == 4) {
+        const auto& q = f.loops[0];
+        std::copy(q.begin(), q.end(), f.quad.begin());
+        f.fold = static_cast<std::int8_t>(orient3d(pos[q[0]], pos[q[1]], pos[q[2]], pos[q[3]]));
+        f.planar = f.fold == 0;
+        continue;
+      }
+      const Tri& t0 = tris[f.tris[0]];
+      for (const auto& loop : f.loops)
+        for (std::uint32_t v : loop)
+          if (f.planar && v != t0.v[0] && v != t0.v[1] && v != t0.v[2])
+            f.planar = orient3d(pos[t0.v[0]], pos[t0.v[1]], pos[t0.v[2]], pos[v]) == 0;
+    }
+  });
   return Arrangement(std::move(pos), std::move(tris), std::move(faces),
                      static_cast<std::uint32_t>(operands.size()), std::move(wires));
 }

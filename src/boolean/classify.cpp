@@ -801,12 +801,7 @@ Selection classify_and_select(const Arrangement& a, const Expr& expr, const Opti
       poly.tri = f.tris[0];
       poly.normal_sign = keep;
       set_verdict(poly, f.tris[0]);
-      const Tri& t0 = a.tris[f.tris[0]];
-      bool planar = true;
-      for (const auto& loop : f.loops)
-        for (std::uint32_t v : loop)
-          planar &= orient3d(a.pos[t0.v[0]], a.pos[t0.v[1]], a.pos[t0.v[2]], a.pos[v]) == 0;
-      if (planar) poly.cluster = a.cluster_of[f.tris[0]];
+      if (f.planar) poly.cluster = a.cluster_of[f.tris[0]];
       for (std::vector<std::uint32_t> loop : f.loops) {
         if (keep < 0) std::reverse(loop.begin(), loop.end());
         poly.keys.push_back(edge_keys(loop));

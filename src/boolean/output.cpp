@@ -391,9 +391,16 @@ bool same_plane(const Arrangement& a, const OutPoly& x, const OutPoly& y) {
   const Cluster& cx = a.clusters[x.cluster];
   const Tri& rx = a.tris[cx.ref];
   const Tri& ry = a.tris[a.clusters[y.cluster].ref];
-  const Vec3 p0 = a.pos[rx.v[0]], p1 = a.pos[rx.v[1]], p2 = a.pos[rx.v[2]];
-  for (std::uint32_t v : ry.v)
-    if (orient3d(p0, p1, p2, a.pos[v]) != 0) return false;
+  // Tiles of one planar face are coplanar without a test (SoupFace::planar), the two
+  // tiles of a quad that is not are not.
+  const SoupFace& fx = a.faces[rx.input_face];
+  const bool one_face = rx.input_face == ry.input_face;
+  if (one_face && !fx.planar && fx.quad[0] != SoupFace::kNoQuad) return false;
+  if (!one_face || !fx.planar) {
+    const Vec3 p0 = a.pos[rx.v[0]], p1 = a.pos[rx.v[1]], p2 = a.pos[rx.v[2]];
+    for (std::uint32_t v : ry.v)
+      if (orient3d(p0, p1, p2, a.pos[v]) != 0) return false;
+  }
   const int rel =
       orient2d_projected(a.pos[ry.v[0]], a.pos[ry.v[1]], a.pos[ry.v[2]], cx.k) * cx.nk_sign;
   return x.normal_sign == y.normal_sign * rel;

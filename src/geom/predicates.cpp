@@ -69,7 +69,10 @@ int orient2d(Vec2 a, Vec2 b, Vec2 c) {
   const double right = (b.y - a.y) * (c.x - a.x);
   const double bound = kOrient2dBound * (std::fabs(left) + std::fabs(right));
   const int s = filtered_sign(left - right, bound);
-  return s != 0 ? s : orient2d_exact(a, b, c);
+  if (s != 0) return s;
+  // Three points on one axis-parallel line: 0 without the exact stage.
+  if ((a.x == b.x && a.x == c.x) || (a.y == b.y && a.y == c.y)) return 0;
+  return orient2d_exact(a, b, c);
 }
 
 int orient3d(Vec3 a, Vec3 b, Vec3 c, Vec3 d) {
@@ -82,7 +85,14 @@ int orient3d(Vec3 a, Vec3 b, Vec3 c, Vec3 d) {
                            (std::fabs(vzwx) + std::fabs(vxwz)) * std::fabs(u.y) +
                            (std::fabs(vxwy) + std::fabs(vywx)) * std::fabs(u.z);
   const int s = filtered_sign(det, kOrient3dBound * permanent);
-  return s != 0 ? s : orient3d_exact(a, b, c, d);
+  if (s != 0) return s;
+  // Four points with one coordinate equal (a face parallel to a coordinate plane: a
+  // cap of a sphere or cylinder, a box) lie in that plane: 0 without the exact stage,
+  // which the filter leaves every such case to (its bound is not zero while the
+  // rounded determinant is).
+  for (int k = 0; k < 3; ++k)
+    if (a[k] == b[k] && a[k] == c[k] && a[k] == d[k]) return 0;
+  return orient3d_exact(a, b, c, d);
 }
 
 int orient2d_projected(Vec3 a, Vec3 b, Vec3 c, int drop_axis) {
