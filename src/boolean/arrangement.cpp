@@ -545,16 +545,21 @@ std::uint32_t Arrangement::crossing_point(std::uint32_t ci, std::uint32_t li, st
   if (through->kind != LineKind::kThrough) std::swap(through, trace);
   if (through->kind == LineKind::kThrough && trace->kind == LineKind::kTrace)
     return lpi_point(through->a, through->b, cluster_of[trace->a]);
-  // The traces of two triangles that share an edge pq (neighbours in a mesh, on two
-  // planes) cross where pq's line meets this plane: that edge's lpi point, which the
-  // clusters of the two triangles find on their common edge too. As a crossing it
-  // would be a second id for the point, told apart only by an exact comparison.
+  // The traces of two planes that share two input vertices p, q (neighbours in a mesh)
+  // cross where pq's line meets this plane: that edge's lpi point, which the clusters
+  // of the two triangles find on their common edge too. As a crossing it would be a
+  // second id for the point, told apart only by an exact comparison. A planar quad's
+  // four vertices all lie on its triangles' plane.
   if (through->kind == LineKind::kTrace && trace->kind == LineKind::kTrace) {
-    const Tri& x = tris[through->a];
-    const Tri& y = tris[trace->a];
-    std::uint32_t common[3], n = 0;
-    for (std::uint32_t v : x.v)
-      if (v == y.v[0] || v == y.v[1] || v == y.v[2]) common[n++] = v;
+    auto on_plane = [&](const Tri& t) {
+      const SoupFace& f = faces[t.input_face];
+      if (f.planar && f.quad[0] != SoupFace::kNoQuad) return std::span<const std::uint32_t>(f.quad);
+      return std::span<const std::uint32_t>(t.v);
+    };
+    const auto x = on_plane(tris[through->a]), y = on_plane(tris[trace->a]);
+    std::uint32_t common[2], n = 0;
+    for (std::uint32_t v : x)
+      if (n < 2 && std::find(y.begin(), y.end(), v) != y.end()) common[n++] = v;
     if (n == 2) return lpi_point(common[0], common[1], ci);
   }
   return new_point({PointKind::kCross, ci, std::min(li, m), std::max(li, m)}, &c);
