@@ -329,12 +329,14 @@ Result<BooleanResult> evaluate(std::span<const Model* const> operands, const Exp
   report.implicit_points = a.points.size();
 
   t = Clock::now();
+  report.rounding_self_intersections = kRoundingUnchecked;  // unless the repair vouches
   auto result = build_result(a, std::move(selection), expr, options, report);
   report.seconds.output = seconds_since(t);
   if (!result) return result.error();
 
   t = Clock::now();
-  report.rounding_self_intersections = rounding_crossings(result->model, result->rounded, options.threads);
+  if (report.rounding_self_intersections == kRoundingUnchecked)
+    report.rounding_self_intersections = rounding_crossings(result->model, result->rounded, options.threads);
   report.seconds.check = seconds_since(t);
   report.exact_fallbacks = exact_evaluations() - exact_before;
   result->report = report;

@@ -837,10 +837,13 @@ Result<BooleanResult> build_result(Arrangement& a, Selection selection, const Ex
   for (auto [point, i] : index) inexact[i] = !a.rounds_exactly(point);
   std::vector<std::uint32_t> point_of(in.positions.size());
   for (auto [point, i] : index) point_of[i] = point;
-  nudge_rounding(
+  // The repair's last check tiles each face as the exporters tile the face it becomes
+  // (tile_face), so a clean check there is the count on the built model.
+  const bool clean = nudge_rounding(
       in, inexact,
       [&](std::uint32_t i, int axis) { return a.coordinate_is(point_of[i], axis, in.positions[i][axis]); },
       threads);
+  report.rounding_self_intersections = clean ? 0 : kRoundingUnchecked;
   auto built = build_mesh(result.model, in);
   if (!built) return Error{ErrorCode::kUnsupported, "boolean: the result could not be built: " + built.error().message};
   if (closed) {

@@ -139,7 +139,7 @@ TriangleBoxes::TriangleBoxes(const std::vector<std::array<Vec3, 3>>& tris) {
   bvh_ = Bvh(boxes_);
 }
 
-void nudge_rounding(MeshInput& in, const std::vector<char>& inexact,
+bool nudge_rounding(MeshInput& in, const std::vector<char>& inexact,
                     const std::function<bool(std::uint32_t, int)>& exact, int threads) {
   constexpr int kRounds = 4;
   for (int round = 0; round < kRounds; ++round) {
@@ -186,7 +186,7 @@ void nudge_rounding(MeshInput& in, const std::vector<char>& inexact,
     for (auto& p : found) suspects.insert(suspects.end(), p.begin(), p.end());
     std::sort(suspects.begin(), suspects.end());
     suspects.erase(std::unique(suspects.begin(), suspects.end()), suspects.end());
-    if (suspects.empty()) return;
+    if (suspects.empty()) return true;
 
     std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> faces_at;  // suspect -> faces
     for (std::uint32_t f = 0; f < in.faces.size(); ++f)
@@ -246,8 +246,9 @@ void nudge_rounding(MeshInput& in, const std::vector<char>& inexact,
       in.positions[v] = best;
       changed |= !(best == start);
     }
-    if (!changed) return;
+    if (!changed) return false;
   }
+  return false;
 }
 
 }  // namespace cellforge::boolean

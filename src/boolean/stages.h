@@ -118,7 +118,14 @@ std::vector<std::array<std::uint32_t, 3>> tile_face(const MeshInput& in, const M
 // crossing triangles (inexact[i] for positions[i]) to neighbouring doubles that
 // remove crossings, keeping the coordinates that are exact (exact(i, axis): the
 // rounded coordinate is the exact one) (rounding.cpp).
-void nudge_rounding(MeshInput& in, const std::vector<char>& inexact,
+// Returns whether its last full check found no crossing left (false when it stopped
+// after moving vertices without checking again, or with crossings it could not remove).
+bool nudge_rounding(MeshInput& in, const std::vector<char>& inexact,
                     const std::function<bool(std::uint32_t, int)>& exact, int threads);
+
+// Report::rounding_self_intersections until the rounding check has counted them: set
+// by build_result when nudge_rounding could not vouch for the result (boolean.cpp then
+// checks the built model's own triangulation).
+inline constexpr std::size_t kRoundingUnchecked = static_cast<std::size_t>(-1);
 
 }  // namespace cellforge::boolean

@@ -60,9 +60,10 @@ bool triangles_meet(const Vec2 a[3], const Vec2 b[3]) {
   return point_in_triangle(a, b[0]) || point_in_triangle(b, a[0]);
 }
 
-bool segment_meets_triangle(Vec3 p, Vec3 q, const Vec3 t[3]) {
-  const int s1 = orient3d(t[0], t[1], t[2], p);
-  const int s2 = orient3d(t[0], t[1], t[2], q);
+namespace {
+
+// segment_meets_triangle with the sides of p and q of t's plane already known.
+bool segment_meets_triangle(Vec3 p, Vec3 q, const Vec3 t[3], int s1, int s2) {
   if (s1 == s2 && s1 != 0) return false;
   if (s1 == 0 && s2 == 0) {  // the segment lies in t's plane
     const Projection proj(projection_normal(t));
@@ -75,6 +76,12 @@ bool segment_meets_triangle(Vec3 p, Vec3 q, const Vec3 t[3]) {
   const int s[3] = {orient3d(p, q, t[0], t[1]), orient3d(p, q, t[1], t[2]),
                     orient3d(p, q, t[2], t[0])};
   return (s[0] >= 0 && s[1] >= 0 && s[2] >= 0) || (s[0] <= 0 && s[1] <= 0 && s[2] <= 0);
+}
+
+}  // namespace
+
+bool segment_meets_triangle(Vec3 p, Vec3 q, const Vec3 t[3]) {
+  return segment_meets_triangle(p, q, t, orient3d(t[0], t[1], t[2], p), orient3d(t[0], t[1], t[2], q));
 }
 
 bool triangles_meet(const Vec3 a[3], const Vec3 b[3]) {
@@ -91,9 +98,11 @@ bool triangles_meet(const Vec3 a[3], const Vec3 b[3]) {
     const Vec2 pb[3] = {proj(b[0]), proj(b[1]), proj(b[2])};
     return triangles_meet(pa, pb);
   }
+  // Each edge against the other triangle, with its ends' sides known from above.
   for (int i = 0; i < 3; ++i) {
-    if (segment_meets_triangle(a[i], a[(i + 1) % 3], b)) return true;
-    if (segment_meets_triangle(b[i], b[(i + 1) % 3], a)) return true;
+    const int j = (i + 1) % 3;
+    if (segment_meets_triangle(a[i], a[j], b, sa[i], sa[j])) return true;
+    if (segment_meets_triangle(b[i], b[j], a, sb[i], sb[j])) return true;
   }
   return false;
 }

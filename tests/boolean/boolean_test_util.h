@@ -13,6 +13,7 @@
 #include "cellforge/shape/primitives.h"
 #include "cellforge/shape/transform.h"
 #include "cellforge/geom/predicates.h"
+#include "cellforge/io/diagnose.h"
 #include "cellforge/io/triangulate.h"
 #include "cellforge/topo/validate.h"
 #include "support/fixtures.h"
@@ -48,6 +49,17 @@ inline BoolCase run_expr(const boolean::Expr& e, std::vector<const Model*> ops, 
     EXPECT_EQ(c.result.report.rounding_self_intersections, 0u);
   } else if (c.result.report.rounding_self_intersections != 0) {
     std::printf("rounding made %zu crossings\n", c.result.report.rounding_self_intersections);
+  }
+  // The report's count, which the rounding repair's own last check supplies when it
+  // found nothing, against an independent check of the built model: io's exact
+  // self-intersection test of every pair of faces that share no vertex.
+  if (c.result.report.rounding_self_intersections == 0 && m.num_faces() > 0) {
+    io::DiagnoseOptions only_crossings;
+    only_crossings.geometry = false;
+    const io::Diagnosis d = io::diagnose(m, only_crossings);
+    EXPECT_TRUE(d.self_intersections.empty())
+        << d.self_intersections.size() << " face pairs cross, first f" << d.self_intersections[0].first.value
+        << "/f" << d.self_intersections[0].second.value;
   }
   c.volume = m.num_faces() ? shape::mass_properties(m).volume : 0;
   c.vertices = m.num_vertices();

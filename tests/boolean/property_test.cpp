@@ -16,6 +16,7 @@
 #include <random>
 
 #include "boolean/boolean_test_util.h"
+#include "cellforge/io/diagnose.h"
 
 namespace cellforge::testing {
 namespace {
@@ -96,6 +97,14 @@ bool run_case(std::uint64_t seed, std::string& why, int& rounded) {
       ++rounded;
       why = "rounding made " + std::to_string(r->value().report.rounding_self_intersections) + " crossings";
       return false;  // the rounded result must be free of crossings too
+    }
+    // The count against an independent exact check of the built model (io).
+    io::DiagnoseOptions only_crossings;
+    only_crossings.geometry = false;
+    if (r->value().model.num_faces() > 0 && !io::diagnose(r->value().model, only_crossings).self_intersections.empty()) {
+      ++rounded;
+      why = "faces cross in the built model although the report counts none";
+      return false;
     }
   }
   const double va = volume_of(ops[0]), vb = volume_of(ops[1]);
