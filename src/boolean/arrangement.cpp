@@ -621,26 +621,10 @@ bool coplanar_overlap(const Arrangement& A, const Tri& a, const Tri& b, int k) {
 // corners (the exact stage would run for every neighbour in a mesh).
 int Arrangement::side_of(const Tri& x, std::uint32_t v) const {
   if (v == x.v[0] || v == x.v[1] || v == x.v[2]) return 0;
-  // The fourth vertex of x's quad: the quad's fold sign, times the parity of the
-  // permutation that takes the quad's loop to (x, v) (orient3d alternates in its four
-  // arguments). Near-planar quads would each go to the exact stage.
-  const SoupFace& f = faces[x.input_face];
-  if (f.quad[0] != SoupFace::kNoQuad) {
-    const std::uint32_t order[4] = {x.v[0], x.v[1], x.v[2], v};
-    int at[4], found = 0;
-    for (int i = 0; i < 4; ++i)
-      for (int j = 0; j < 4; ++j)
-        if (order[i] == f.quad[j]) {
-          at[i] = j;
-          ++found;
-        }
-    if (found == 4) {
-      int inversions = 0;
-      for (int i = 0; i < 4; ++i)
-        for (int j = i + 1; j < 4; ++j) inversions += at[i] > at[j];
-      return inversions % 2 == 0 ? f.fold : -f.fold;
-    }
-  }
+  // The fourth vertex of x's quad: known from the quad's fold (near-planar quads
+  // would each go to the exact stage).
+  const std::size_t t = static_cast<std::size_t>(&x - tris.data());
+  if (v == quad_other[t]) return quad_side[t];
   return orient3d(pos[x.v[0]], pos[x.v[1]], pos[x.v[2]], pos[v]);
 }
 
@@ -764,6 +748,34 @@ void Arrangement::test_pair(std::uint32_t i, std::uint32_t j, PairEvents& ev) co
 }
 
 void Arrangement::intersect(int threads) {
+  // Each quad tile's test of the quad's fourth vertex: the quad's fold sign times the
+  // parity of the permutation taking the quad's loop to (tile, vertex), since orient3d
+  // alternates in its four arguments.
+  quad_other.assign(tris.size(), kInvalidIndex);
+  quad_side.assign(tris.size(), 0);
+  for (const SoupFace& f : faces) {
+    if (f.quad[0] == SoupFace::kNoQuad) continue;
+    for (std::uint32_t t : f.tris) {
+      const Tri& x = tris[t];
+      std::uint32_t w = kInvalidIndex;
+      for (std::uint32_t q : f.quad)
+        if (q != x.v[0] && q != x.v[1] && q != x.v[2]) w = q;
+      const std::uint32_t order[4] = {x.v[0], x.v[1], x.v[2], w};
+      int at[4], found = 0;
+      for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 4; ++j)
+          if (order[i] == f.quad[j]) {
+            at[i] = j;
+            ++found;
+          }
+      if (found != 4) continue;  // a tile not on three of the quad's corners
+      int inversions = 0;
+      for (int i = 0; i < 4; ++i)
+        for (int j = i + 1; j < 4; ++j) inversions += at[i] > at[j];
+      quad_other[t] = w;
+      quad_side[t] = static_cast<std::int8_t>(inversions % 2 == 0 ? f.fold : -f.fold);
+    }
+  }
   std::vector<std::array<std::uint32_t, 3>> crossing;  // i, j, which of them is cut
   std::vector<std::array<std::uint32_t, 2>> touching;  // triangle, vertex on its plane
   UnionFind coplanar(tris.size());
@@ -1052,6 +1064,8 @@ void Arrangement::release_pieces(bool keep_tree) {
     std::vector<std::uint32_t>().swap(f.tris);
   }
   lpi_ids_ = {};
+  std::vector<std::uint32_t>().swap(quad_other);
+  std::vector<std::int8_t>().swap(quad_side);
   if (keep_tree) return;
   std::vector<Box>().swap(tri_boxes);
   bvh = Bvh();

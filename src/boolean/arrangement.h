@@ -157,6 +157,10 @@ class Arrangement {
   // ---- data
   std::vector<Vec3> pos;
   std::vector<Tri> tris;
+  // By triangle, for the tiles of a quad: the quad's fourth vertex and its side of the
+  // tile's plane (side_of); kInvalidIndex elsewhere. Set by intersect().
+  std::vector<std::uint32_t> quad_other;
+  std::vector<std::int8_t> quad_side;
   std::vector<SoupFace> faces;
   std::vector<WireSeg> wires;        // the operands' wire edges and isolated points
   std::vector<WireSeg> wire_pieces;  // after split_wires: points (p == q) stay
