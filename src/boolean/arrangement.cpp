@@ -242,6 +242,15 @@ int Arrangement::w2_sign(const Cluster& c, std::uint32_t p) const {
 }
 
 int Arrangement::side(const Cluster& c, const Line& l, std::uint32_t p) const {
+  // An input vertex on the plane a trace traces: a corner of its triangle, or of the
+  // planar quad the triangle tiles.
+  auto on_traced_plane = [&](std::uint32_t v) {
+    const Tri& t = tris[l.a];
+    if (v == t.v[0] || v == t.v[1] || v == t.v[2]) return true;
+    const SoupFace& f = faces[t.input_face];
+    return f.planar && f.quad[0] != SoupFace::kNoQuad &&
+           (v == f.quad[0] || v == f.quad[1] || v == f.quad[2] || v == f.quad[3]);
+  };
   // Points on the line by construction (every point of a cluster lies in its plane):
   if (p >= pos.size()) {
     const PointDef& d = points[p - pos.size()];
@@ -259,12 +268,13 @@ int Arrangement::side(const Cluster& c, const Line& l, std::uint32_t p) const {
       // where this edge's segment meets a plane, or a segment meets this trace's plane;
       if (l.kind == LineKind::kThrough && ordered(l.a, l.b) == ordered(d.a, d.b)) return 0;
       if (l.kind == LineKind::kTrace && plane_of[cluster_of[l.a]] == plane_of[cluster_of[d.c]]) return 0;
+      // or a segment lying in this trace's plane meets this cluster's plane;
+      if (l.kind == LineKind::kTrace && on_traced_plane(d.a) && on_traced_plane(d.b)) return 0;
     }
   } else if (l.kind == LineKind::kThrough && (p == l.a || p == l.b)) {
     return 0;  // an end of this edge;
-  } else if (l.kind == LineKind::kTrace) {
-    const Tri& t = tris[l.a];  // a corner of the triangle whose plane this traces.
-    if (p == t.v[0] || p == t.v[1] || p == t.v[2]) return 0;
+  } else if (l.kind == LineKind::kTrace && on_traced_plane(p)) {
+    return 0;  // a corner of the triangle (or planar quad) whose plane this traces.
   }
   const int s = decide([&]<class T>() {
     const auto L = coeffs<T>(c, l);
