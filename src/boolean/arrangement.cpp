@@ -338,6 +338,7 @@ bool Arrangement::known_coordinate(std::uint32_t p, int axis, double& x) const {
           return true;
         }
         if (l.kind == LineKind::kThrough && constant(l.a, l.b)) return true;
+        if (l.kind == LineKind::kTrace && on_plane(tris[l.a])) return true;  // of x = c
       }
       return false;
     }

@@ -119,6 +119,7 @@ class RayCaster {
     i_ = (k_ + 1) % 3;
     j_ = (k_ + 2) % 3;
     exact_x_.reset();
+    dd_x_.reset();
     const H3<Fp> h = start.template get<Fp>();
     double e[3], x[3];
     // Doubles are good enough when W is known to a relative 2^-20; else exactly.
@@ -188,6 +189,10 @@ class RayCaster {
         if (sp == 0) return sq;
       }
     }
+    // The homogeneous coordinates in double-double (exact for the small integers of
+    // grid-aligned parts, whose points on a plane defeat the rounded coordinates).
+    if (!dd_x_) dd_x_ = start.template get<Dd>();
+    if (const int d = sign_of(f(*dd_x_)); d != kUncertain) return ws * d;
     ++exact_evaluations();
     if (!exact_x_) exact_x_ = start.template get<Dyadic>();
     return ws * sign_of(f(*exact_x_));
@@ -340,6 +345,7 @@ class RayCaster {
   mutable int k_ = 0, i_ = 1, j_ = 2;  // the ray's axis and the two across it
   mutable int dir_ = 1;                // a free start's shift along the axis
   mutable Fp x_[3];  // the point of the current ray, rounded, with error bounds
+  mutable std::optional<H3<Dd>> dd_x_;         // in double-double, once needed
   mutable std::optional<H3<Dyadic>> exact_x_;  // and exactly, once needed
 };
 
