@@ -142,18 +142,22 @@ TriangleBoxes::TriangleBoxes(const std::vector<std::array<Vec3, 3>>& tris) {
 bool nudge_rounding(MeshInput& in, const std::vector<char>& inexact,
                     const std::function<bool(std::uint32_t, int)>& exact, int threads) {
   constexpr int kRounds = 4;
+  // Every face's triangles; after the first round only the faces around a vertex that
+  // moved are tiled again (a tiling depends on its face's positions alone).
+  std::vector<std::vector<Tri3>> tiles(in.faces.size());
+  std::vector<std::uint32_t> retile(in.faces.size());
+  std::iota(retile.begin(), retile.end(), 0u);
   for (int round = 0; round < kRounds; ++round) {
-    // Every face's triangles, and the crossing pairs among them.
-    std::vector<std::vector<Tri3>> tiles(in.faces.size());
     {
       auto parts = parallel_ranges<std::vector<std::vector<Tri3>>>(
-          in.faces.size(), threads, [&](std::size_t lo, std::size_t hi, auto& out) {
-            for (std::size_t f = lo; f < hi; ++f) out.push_back(tile_face(in, in.faces[f]));
+          retile.size(), threads, [&](std::size_t lo, std::size_t hi, auto& out) {
+            for (std::size_t k = lo; k < hi; ++k) out.push_back(tile_face(in, in.faces[retile[k]]));
           });
-      std::size_t f = 0;
+      std::size_t k = 0;
       for (auto& p : parts)
-        for (auto& t : p) tiles[f++] = std::move(t);
+        for (auto& t : p) tiles[retile[k++]] = std::move(t);
     }
+    // The crossing pairs among them.
     std::vector<Tri3> tris;
     std::vector<std::uint32_t> face;
     for (std::uint32_t f = 0; f < tiles.size(); ++f)
@@ -197,6 +201,7 @@ bool nudge_rounding(MeshInput& in, const std::vector<char>& inexact,
             if (list.empty() || list.back() != f) list.push_back(f);
           }
     bool changed = false;
+    retile.clear();
     for (std::uint32_t v : suspects) {
       std::vector<std::uint32_t>& fs = faces_at[v];
       std::sort(fs.begin(), fs.end());
@@ -244,9 +249,14 @@ bool nudge_rounding(MeshInput& in, const std::vector<char>& inexact,
             }
           }
       in.positions[v] = best;
-      changed |= !(best == start);
+      if (!(best == start)) {
+        changed = true;
+        retile.insert(retile.end(), fs.begin(), fs.end());
+      }
     }
     if (!changed) return false;
+    std::sort(retile.begin(), retile.end());
+    retile.erase(std::unique(retile.begin(), retile.end()), retile.end());
   }
   return false;
 }
