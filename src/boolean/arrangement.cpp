@@ -241,15 +241,17 @@ int Arrangement::w2_sign(const Cluster& c, std::uint32_t p) const {
   return decide([&]<class T>() { return point2<T>(c, p).w; });
 }
 
+std::span<const std::uint32_t> Arrangement::plane_vertices(const Tri& t) const {
+  const SoupFace& f = faces[t.input_face];
+  if (f.planar && f.quad[0] != SoupFace::kNoQuad) return f.quad;
+  return t.v;
+}
+
 int Arrangement::side(const Cluster& c, const Line& l, std::uint32_t p) const {
-  // An input vertex on the plane a trace traces: a corner of its triangle, or of the
-  // planar quad the triangle tiles.
+  // An input vertex on the plane a trace traces.
   auto on_traced_plane = [&](std::uint32_t v) {
-    const Tri& t = tris[l.a];
-    if (v == t.v[0] || v == t.v[1] || v == t.v[2]) return true;
-    const SoupFace& f = faces[t.input_face];
-    return f.planar && f.quad[0] != SoupFace::kNoQuad &&
-           (v == f.quad[0] || v == f.quad[1] || v == f.quad[2] || v == f.quad[3]);
+    const auto on = plane_vertices(tris[l.a]);
+    return std::find(on.begin(), on.end(), v) != on.end();
   };
   // Points on the line by construction (every point of a cluster lies in its plane):
   if (p >= pos.size()) {
@@ -313,7 +315,7 @@ bool Arrangement::known_coordinate(std::uint32_t p, int axis, double& x) const {
     x = pos[s][axis];
     return true;
   };
-  auto on_plane = [&](const Tri& t) {
+  auto perpendicular = [&](const Tri& t) {  // t's plane is `axis` = x
     return constant(t.v[0], t.v[1]) && constant(t.v[0], t.v[2]);
   };
   if (p < pos.size()) {
@@ -326,10 +328,10 @@ bool Arrangement::known_coordinate(std::uint32_t p, int axis, double& x) const {
       x = pos[d.a][axis];
       return true;
     case PointKind::kLpi:
-      return constant(d.a, d.b) || on_plane(tris[d.c]);
+      return constant(d.a, d.b) || perpendicular(tris[d.c]);
     case PointKind::kCross: {
       const Cluster& c = clusters[d.a];
-      if (on_plane(tris[c.ref])) return true;
+      if (perpendicular(tris[c.ref])) return true;
       for (std::uint32_t li : {d.b, d.c}) {
         const Line& l = c.lines[li];
         if ((l.kind == LineKind::kAxisU && axis == (c.k + 1) % 3) ||
@@ -338,7 +340,7 @@ bool Arrangement::known_coordinate(std::uint32_t p, int axis, double& x) const {
           return true;
         }
         if (l.kind == LineKind::kThrough && constant(l.a, l.b)) return true;
-        if (l.kind == LineKind::kTrace && on_plane(tris[l.a])) return true;  // of x = c
+        if (l.kind == LineKind::kTrace && perpendicular(tris[l.a])) return true;
       }
       return false;
     }
@@ -562,12 +564,7 @@ std::uint32_t Arrangement::crossing_point(std::uint32_t ci, std::uint32_t li, st
   // second id for the point, told apart only by an exact comparison. A planar quad's
   // four vertices all lie on its triangles' plane.
   if (through->kind == LineKind::kTrace && trace->kind == LineKind::kTrace) {
-    auto on_plane = [&](const Tri& t) {
-      const SoupFace& f = faces[t.input_face];
-      if (f.planar && f.quad[0] != SoupFace::kNoQuad) return std::span<const std::uint32_t>(f.quad);
-      return std::span<const std::uint32_t>(t.v);
-    };
-    const auto x = on_plane(tris[through->a]), y = on_plane(tris[trace->a]);
+    const auto x = plane_vertices(tris[through->a]), y = plane_vertices(tris[trace->a]);
     std::uint32_t common[2], n = 0;
     for (std::uint32_t v : x)
       if (n < 2 && std::find(y.begin(), y.end(), v) != y.end()) common[n++] = v;

@@ -24,6 +24,7 @@
 #include <cstdint>
 #include <memory>
 #include <shared_mutex>
+#include <span>
 #include <unordered_map>
 #include <vector>
 
@@ -233,6 +234,9 @@ class Arrangement {
   bool known_coordinate(std::uint32_t p, int axis, double& x) const;
   bool equal3(std::uint32_t p, std::uint32_t q) const;
   bool collinear3(std::uint32_t a, std::uint32_t b, std::uint32_t c) const;
+  // The input vertices known to lie on triangle t's plane without arithmetic: the four
+  // corners of the planar quad it tiles, else its own three.
+  std::span<const std::uint32_t> plane_vertices(const Tri& t) const;
   // Side of point p of the plane of input triangle t: sign n_t . (p - t0).
   int plane_side(std::uint32_t t, std::uint32_t p) const;
 

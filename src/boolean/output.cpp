@@ -843,7 +843,7 @@ Result<BooleanResult> build_result(Arrangement& a, Selection selection, const Ex
       in, inexact,
       [&](std::uint32_t i, int axis) { return a.coordinate_is(point_of[i], axis, in.positions[i][axis]); },
       threads);
-  report.rounding_self_intersections = clean ? 0 : kRoundingUnchecked;
+  if (clean) report.rounding_self_intersections = 0;  // else kRoundingUnchecked (evaluate)
   auto built = build_mesh(result.model, in);
   if (!built) return Error{ErrorCode::kUnsupported, "boolean: the result could not be built: " + built.error().message};
   if (closed) {

@@ -123,9 +123,9 @@ std::vector<std::array<std::uint32_t, 3>> tile_face(const MeshInput& in, const M
 bool nudge_rounding(MeshInput& in, const std::vector<char>& inexact,
                     const std::function<bool(std::uint32_t, int)>& exact, int threads);
 
-// Report::rounding_self_intersections until the rounding check has counted them: set
-// by build_result when nudge_rounding could not vouch for the result (boolean.cpp then
-// checks the built model's own triangulation).
+// Report::rounding_self_intersections until something has counted them: evaluate sets
+// it before build_result, which sets 0 when nudge_rounding's last check was clean;
+// otherwise evaluate checks the built model's own triangulation.
 inline constexpr std::size_t kRoundingUnchecked = static_cast<std::size_t>(-1);
 
 }  // namespace cellforge::boolean
