@@ -26,36 +26,6 @@ namespace cellforge::boolean {
 
 namespace {
 
-template <class T>
-using V3 = std::array<T, 3>;
-
-template <class T>
-V3<T> vec(Vec3 p) {
-  return {T(p.x), T(p.y), T(p.z)};
-}
-template <class T>
-V3<T> sub(const V3<T>& a, const V3<T>& b) {
-  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
-}
-template <class T>
-V3<T> cross(const V3<T>& a, const V3<T>& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-template <class T>
-T dot(const V3<T>& a, const V3<T>& b) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
-struct PlaneT {
-  Vec3 a, b, c;
-};
-
-template <class T>
-V3<T> normal_of(const PlaneT& p) {
-  return cross(sub(vec<T>(p.b), vec<T>(p.a)), sub(vec<T>(p.c), vec<T>(p.a)));
-}
-
-
 constexpr std::uint64_t kEdgeTag = 1ull << 63;
 
 std::uint64_t ordered(std::uint32_t a, std::uint32_t b) {
@@ -76,9 +46,8 @@ namespace {
 template <class T>
 H3<T> lift(const Arrangement& A, const Cluster& c, const H2<T>& h) {
   const Tri& r = A.tris[c.ref];
-  const PlaneT pl{A.pos[r.v[0]], A.pos[r.v[1]], A.pos[r.v[2]]};
-  const V3<T> n = normal_of<T>(pl);
-  const T d = dot(n, vec<T>(pl.a));
+  const V3<T> n = plane_normal<T>(A.pos[r.v[0]], A.pos[r.v[1]], A.pos[r.v[2]]);
+  const T d = dot(n, vec<T>(A.pos[r.v[0]]));
   const int k = c.k, i = (k + 1) % 3, j = (k + 2) % 3;
   H3<T> out;
   out.c[i] = h.u * n[k];
@@ -98,11 +67,10 @@ std::array<T, 3> line_coeffs(const Arrangement& A, const Cluster& c, const Line&
     }
     case LineKind::kTrace: {
       const Tri& r = A.tris[c.ref];
-      const PlaneT pc{A.pos[r.v[0]], A.pos[r.v[1]], A.pos[r.v[2]]};
       const Tri& o = A.tris[l.a];
-      const PlaneT po{A.pos[o.v[0]], A.pos[o.v[1]], A.pos[o.v[2]]};
-      const V3<T> n = normal_of<T>(pc), m = normal_of<T>(po);
-      const T d = dot(n, vec<T>(pc.a)), e = dot(m, vec<T>(po.a));
+      const V3<T> n = plane_normal<T>(A.pos[r.v[0]], A.pos[r.v[1]], A.pos[r.v[2]]);
+      const V3<T> m = plane_normal<T>(A.pos[o.v[0]], A.pos[o.v[1]], A.pos[o.v[2]]);
+      const T d = dot(n, vec<T>(A.pos[r.v[0]])), e = dot(m, vec<T>(A.pos[o.v[0]]));
       return {m[i] * n[k] - m[k] * n[i], m[j] * n[k] - m[k] * n[j], m[k] * d - e * n[k]};
     }
     case LineKind::kAxisU:
@@ -121,21 +89,11 @@ H2<T> cross2(const std::array<T, 3>& a, const std::array<T, 3>& b) {
 template <class T>
 H3<T> compute3(const Arrangement& A, const PointDef& d) {
   switch (d.kind) {
-    case PointKind::kVertex: {
-      const Vec3 p = A.pos[d.a];
-      return {{T(p.x), T(p.y), T(p.z), T(1.0)}};
-    }
+    case PointKind::kVertex:
+      return explicit_point<T>(A.pos[d.a]);
     case PointKind::kLpi: {
       const Tri& t = A.tris[d.c];
-      const PlaneT pl{A.pos[t.v[0]], A.pos[t.v[1]], A.pos[t.v[2]]};
-      const V3<T> n = normal_of<T>(pl), a = vec<T>(pl.a);
-      const V3<T> p = vec<T>(A.pos[d.a]), q = vec<T>(A.pos[d.b]);
-      const T dp = dot(n, sub(p, a)), dq = dot(n, sub(q, a));
-      const T w = dp - dq;
-      H3<T> out;
-      for (int i = 0; i < 3; ++i) out.c[i] = p[i] * w + (q[i] - p[i]) * dp;
-      out.c[3] = w;
-      return out;
+      return lpi<T>(A.pos[d.a], A.pos[d.b], A.pos[t.v[0]], A.pos[t.v[1]], A.pos[t.v[2]]);
     }
     case PointKind::kCross: {
       const Cluster& c = A.clusters[d.a];
@@ -174,10 +132,7 @@ std::array<T, 3> Arrangement::coeffs(const Cluster& c, const Line& l) const {
 
 template <class T>
 H3<T> Arrangement::point3(std::uint32_t p) const {
-  if (p < pos.size()) {
-    const Vec3 v = pos[p];
-    return {{T(v.x), T(v.y), T(v.z), T(1.0)}};
-  }
+  if (p < pos.size()) return explicit_point<T>(pos[p]);
   if constexpr (std::is_same_v<T, Fp>) {
     return h3f[p - pos.size()];
   } else if constexpr (std::is_same_v<T, Dd>) {
@@ -197,7 +152,6 @@ H3<T> Arrangement::point3(std::uint32_t p) const {
 
 template <class T>
 H2<T> Arrangement::point2(const Cluster& c, std::uint32_t p) const {
-  const int k = c.k, i = (k + 1) % 3, j = (k + 2) % 3;
   if (p >= pos.size()) {
     const PointDef& d = points[p - pos.size()];
     if (d.kind == PointKind::kCross && &clusters[d.a] == &c) {
@@ -208,8 +162,7 @@ H2<T> Arrangement::point2(const Cluster& c, std::uint32_t p) const {
       }
     }
   }
-  const H3<T> h = point3<T>(p);
-  return {h.c[i], h.c[j], h.c[3]};
+  return projected(point3<T>(p), c.k);
 }
 
 template <class T>
@@ -302,9 +255,7 @@ int Arrangement::along(const Cluster& c, const Line& l, std::uint32_t p, std::ui
 int Arrangement::orient2(const Cluster& c, std::uint32_t p, std::uint32_t q,
                          std::uint32_t r) const {
   const int s = decide([&]<class T>() {
-    const H2<T> a = point2<T>(c, p), b = point2<T>(c, q), d = point2<T>(c, r);
-    return a.u * (b.v * d.w - b.w * d.v) - a.v * (b.u * d.w - b.w * d.u) +
-           a.w * (b.u * d.v - b.v * d.u);
+    return orient2_poly(point2<T>(c, p), point2<T>(c, q), point2<T>(c, r));
   });
   return s * w2_sign(c, p) * w2_sign(c, q) * w2_sign(c, r);
 }
@@ -354,10 +305,7 @@ int Arrangement::compare3(std::uint32_t p, std::uint32_t q, int axis) const {
   if (p == q) return 0;
   if (double a, b; known_coordinate(p, axis, a) && known_coordinate(q, axis, b))
     return a < b ? -1 : (a > b ? 1 : 0);
-  const int s = decide([&]<class T>() {
-    const H3<T> a = point3<T>(p), b = point3<T>(q);
-    return a.c[axis] * b.c[3] - b.c[axis] * a.c[3];
-  });
+  const int s = decide([&]<class T>() { return compare_poly(point3<T>(p), point3<T>(q), axis); });
   return s * w3_sign(p) * w3_sign(q);
 }
 
@@ -385,11 +333,7 @@ int Arrangement::plane_side(std::uint32_t t, std::uint32_t p) const {
   const Tri& tri = tris[t];
   if (p < pos.size()) return orient3d(pos[tri.v[0]], pos[tri.v[1]], pos[tri.v[2]], pos[p]);
   const int s = decide([&]<class T>() {
-    const PlaneT pl{pos[tri.v[0]], pos[tri.v[1]], pos[tri.v[2]]};
-    const V3<T> n = normal_of<T>(pl), a = vec<T>(pl.a);
-    const H3<T> h = point3<T>(p);
-    return n[0] * (h.c[0] - a[0] * h.c[3]) + n[1] * (h.c[1] - a[1] * h.c[3]) +
-           n[2] * (h.c[2] - a[2] * h.c[3]);
+    return plane_side_poly<T>(pos[tri.v[0]], pos[tri.v[1]], pos[tri.v[2]], point3<T>(p));
   });
   return s * w3_sign(p);
 }

@@ -10,10 +10,10 @@
 // A u + B v + C = 0: through two input vertices (an edge), the trace of another
 // triangle's plane, or an axis-parallel side of the cluster's bounding box.
 //
-// Points are homogeneous, (X, Y, Z, W) in 3D and (U, V, W) in a cluster:
-//   vertex  an input vertex                                       (x, y, z, 1)
-//   lpi     segment pq meets the plane of a triangle:  with dp = n.(p - a),
-//           dq = n.(q - a):  P = p (dp - dq) + (q - p) dp,  W = dp - dq
+// Points are homogeneous, (X, Y, Z, W) in 3D and (U, V, W) in a cluster
+// (geom/implicit.h):
+//   vertex  an input vertex: an explicit point                    (x, y, z, 1)
+//   lpi     segment pq meets the plane of a triangle (implicit.h's lpi)
 //   cross   two lines of a cluster meet: (U, V, W) = (A1,B1,C1) x (A2,B2,C2),
 //           lifted onto the cluster's plane n.P = n.a by P_k = (n.a W - n_u U - n_v V)/n_k
 // Every predicate is a sign of a polynomial in these, evaluated on Fp and, only when
@@ -29,20 +29,11 @@
 #include <vector>
 
 #include "cellforge/geom/bvh.h"
-#include "boolean/filtered.h"
+#include "cellforge/geom/implicit.h"
 #include "cellforge/geom/vec.h"
 #include "cellforge/ids.h"
 
 namespace cellforge::boolean {
-
-template <class T>
-struct H3 {
-  T c[4];  // X, Y, Z, W
-};
-template <class T>
-struct H2 {
-  T u, v, w;
-};
 
 struct Tri {
   std::array<std::uint32_t, 3> v;  // input vertices, counterclockwise seen from outside

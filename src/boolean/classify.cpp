@@ -31,14 +31,8 @@ namespace cellforge::boolean {
 namespace {
 
 template <class T>
-using V3 = std::array<T, 3>;
-
-template <class T>
 V3<T> normal_t(const Arrangement& a, const Tri& t) {
-  const Vec3 p = a.pos[t.v[0]], q = a.pos[t.v[1]], r = a.pos[t.v[2]];
-  const V3<T> u{T(q.x) - T(p.x), T(q.y) - T(p.y), T(q.z) - T(p.z)};
-  const V3<T> v{T(r.x) - T(p.x), T(r.y) - T(p.y), T(r.z) - T(p.z)};
-  return {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+  return plane_normal<T>(a.pos[t.v[0]], a.pos[t.v[1]], a.pos[t.v[2]]);
 }
 
 int sgn(double x) { return x > 0 ? 1 : (x < 0 ? -1 : 0); }
@@ -182,7 +176,7 @@ class RayCaster {
       if (start.p < a_.pos.size() && start.q < a_.pos.size()) {
         auto at = [&](std::uint32_t v) {
           const Vec3 x = a_.pos[v];
-          return decide([&]<class T>() { return f(H3<T>{{T(x.x), T(x.y), T(x.z), T(1.0)}}); });
+          return decide([&]<class T>() { return f(explicit_point<T>(x)); });
         };
         const int sp = at(start.p), sq = start.q == start.p ? sp : at(start.q);
         if (sp == sq || sq == 0) return sp;

@@ -14,7 +14,7 @@
 #include <thread>
 #include <vector>
 
-#include "boolean/filtered.h"
+#include "cellforge/geom/filtered.h"
 
 namespace cellforge::boolean {
 

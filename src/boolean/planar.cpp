@@ -49,8 +49,8 @@
 #include <string>
 #include <unordered_map>
 
-#include "boolean/filtered.h"
 #include "cellforge/geom/bvh.h"
+#include "cellforge/geom/implicit.h"
 #include "cellforge/geom/intersect.h"
 #include "cellforge/geom/polygon.h"
 #include "cellforge/geom/predicates.h"
@@ -77,11 +77,6 @@ struct Pt {
   Vec2 p;                          // explicit: the position
   std::uint32_t s = kNone, u = 0;  // crossing: the two segments (s == kNone: explicit)
   int wsign = 1;                   // sign of W
-};
-
-template <class T>
-struct Hom {
-  T x, y, w;
 };
 
 using Winding = std::vector<std::pair<std::uint32_t, int>>;  // (operand, number), sorted
@@ -220,16 +215,11 @@ class Planar {
   // ------------------------------------------------------------------ exact helpers
 
   template <class T>
-  Hom<T> hom(std::uint32_t id) const {
+  H2<T> hom(std::uint32_t id) const {
     const Pt& q = pts_[id];
     if (q.s == kNone) return {T(q.p.x), T(q.p.y), T(1.0)};
     const Seg &s = segs_[q.s], &u = segs_[q.u];
-    const T ax(s.a.x), ay(s.a.y);
-    const T dx = T(s.b.x) - ax, dy = T(s.b.y) - ay;
-    const T ex = T(u.b.x) - T(u.a.x), ey = T(u.b.y) - T(u.a.y);
-    const T d = dx * ey - dy * ex;
-    const T n = (T(u.a.x) - ax) * ey - (T(u.a.y) - ay) * ex;
-    return {ax * d + dx * n, ay * d + dy * n, d};
+    return lli<T>(s.a, s.b, u.a, u.b);
   }
 
   // sign(coordinate axis of p - that of q).
@@ -241,8 +231,8 @@ class Planar {
       return (x > y) - (x < y);
     }
     return a.wsign * b.wsign * decide([&]<class T>() {
-             const Hom<T> hp = hom<T>(p), hq = hom<T>(q);
-             return axis == 0 ? hp.x * hq.w - hq.x * hp.w : hp.y * hq.w - hq.y * hp.w;
+             const H2<T> hp = hom<T>(p), hq = hom<T>(q);
+             return axis == 0 ? hp.u * hq.w - hq.u * hp.w : hp.v * hq.w - hq.v * hp.w;
            });
   }
 
@@ -258,9 +248,9 @@ class Planar {
       if (t == w || (orient2d(l.a, l.b, segs_[t].a) == 0 && orient2d(l.a, l.b, segs_[t].b) == 0))
         return 0;
     return q.wsign * decide([&]<class T>() {
-             const Hom<T> h = hom<T>(p);
-             return (T(l.b.x) - T(l.a.x)) * (h.y - T(l.a.y) * h.w) -
-                    (T(l.b.y) - T(l.a.y)) * (h.x - T(l.a.x) * h.w);
+             const H2<T> h = hom<T>(p);
+             return (T(l.b.x) - T(l.a.x)) * (h.v - T(l.a.y) * h.w) -
+                    (T(l.b.y) - T(l.a.y)) * (h.u - T(l.a.x) * h.w);
            });
   }
 
@@ -298,8 +288,8 @@ class Planar {
     for (std::uint32_t t : {a.s, a.u})  // on a horizontal segment
       if (segs_[t].a.y == segs_[t].b.y) return sign_diff(segs_[t].a.y, y);
     return a.wsign * decide([&]<class T>() {
-             const Hom<T> h = hom<T>(p);
-             return h.y - T(y) * h.w;
+             const H2<T> h = hom<T>(p);
+             return h.v - T(y) * h.w;
            });
   }
 
@@ -438,8 +428,8 @@ class Planar {
   Key key(std::uint32_t p, int axis, double forward) const {
     const Pt& q = pts_[p];
     if (q.s == kNone) return {(axis == 0 ? q.p.x : q.p.y) * forward, 0, p};
-    const Hom<Fp> h = hom<Fp>(p);
-    const Fp& c = axis == 0 ? h.x : h.y;
+    const H2<Fp> h = hom<Fp>(p);
+    const Fp& c = axis == 0 ? h.u : h.v;
     const double w = std::fabs(h.w.v) - h.w.e;
     if (!(w > 0)) return {0, INFINITY, p};
     const double v = c.v / h.w.v;
@@ -674,16 +664,16 @@ class Planar {
     const Pt& q = pts_[id];
     moved = false;
     if (q.s == kNone) return q.p;
-    const Hom<Dd> h = hom<Dd>(id);
-    double x = (h.x.hi + h.x.lo) / (h.w.hi + h.w.lo), y = (h.y.hi + h.y.lo) / (h.w.hi + h.w.lo);
+    const H2<Dd> h = hom<Dd>(id);
+    double x = (h.u.hi + h.u.lo) / (h.w.hi + h.w.lo), y = (h.v.hi + h.v.lo) / (h.w.hi + h.w.lo);
     const double mw = magnitude(h.w);
     constexpr double kClose = 0x1p-60;  // Dd carried the value to well past a double
-    if (!(h.x.e <= kClose * magnitude(h.x) && h.y.e <= kClose * magnitude(h.y) &&
+    if (!(h.u.e <= kClose * magnitude(h.u) && h.v.e <= kClose * magnitude(h.v) &&
           h.w.e <= kClose * mw) ||
         !std::isfinite(x) || !std::isfinite(y)) {
-      const Hom<Dyadic> e = hom<Dyadic>(id);
-      x = e.x.to_double() / e.w.to_double();
-      y = e.y.to_double() / e.w.to_double();
+      const H2<Dyadic> e = hom<Dyadic>(id);
+      x = e.u.to_double() / e.w.to_double();
+      y = e.v.to_double() / e.w.to_double();
     }
     // On a vertical (horizontal) segment, x (y) is that segment's, exactly.
     bool x_exact = false, y_exact = false;
@@ -699,12 +689,12 @@ class Planar {
       }
     }
     moved = (!x_exact && decide([&]<class T>() {
-              const Hom<T> g = hom<T>(id);
-              return g.x - T(x) * g.w;
+              const H2<T> g = hom<T>(id);
+              return g.u - T(x) * g.w;
             }) != 0) ||
             (!y_exact && decide([&]<class T>() {
-              const Hom<T> g = hom<T>(id);
-              return g.y - T(y) * g.w;
+              const H2<T> g = hom<T>(id);
+              return g.v - T(y) * g.w;
             }) != 0);
     return {x, y};
   }

@@ -1,4 +1,4 @@
-// Filtered numbers for the Boolean's predicates on implicit points.
+// Filtered numbers for predicates on implicit points (implicit.h).
 //
 // Fp is a double with a bound on its absolute error: every +, - and * adds the
 // rounding error of its own result and carries the operands' errors forward
@@ -22,7 +22,7 @@
 
 #include "cellforge/geom/expansion.h"  // two_sum
 
-namespace cellforge::boolean {
+namespace cellforge::inline geom {
 
 struct Fp {
   double v = 0;  // the value computed in doubles
@@ -161,22 +161,18 @@ class Dyadic {
       mpz_set(r.m_, b.m_);
       if (negate_b) mpz_neg(r.m_, r.m_);
       r.e_ = b.e_;
-    } else if (a.e_ >= b.e_) {  // a shifted down to b's exponent
-      mpz_mul_2exp(r.m_, a.m_, static_cast<mp_bitcnt_t>(a.e_ - b.e_));
-      if (negate_b) {
-        mpz_sub(r.m_, r.m_, b.m_);
+    } else {  // the one of larger exponent shifted down to the other's
+      const bool a_up = a.e_ >= b.e_;
+      const Dyadic& up = a_up ? a : b;
+      const Dyadic& other = a_up ? b : a;
+      mpz_mul_2exp(r.m_, up.m_, static_cast<mp_bitcnt_t>(up.e_ - other.e_));
+      if (!a_up && negate_b) mpz_neg(r.m_, r.m_);  // r is a, b or -b, shifted
+      if (a_up && negate_b) {
+        mpz_sub(r.m_, r.m_, other.m_);
       } else {
-        mpz_add(r.m_, r.m_, b.m_);
+        mpz_add(r.m_, r.m_, other.m_);
       }
-      r.e_ = b.e_;
-    } else {  // b shifted down to a's exponent
-      mpz_mul_2exp(r.m_, b.m_, static_cast<mp_bitcnt_t>(b.e_ - a.e_));
-      if (negate_b) {
-        mpz_sub(r.m_, a.m_, r.m_);
-      } else {
-        mpz_add(r.m_, a.m_, r.m_);
-      }
-      r.e_ = a.e_;
+      r.e_ = other.e_;
     }
     return r;
   }
@@ -198,4 +194,4 @@ int decide(Poly poly) {
   return sign_of(poly.template operator()<Dyadic>());
 }
 
-}  // namespace cellforge::boolean
+}  // namespace cellforge::inline geom

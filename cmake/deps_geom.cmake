@@ -1,0 +1,9 @@
+# geom/: the exact stage of the predicates on implicit points (filtered.h) uses GMP
+# integers (libgmp-dev); its header is part of geom's public headers.
+find_path(GMP_INCLUDE_DIR gmp.h)
+find_library(GMP_LIBRARY NAMES gmp)
+if(NOT GMP_INCLUDE_DIR OR NOT GMP_LIBRARY)
+  message(FATAL_ERROR "geom: GMP not found (Debian package libgmp-dev)")
+endif()
+target_include_directories(${layer} PUBLIC $<BUILD_INTERFACE:${GMP_INCLUDE_DIR}>)
+target_link_libraries(${layer} PUBLIC ${GMP_LIBRARY})
