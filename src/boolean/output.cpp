@@ -456,7 +456,8 @@ std::vector<std::vector<std::uint32_t>> boundary(const Arrangement& a,
 // off the line it lies on.
 std::vector<OutPoly> merge_greedily(const Arrangement& a, const std::vector<const OutPoly*>& members,
                                     const std::vector<OutPoly>& all,
-                                    const std::unordered_map<std::uint32_t, std::vector<std::uint32_t>>& users) {
+                                    const std::unordered_map<std::uint32_t, std::vector<std::uint32_t>>& users,
+                                    const std::unordered_set<std::uint32_t>& pinned) {
   const std::size_t n = members.size();
   // The region's pieces in `all`, and the group each is in.
   std::vector<std::uint32_t> index(n), group(n);
@@ -507,8 +508,10 @@ std::vector<OutPoly> merge_greedily(const Arrangement& a, const std::vector<cons
       for (const OutPoly* q : both)
         for (const auto& loop : q->loops)
           for (std::uint32_t v : loop)
-            if (ok && !std::binary_search(seen.begin(), seen.end(), v))
+            if (ok && !std::binary_search(seen.begin(), seen.end(), v)) {
+              ok = !pinned.count(v);
               for (std::uint32_t u : users.at(v)) ok &= inside.count(u) != 0;
+            }
       if (!ok) continue;
       for (std::uint32_t i : parts[gy]) group[i] = gx;
       parts[gx].insert(parts[gx].end(), parts[gy].begin(), parts[gy].end());
@@ -527,6 +530,27 @@ std::vector<OutPoly> merge_greedily(const Arrangement& a, const std::vector<cons
     }
     out.push_back(std::move(m));
   }
+  return out;
+}
+
+// The vertices that merging would leave inside a face (`swallowed`, by region) whose
+// own points are in the set while the face's are not, or the other way round.
+std::unordered_set<std::uint32_t> pinned_vertices(const Arrangement& a, const Expr& expr,
+                                                  const std::vector<OutPoly>& polys,
+                                                  const std::vector<std::vector<std::uint32_t>>& swallowed,
+                                                  int threads) {
+  std::vector<std::array<std::uint32_t, 2>> sites;
+  std::vector<bool> face_mark;
+  for (std::uint32_t f = 0; f < swallowed.size(); ++f)
+    for (std::uint32_t v : swallowed[f])
+      if (v != kInvalidIndex) {
+        sites.push_back({v, v});
+        face_mark.push_back(polys[f].mark);
+      }
+  const std::vector<SiteVerdict> v = classify_sites(a, expr, sites, threads);
+  std::unordered_set<std::uint32_t> out;
+  for (std::size_t k = 0; k < sites.size(); ++k)
+    if (v[k].in != face_mark[k]) out.insert(sites[k][0]);
   return out;
 }
 
@@ -641,6 +665,26 @@ Result<BooleanResult> build_result(Arrangement& a, Selection selection, const Ex
         for (std::uint32_t v : loop) users[v].push_back(f);
     std::vector<std::vector<const OutPoly*>> members(polys.size());
     for (std::uint32_t f = 0; f < polys.size(); ++f) members[regions.find(f)].push_back(&polys[f]);
+    // The boundary of each region of several faces, and the vertices it leaves inside.
+    std::vector<std::vector<std::vector<std::uint32_t>>> outline(polys.size());
+    std::vector<std::vector<std::uint32_t>> swallowed(polys.size());
+    for (std::uint32_t f = 0; f < polys.size(); ++f) {
+      if (members[f].size() < 2) continue;
+      outline[f] = boundary(a, members[f]);
+      std::vector<std::uint32_t> seen;
+      for (const auto& loop : outline[f]) seen.insert(seen.end(), loop.begin(), loop.end());
+      std::sort(seen.begin(), seen.end());
+      for (const OutPoly* q : members[f])
+        for (const auto& loop : q->loops)
+          for (std::uint32_t v : loop)
+            if (!std::binary_search(seen.begin(), seen.end(), v)) swallowed[f].push_back(v);
+      if (std::adjacent_find(seen.begin(), seen.end()) != seen.end()) swallowed[f].push_back(kInvalidIndex);
+    }
+    // Non-regularized: a vertex whose verdict differs from its faces' (a closed
+    // operand's corner touching a face of the set from outside it) stays a vertex.
+    const std::unordered_set<std::uint32_t> pinned =
+        options.keep_lower_dim ? pinned_vertices(a, expr, polys, swallowed, threads)
+                               : std::unordered_set<std::uint32_t>{};
     std::vector<OutPoly> merged;
     for (std::uint32_t f = 0; f < polys.size(); ++f) {
       if (members[f].empty()) continue;
@@ -649,22 +693,19 @@ Result<BooleanResult> build_result(Arrangement& a, Selection selection, const Ex
         continue;
       }
       OutPoly m = *members[f][0];
-      m.loops = boundary(a, members[f]);
+      m.loops = std::move(outline[f]);
       m.keys.clear();
       // A boundary through a vertex twice (two holes touching at a corner), or a merge
       // that would leave inside the face a vertex other faces use (a corner touching
-      // it), is left as the pieces it came from.
-      std::vector<std::uint32_t> seen;
-      for (const auto& loop : m.loops) seen.insert(seen.end(), loop.begin(), loop.end());
-      std::sort(seen.begin(), seen.end());
-      bool keep_apart = std::adjacent_find(seen.begin(), seen.end()) != seen.end();
-      for (const OutPoly* q : members[f])
-        for (const auto& loop : q->loops)
-          for (std::uint32_t v : loop)
-            if (!keep_apart && !std::binary_search(seen.begin(), seen.end(), v))
-              for (std::uint32_t u : users[v]) keep_apart |= regions.find(u) != f;
+      // it) or a pinned one, is left as the pieces it came from.
+      bool keep_apart = false;
+      for (std::uint32_t v : swallowed[f]) {
+        keep_apart |= v == kInvalidIndex || pinned.count(v);
+        if (keep_apart) break;
+        for (std::uint32_t u : users[v]) keep_apart |= regions.find(u) != f;
+      }
       if (keep_apart) {
-        for (OutPoly& q : merge_greedily(a, members[f], polys, users)) merged.push_back(std::move(q));
+        for (OutPoly& q : merge_greedily(a, members[f], polys, users, pinned)) merged.push_back(std::move(q));
       } else if (!m.loops.empty()) {
         merged.push_back(std::move(m));
       }

@@ -425,6 +425,30 @@ TEST(BooleanNefOpen, SheetsAndAWireLeftOfAHollowBox) {
   EXPECT_EQ(o.nef, (LowerDim{2, 1, 0}));
 }
 
+// Seed 565 of the non-regularized random cases (seeds 1044 and 1286 alike): a box
+// minus a square pyramid whose apex (2, 1.5, 1) touches the box's face x = 2 from
+// outside (base in x = 1, corners (1, 1.5 +- 1, 1) and (1, 1.5, 1 +- 1)). The closed
+// pyramid holds its apex, so the difference is the box without that one point of its
+// face. The apex split the face into pieces, and merging them back into one face
+// dropped the vertex with them: the point was in again. A vertex whose verdict differs
+// from its faces' now stays a vertex of them (out of the set, its faces in).
+TEST(BooleanNefOpen, BoxMinusAPyramidTouchingItsFaceAtTheApex) {
+  const Model box = box_model({2, 1, 0.5}, {2.5, 2.5, 3});
+  const Model pyramid = pyramid_model(1, 1, {180, 270, 0}, {1, 1.5, 1});
+  const Case c{.name = "box [2,2.5]x[1,2.5]x[0.5,3] minus a pyramid, apex on its face",
+               .operands = {&box, &pyramid},
+               .expr = binary(Op::kDifference, 0, 1),
+               .regularized = false,
+               .grid_step = 0.25};
+  const Outcome o = nef::compare(c);
+  EXPECT_EQ(o.cellforge, LowerDim{});
+  EXPECT_EQ(o.nef, LowerDim{});
+  const nef::Where apex = nef::cellforge_where(c, {2, 1.5, 1});
+  EXPECT_EQ(apex.dim, 0);
+  EXPECT_FALSE(apex.in);
+  EXPECT_TRUE(nef::cellforge_where(c, {2, 1.5, 1.25}).in);  // the face next to it
+}
+
 // Non-regularized random cases: seeds 1 to 240 (the default) agree and validate.
 // Seeds 241 to 2000 showed about 25 more cases to sort out: points on a vertex or face
 // in or out against Nef (e.g. 565, a box minus a pyramid touching its face at a
@@ -434,9 +458,9 @@ TEST(BooleanNefOpen, SheetsAndAWireLeftOfAHollowBox) {
 // CELLFORGE_NEF_SEEDS=670-670.
 TEST(BooleanNefOpen, RandomBoxesAndPyramids) { random_cases(false); }
 
-// The 24 seeds of 241 to 2000 that disagree (measured 2026-12-02): 246 304 313 328 427
-// 449 487 565 630 670 739 916 1044 1046 1172 1286 1435 1449 1501 1633 1673 1747 1818
-// 1970.
+// The 20 seeds of 241 to 2000 that disagree (measured 2026-12-02, after the pinned
+// vertices of seed 565): 246 304 313 427 449 487 630 670 739 916 1046 1172 1435 1449
+// 1501 1633 1673 1747 1818 1970.
 TEST(BooleanNefPending, RandomBoxesAndPyramidsNotRegularizedBeyond240) { random_cases(false, {241, 2000}); }
 
 

@@ -402,6 +402,16 @@ std::string describe(const boolean::Expr& e) {
   return s + ")";
 }
 
+Where cellforge_where(const Case& c, Vec3 p) {
+  boolean::Options options;
+  options.keep_lower_dim = !c.regularized;
+  options.cells = c.cells;
+  auto r = boolean::evaluate(c.operands, c.expr, options);
+  EXPECT_TRUE(r.ok()) << c.name << ": " << (r.ok() ? "" : r.error().message);
+  if (!r.ok()) return {};
+  return ResultLocator(r.value()).where(p);
+}
+
 Outcome compare(const Case& c) {
   Outcome out;
   boolean::Options options;

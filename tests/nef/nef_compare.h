@@ -96,4 +96,7 @@ struct Outcome {
 // a wire that the other keeps whole; named tests compare the numbers).
 Outcome compare(const Case& c);
 
+// Where p lies in cellforge's result of c, and whether the set holds it.
+Where cellforge_where(const Case& c, Vec3 p);
+
 }  // namespace cellforge::testing::nef
