@@ -267,6 +267,30 @@ void split_at_vertices(const Arrangement& a, const std::vector<std::uint32_t>& c
     }
 }
 
+// The sites (indices into `sites`, with their verdicts) whose verdict differs from the points' next to
+// them and that lie on no face between points in and out of the set: no face of the
+// result holds them, so they stand alone. A site on such a face (a corner of a
+// dropped face touching a kept face that nothing split there) is the face's: the
+// points next to it along one axis differ only because the ray's start was shifted
+// off the face. The five more rays of that test only for the few that differ.
+std::vector<std::pair<std::uint32_t, bool>> alone_sites(
+    const Arrangement& a, const Expr& expr, const std::vector<std::array<std::uint32_t, 2>>& sites,
+    int threads) {
+  const std::vector<SiteVerdict> v = classify_sites(a, expr, sites, threads);
+  std::vector<std::uint32_t> differ;
+  std::vector<std::array<std::uint32_t, 2>> again;
+  for (std::uint32_t i = 0; i < sites.size(); ++i)
+    if (v[i].in != v[i].around) {
+      differ.push_back(i);
+      again.push_back(sites[i]);
+    }
+  const std::vector<SiteVerdict> w = classify_sites(a, expr, again, threads, true);
+  std::vector<std::pair<std::uint32_t, bool>> out;
+  for (std::size_t k = 0; k < differ.size(); ++k)
+    if (!w[k].on_face) out.push_back({differ[k], v[differ[k]].in});
+  return out;
+}
+
 // The lower-dimensional parts of a non-regularized result: the edges of the
 // arrangement's faces and the operands' wire pieces that no kept face holds, in the
 // set with the points around them not, or out of it inside a volume (a cut), as
@@ -315,16 +339,14 @@ LowerParts lower_parts(Arrangement& a, const LineClasses& lc, const std::vector<
   }
   LowerParts out;
   std::vector<char> kept_in;  // by out.wires: in the set (else a cut)
-  auto keep = [&](const std::vector<std::array<std::uint32_t, 2>>& list, bool both_sides) {
-    const std::vector<SiteVerdict> v = classify_sites(a, expr, list, threads, both_sides);
-    for (std::size_t i = 0; i < list.size(); ++i)
-      if (v[i].in != v[i].around && !v[i].on_face) {
-        out.wires.push_back(list[i]);
-        kept_in.push_back(v[i].in);
-      }
+  auto keep = [&](const std::vector<std::array<std::uint32_t, 2>>& list) {
+    for (auto [i, in] : alone_sites(a, expr, list, threads)) {
+      out.wires.push_back(list[i]);
+      kept_in.push_back(in);
+    }
   };
-  keep(edges, false);
-  keep(wire_edges, true);
+  keep(edges);
+  keep(wire_edges);
   // A vertex between two collinear wires of one verdict, and on nothing else, goes.
   std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> at;  // point -> wires
   for (std::uint32_t i = 0; i < out.wires.size(); ++i)
@@ -362,16 +384,13 @@ LowerParts lower_parts(Arrangement& a, const LineClasses& lc, const std::vector<
   }
   std::sort(loose.begin(), loose.end());
   loose.erase(std::unique(loose.begin(), loose.end()), loose.end());
-  for (bool both_sides : {false, true}) {
-    std::vector<std::array<std::uint32_t, 2>> sites;
-    for (std::uint32_t p : both_sides ? loose : corners)
+  std::vector<std::array<std::uint32_t, 2>> sites;
+  for (const std::vector<std::uint32_t>* list : {&corners, &loose})
+    for (std::uint32_t p : *list)
       if (!held_points.count(p) && !out.ends.count(p) && !inside_wires.count(p) &&
-          (both_sides || !std::binary_search(loose.begin(), loose.end(), p)))
+          (list == &loose || !std::binary_search(loose.begin(), loose.end(), p)))
         sites.push_back({p, p});
-    const std::vector<SiteVerdict> on_points = classify_sites(a, expr, sites, threads, both_sides);
-    for (std::size_t i = 0; i < sites.size(); ++i)
-      if (on_points[i].in != on_points[i].around && !on_points[i].on_face) out.points.push_back(sites[i][0]);
-  }
+  for (auto [i, in] : alone_sites(a, expr, sites, threads)) out.points.push_back(sites[i][0]);
   return out;
 }
 
