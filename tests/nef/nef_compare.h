@@ -81,6 +81,11 @@ struct Outcome {
   std::size_t compared = 0;  // points compared
   std::size_t skipped = 0;   // points near a rounded element
   std::size_t disagreements = 0;
+  // Non-regularized: points where Nef's result is not what its own operands'
+  // memberships there make of the expression (the set operations are pointwise) and
+  // cellforge's is. Nef's error, not counted as disagreements.
+  std::size_t nef_errors = 0;
+  std::string first_nef_error;
   std::size_t rounded_vertices = 0;
   std::array<std::size_t, 4> nef_dims{};  // compared points Nef located on a vertex,
                                           // an edge, a facet, in a volume
@@ -96,7 +101,12 @@ struct Outcome {
 // a wire that the other keeps whole; named tests compare the numbers).
 Outcome compare(const Case& c);
 
-// Where p lies in cellforge's result of c, and whether the set holds it.
+// Where p lies in cellforge's result of c, and whether the set holds it; the same in
+// Nef's result of c, and whether Nef's operands there make the expression hold it (for
+// a non-regularized case, what the result must answer: the set operations are
+// pointwise).
 Where cellforge_where(const Case& c, Vec3 p);
+Where nef_result_where(const Case& c, Vec3 p);
+bool nef_operands_hold(const Case& c, Vec3 p);
 
 }  // namespace cellforge::testing::nef
