@@ -313,7 +313,7 @@ LowerParts lower_parts(Arrangement& a, const LineClasses& lc, const std::vector<
         held_edges.insert(ordered(loop[i], loop[(i + 1) % loop.size()]));
         held_points.insert(loop[i]);
       }
-  std::vector<std::array<std::uint32_t, 2>> edges;
+  std::vector<std::array<std::uint32_t, 2>> raw, edges;
   std::vector<std::uint32_t> corners, chain;
   for (const OutSide& side : sides) {
     const std::uint32_t p = canon[side.p], q = canon[side.q];
@@ -322,12 +322,47 @@ LowerParts lower_parts(Arrangement& a, const LineClasses& lc, const std::vector<
     if (side.key != kInvalidIndex) insert_between(a, lc, a.line_root(side.key), p, q, chain);
     chain.push_back(q);
     for (std::size_t i = 0; i + 1 < chain.size(); ++i) {
-      const std::uint32_t x = chain[i], y = chain[i + 1];
-      corners.push_back(x);
-      if (x == y || held_edges.count(ordered(x, y)) || !seen.insert(ordered(x, y)).second) continue;
-      edges.push_back({x, y});
+      corners.push_back(chain[i]);
+      if (chain[i] != chain[i + 1]) raw.push_back({chain[i], chain[i + 1]});
     }
     corners.push_back(q);
+  }
+  // Two sides along one line may be cut at different points (the line known under
+  // two keys whose classes hold different points): an edge that another edge or a
+  // kept face's side from the same end overlaps is cut back to where that one ends,
+  // so that the pieces classified never overlap.
+  std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> next_to;
+  for (const auto& [x, y] : raw) {
+    next_to[x].push_back(y);
+    next_to[y].push_back(x);
+  }
+  for (std::uint64_t key : held_edges) {
+    const auto x = static_cast<std::uint32_t>(key >> 32), y = static_cast<std::uint32_t>(key);
+    next_to[x].push_back(y);
+    next_to[y].push_back(x);
+  }
+  const auto inside = [&](std::uint32_t x, std::uint32_t y, std::uint32_t z) {
+    if (z == x || z == y || !a.collinear3(x, y, z)) return false;
+    for (int ax = 0; ax < 3; ++ax)
+      if (const int d = a.compare3(x, y, ax); d != 0) return a.compare3(x, z, ax) == d && a.compare3(z, y, ax) == d;
+    return false;
+  };
+  const auto cut_back = [&](std::uint32_t& from, std::uint32_t to) {
+    for (bool moved = true; moved && from != to;) {
+      moved = false;
+      for (std::uint32_t z : next_to[from])
+        if (inside(from, to, z)) {
+          from = z;
+          moved = true;
+          break;
+        }
+    }
+  };
+  for (auto [x, y] : raw) {
+    cut_back(x, y);
+    cut_back(y, x);
+    if (x == y || held_edges.count(ordered(x, y)) || !seen.insert(ordered(x, y)).second) continue;
+    edges.push_back({x, y});
   }
   // The operands' wires, cut at every crossing, and their isolated points: these may
   // also lie on a kept face (held by it).
