@@ -502,16 +502,17 @@ std::vector<std::vector<std::uint32_t>> boundary(const Arrangement& a,
 }
 
 // A region that cannot become one face (its boundary would pass a vertex twice, or
-// swallow a vertex another face uses) merges as far as it can: one shared edge at a
-// time, keeping each union whose boundary passes no vertex twice and swallows no
-// vertex of a face outside it. Edges with an end that does not round exactly go
+// swallow a vertex another face uses, a pinned vertex or a cut) merges as far as it
+// can: one shared edge at a time, keeping each union whose boundary passes no vertex
+// twice and swallows no vertex of a face outside it, no pinned vertex and no cut. Edges with an end that does not round exactly go
 // first, so that what stays apart is cut along exact edges where it can be: a vertex
 // left on a cut that the faces would otherwise have dropped is rounded, and may move
 // off the line it lies on.
 std::vector<OutPoly> merge_greedily(const Arrangement& a, const std::vector<const OutPoly*>& members,
                                     const std::vector<OutPoly>& all,
                                     const std::unordered_map<std::uint32_t, std::vector<std::uint32_t>>& users,
-                                    const std::unordered_set<std::uint32_t>& pinned) {
+                                    const std::unordered_set<std::uint32_t>& pinned,
+                                    const std::unordered_set<std::uint64_t>& cuts) {
   const std::size_t n = members.size();
   // The region's pieces in `all`, and the group each is in.
   std::vector<std::uint32_t> index(n), group(n);
@@ -536,8 +537,13 @@ std::vector<OutPoly> merge_greedily(const Arrangement& a, const std::vector<cons
     for (const auto& loop : members[i]->loops)
       for (std::size_t k = 0; k < loop.size(); ++k) by_edge[ordered(loop[k], loop[(k + 1) % loop.size()])].push_back(i);
   std::vector<Shared> edges;
+  std::vector<std::array<std::uint32_t, 2>> kept_cuts;  // pieces on either side of a cut
   for (const auto& [key, who] : by_edge) {
     if (who.size() != 2 || who[0] == who[1]) continue;
+    if (cuts.count(key)) {
+      kept_cuts.push_back({who[0], who[1]});
+      continue;
+    }
     const auto p = static_cast<std::uint32_t>(key >> 32), q = static_cast<std::uint32_t>(key);
     edges.push_back({a.rounds_exactly(p) && a.rounds_exactly(q), key, who[0], who[1]});
   }
@@ -559,6 +565,8 @@ std::vector<OutPoly> merge_greedily(const Arrangement& a, const std::vector<cons
       for (const auto& loop : b) seen.insert(seen.end(), loop.begin(), loop.end());
       std::sort(seen.begin(), seen.end());
       bool ok = !b.empty() && std::adjacent_find(seen.begin(), seen.end()) == seen.end();
+      for (const auto& [x, y] : kept_cuts)
+        ok &= !((group[x] == gx || group[x] == gy) && (group[y] == gx || group[y] == gy));
       for (const OutPoly* q : both)
         for (const auto& loop : q->loops)
           for (std::uint32_t v : loop)
@@ -703,14 +711,30 @@ Result<BooleanResult> build_result(Arrangement& a, Selection selection, const Ex
   };
   {
     const std::vector<Use> uses = edge_uses(polys);
-    UnionFind regions(polys.size());
+    std::vector<std::size_t> joins;  // into uses: the first of two faces that may merge
     for (std::size_t i = 0; i < uses.size();) {
       std::size_t j = i;
       while (j < uses.size() && uses[j].key == uses[i].key) ++j;
       if (j - i == 2 && uses[i].poly != uses[i + 1].poly && uses[i].forward != uses[i + 1].forward &&
           same_plane(a, polys[uses[i].poly], polys[uses[i + 1].poly]))
-        regions.unite(uses[i].poly, uses[i + 1].poly);
+        joins.push_back(i);
       i = j;
+    }
+    // Non-regularized: not across an edge whose verdict differs from the faces' (a cut
+    // in a face of the set: a wire of the subtrahend lying on it).
+    std::vector<char> joined(joins.size(), 1);
+    if (options.keep_lower_dim) {
+      std::vector<std::array<std::uint32_t, 2>> sites;
+      for (std::size_t i : joins)
+        sites.push_back({static_cast<std::uint32_t>(uses[i].key >> 32), static_cast<std::uint32_t>(uses[i].key)});
+      const std::vector<SiteVerdict> v = classify_sites(a, expr, sites, threads);
+      for (std::size_t k = 0; k < joins.size(); ++k) joined[k] = v[k].in == polys[uses[joins[k]].poly].mark;
+    }
+    UnionFind regions(polys.size());
+    std::unordered_set<std::uint64_t> cuts;
+    for (std::size_t k = 0; k < joins.size(); ++k) {
+      if (joined[k]) regions.unite(uses[joins[k]].poly, uses[joins[k] + 1].poly);
+      if (!joined[k]) cuts.insert(uses[joins[k]].key);
     }
     // Faces using each vertex: a merge may not swallow a vertex another face needs.
     std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> users;
@@ -733,6 +757,11 @@ Result<BooleanResult> build_result(Arrangement& a, Selection selection, const Ex
           for (std::uint32_t v : loop)
             if (!std::binary_search(seen.begin(), seen.end(), v)) swallowed[f].push_back(v);
       if (std::adjacent_find(seen.begin(), seen.end()) != seen.end()) swallowed[f].push_back(kInvalidIndex);
+    }
+    // A cut between two faces that merge by other edges is kept by merging greedily.
+    for (std::size_t k = 0; k < joins.size(); ++k) {
+      const std::uint32_t f = regions.find(uses[joins[k]].poly);
+      if (!joined[k] && f == regions.find(uses[joins[k] + 1].poly)) swallowed[f].push_back(kInvalidIndex);
     }
     // Non-regularized: a vertex whose verdict differs from its faces' (a closed
     // operand's corner touching a face of the set from outside it) stays a vertex.
@@ -759,7 +788,7 @@ Result<BooleanResult> build_result(Arrangement& a, Selection selection, const Ex
         for (std::uint32_t u : users[v]) keep_apart |= regions.find(u) != f;
       }
       if (keep_apart) {
-        for (OutPoly& q : merge_greedily(a, members[f], polys, users, pinned)) merged.push_back(std::move(q));
+        for (OutPoly& q : merge_greedily(a, members[f], polys, users, pinned, cuts)) merged.push_back(std::move(q));
       } else if (!m.loops.empty()) {
         merged.push_back(std::move(m));
       }
