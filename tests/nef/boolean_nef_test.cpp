@@ -9,7 +9,7 @@
 // BooleanNefPending.* show disagreements found and not yet resolved; ctest leaves
 // them out unless configured with -DCELLFORGE_NEF_PENDING=ON (CMakeLists.txt).
 // CELLFORGE_NEF_SEEDS=N (or A-B) runs other seeds than the defaults (1 to 240
-// regularized, 1 to 2000 not).
+// regularized, 1 to 6000 not).
 //
 // The random operands are boxes and boxes with a box cavity with corners on the grid
 // of halves in [0, 3]^3, some turned by quarter turns about the grid's centre, and
@@ -565,16 +565,50 @@ TEST(BooleanNefOpen, AHollowBoxMinusAWireOnItsCavityWall) {
   EXPECT_TRUE(nef::cellforge_where(k, {1.75, 1, 1.25}).in);
 }
 
-// Non-regularized random cases: seeds 1 to 2000 agree and validate (about 14 s), with
-// Nef's own errors at 14 points of seeds 246 427 449 487 670 739 916 1435 set aside
-// (ThreeBoxesWhereNefContradictsItself). Each seed runs alone with
-// CELLFORGE_NEF_SEEDS=670-670 (and the regularized test's default).
-TEST(BooleanNefOpen, RandomBoxesAndPyramids) { random_cases(false, {1, 2000}); }
+// Seed 2755 of the non-regularized random cases: a box b = [0,3]x[0.5,1]x[0.5,3] and
+// two square pyramids in the plane x = 2 of their axes, p = apex (2, 0, 1.5), base in
+// y = 1.5 with corners (2, 1.5, 0.5), (2, 1.5, 2.5), (1, 1.5, 1.5), (3, 1.5, 1.5); q =
+// apex (2, 0.5, 0.5), base in y = 2 with corners (2, 2, -0.5), (2, 2, 1.5), (1, 2, 0.5),
+// (3, 2, 0.5). By hand, in the plane x = 2 p holds z >= 1.5 - 2y/3 and q holds
+// z <= 0.5 + 2(y - 0.5)/3 (their edges from the apexes to (2, 1.5, 0.5) and
+// (2, 2, 1.5)); the two meet only for y >= 1, at y = 1 in the one point
+// x = (2, 1, 5/6), and off the plane both narrow. b holds y <= 1, so b n (p n q) is
+// exactly that point, an isolated point on both sides. 5/6 is no double: cellforge's
+// vertex is rounded, and the comparison took the rounded point, which Nef rightly
+// leaves out, for a disagreement. A rounded isolated point now leaves its
+// neighbourhood unsure, as a rounded vertex of an edge or a face did.
+TEST(BooleanNefOpen, ABoxAndTwoPyramidsMeetingInAPoint) {
+  const Model b = box_model({0, 0.5, 0.5}, {3, 1, 3});
+  const Model p = pyramid_model(1, 1.5, {270, 270, 180}, {2, 1.5, 1.5});
+  const Model q = pyramid_model(1, 1.5, {90, 90, 0}, {2, 2, 0.5});
+  const Case k{.name = "b n (p n q), a box and two pyramids meeting in (2, 1, 5/6)",
+               .operands = {&b, &p, &q},
+               .expr = Expr::op(Op::kIntersection, {Expr::of(0), binary(Op::kIntersection, 1, 2)}),
+               .regularized = false,
+               .grid_step = 0.25};
+  const Outcome o = nef::compare(k);
+  EXPECT_EQ(o.cellforge, (LowerDim{0, 0, 1}));
+  EXPECT_EQ(o.nef, (LowerDim{0, 0, 1}));
+  EXPECT_EQ(o.rounded_vertices, 1u);
+  const Vec3 rounded{2, 1, 5.0 / 6};
+  EXPECT_TRUE(nef::nef_operands_hold(k, {12, 6, 5}, 6));
+  EXPECT_TRUE(nef::nef_result_where(k, {12, 6, 5}, 6).in);
+  EXPECT_FALSE(nef::nef_result_where(k, rounded).in);
+  const nef::Where mine = nef::cellforge_where(k, rounded);
+  EXPECT_EQ(mine.dim, 0);
+  EXPECT_TRUE(mine.in);
+}
 
-// The one seed of 2001 to 6000 that disagrees (measured 2026-12-02, after the cut of
-// seed 5869): 2755.
-TEST(BooleanNefPending, RandomBoxesAndPyramidsNotRegularizedBeyond2000) {
-  random_cases(false, {2001, 6000});
+// Non-regularized random cases: seeds 1 to 6000 agree and validate (about 45 s), with
+// Nef's own errors at 42 points of 25 seeds set aside (246 427 449 487 670 739 916
+// 1435 2179 2706 2777 2888 3278 3342 3550 3956 3965 4004 4083 4285 5124 5436 5446 5615
+// 5631; ThreeBoxesWhereNefContradictsItself). Each seed runs alone with
+// CELLFORGE_NEF_SEEDS=670-670 (and the regularized test's default).
+TEST(BooleanNefOpen, RandomBoxesAndPyramids) { random_cases(false, {1, 6000}); }
+
+// The 2 seeds of 6001 to 10000 that disagree (measured 2026-12-02): 8293 9146.
+TEST(BooleanNefPending, RandomBoxesAndPyramidsNotRegularizedBeyond6000) {
+  random_cases(false, {6001, 10000});
 }
 
 

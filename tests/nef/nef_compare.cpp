@@ -116,8 +116,14 @@ Nef evaluate_nef(const std::vector<Nef>& operands, const boolean::Expr& e) {
   return acc;
 }
 
-Where nef_where(const Nef& n, Vec3 p) {
-  const auto o = n.locate(point(p));
+// num / den exactly.
+Point exact_point(std::array<double, 3> num, double den) {
+  const Kernel::FT d(den);
+  return Point(Kernel::FT(num[0]) / d, Kernel::FT(num[1]) / d, Kernel::FT(num[2]) / d);
+}
+
+Where nef_where(const Nef& n, const Point& p) {
+  const auto o = n.locate(p);
   Nef::Vertex_const_handle v;
   Nef::Halfedge_const_handle e;
   Nef::Halffacet_const_handle f;
@@ -130,9 +136,11 @@ Where nef_where(const Nef& n, Vec3 p) {
   return {};
 }
 
+Where nef_where(const Nef& n, Vec3 p) { return nef_where(n, point(p)); }
+
 // Whether the set of e holds p, from the operands' memberships at p alone: the set
 // operations are pointwise, so this is what a non-regularized result must answer.
-bool pointwise_in(const std::vector<Nef>& operands, const boolean::Expr& e, Vec3 p) {
+bool pointwise_in(const std::vector<Nef>& operands, const boolean::Expr& e, const Point& p) {
   std::vector<bool> inside;
   for (const Nef& n : operands) inside.push_back(nef_where(n, p).in);
   return e.contains(inside);
@@ -232,6 +240,12 @@ class ResultLocator {
         any |= moved(v);
       });
       if (any) unsure_.push_back(b.widened());
+    }
+    for (VertexId v : m.vertices()) {
+      if (!moved(v)) continue;
+      Box b;  // an isolated point's own, the others' within their edges'
+      b.add(m.position(v));
+      unsure_.push_back(b.widened());
     }
     for (EdgeId e : m.edges()) {
       if (!moved(m.start_of(e)) && !moved(m.end_of(e))) continue;
@@ -421,18 +435,22 @@ Where cellforge_where(const Case& c, Vec3 p) {
   return ResultLocator(r.value()).where(p);
 }
 
-Where nef_result_where(const Case& c, Vec3 p) {
+Where nef_result_where(const Case& c, Vec3 p) { return nef_result_where(c, {p.x, p.y, p.z}, 1); }
+
+bool nef_operands_hold(const Case& c, Vec3 p) { return nef_operands_hold(c, {p.x, p.y, p.z}, 1); }
+
+Where nef_result_where(const Case& c, std::array<double, 3> num, double den) {
   std::vector<Nef> operands;
   for (const Model* m : c.operands) operands.push_back(operand_nef(*m));
   Nef n = evaluate_nef(operands, c.expr);
   if (c.regularized) n = n.regularization();
-  return nef_where(n, p);
+  return nef_where(n, exact_point(num, den));
 }
 
-bool nef_operands_hold(const Case& c, Vec3 p) {
+bool nef_operands_hold(const Case& c, std::array<double, 3> num, double den) {
   std::vector<Nef> operands;
   for (const Model* m : c.operands) operands.push_back(operand_nef(*m));
-  return pointwise_in(operands, c.expr, p);
+  return pointwise_in(operands, c.expr, exact_point(num, den));
 }
 
 Outcome compare(const Case& c) {
@@ -470,7 +488,7 @@ Outcome compare(const Case& c) {
     if (agree(c, a, b)) continue;
     first.precision(17);
     if (!c.regularized && !c.nef_expr && a.in != b.in &&
-        pointwise_in(operands, c.expr, p) == a.in) {
+        pointwise_in(operands, c.expr, point(p)) == a.in) {
       // Nef's result contradicts its own operands there (nef_compare.h, Outcome).
       if (out.nef_errors++ == 0) {
         std::ostringstream at;

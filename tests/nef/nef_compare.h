@@ -108,5 +108,8 @@ Outcome compare(const Case& c);
 Where cellforge_where(const Case& c, Vec3 p);
 Where nef_result_where(const Case& c, Vec3 p);
 bool nef_operands_hold(const Case& c, Vec3 p);
+// The same at the point num / den, exactly (a point that is no double).
+Where nef_result_where(const Case& c, std::array<double, 3> num, double den);
+bool nef_operands_hold(const Case& c, std::array<double, 3> num, double den);
 
 }  // namespace cellforge::testing::nef
