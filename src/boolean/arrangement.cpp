@@ -1208,8 +1208,16 @@ void Arrangement::split_cluster(std::uint32_t ci) {
       c.lines[l].key = fresh_key();
       for (std::size_t pi = 0, n = c.pieces.size(); pi < n; ++pi) {
         const Piece& P = c.pieces[pi];
-        bool inside = true;  // p in the closed piece
-        for (std::size_t q = 0; q < P.pts.size() && inside; ++q) inside = side(c, c.lines[P.lines[q]], v) >= 0;
+        // p in the closed piece: on each side's line or on the piece's side of it (a
+        // line's direction is its own, not the piece's: the side of a corner off it).
+        bool inside = true;
+        for (std::size_t q = 0; q < P.pts.size() && inside; ++q) {
+          const Line& side_line = c.lines[P.lines[q]];
+          const int sv = side(c, side_line, v);
+          int sp = 0;
+          for (std::size_t r = 0; r < P.pts.size() && sp == 0 && sv != 0; ++r) sp = side(c, side_line, P.pts[r]);
+          inside = sv == 0 || sv == sp;
+        }
         if (inside) cut(pi, l, kInvalidIndex, kInvalidIndex);
       }
     }

@@ -599,6 +599,34 @@ TEST(BooleanNefOpen, ABoxAndTwoPyramidsMeetingInAPoint) {
   EXPECT_TRUE(mine.in);
 }
 
+// Seed 9146 of the non-regularized random cases (8293 alike), reduced: a box
+// b = [0.5,2.5]x[0,1]x[0,3] minus a square pyramid whose base corner (1, 1, 1) touches
+// b's face y = 1 from outside (base in z = 1, corners (1, 1, 1), (2, 2, 1), (1, 3, 1),
+// (0, 2, 1); apex (1, 2, -1)), minus a bar [1.5,3]x[1,2.5]x[0,2] whose face y = 1 lies
+// on b's plane. By hand, (1, 1, 1) is in b and in the closed pyramid, so out, and
+// (1, 1, 1.25) is in b alone, so in. The corner was to become a vertex of the plane's
+// pieces, but the test of which pieces hold it read each side's line by the line's own
+// direction, not the piece's, and here found no piece: the face held the point. A
+// piece now holds it when it is on each side's line or on the piece's side of it.
+TEST(BooleanNefOpen, BoxMinusAPyramidTouchingItsFaceAtACorner) {
+  const Model box = box_model({0.5, 0, 0}, {2.5, 1, 3});
+  const Model pyramid = pyramid_model(1, 2, {0, 180, 180}, {1, 2, 1});
+  const Model bar = box_model({1.5, 1, 0}, {3, 2.5, 2});
+  const Case c{.name = "box [0.5,2.5]x[0,1]x[0,3] minus a pyramid, a base corner on its face, "
+                       "and a bar on that face's plane",
+               .operands = {&box, &pyramid, &bar},
+               .expr = Expr::over(Op::kDifference, 3),
+               .regularized = false,
+               .grid_step = 0.25};
+  const Outcome o = nef::compare(c);
+  EXPECT_EQ(o.cellforge, LowerDim{});
+  EXPECT_EQ(o.nef, LowerDim{});
+  const nef::Where corner = nef::cellforge_where(c, {1, 1, 1});
+  EXPECT_EQ(corner.dim, 0);
+  EXPECT_FALSE(corner.in);
+  EXPECT_TRUE(nef::cellforge_where(c, {1, 1, 1.25}).in);  // the face next to it
+}
+
 // Non-regularized random cases: seeds 1 to 6000 agree and validate (about 45 s), with
 // Nef's own errors at 42 points of 25 seeds set aside (246 427 449 487 670 739 916
 // 1435 2179 2706 2777 2888 3278 3342 3550 3956 3965 4004 4083 4285 5124 5436 5446 5615
@@ -606,9 +634,10 @@ TEST(BooleanNefOpen, ABoxAndTwoPyramidsMeetingInAPoint) {
 // CELLFORGE_NEF_SEEDS=670-670 (and the regularized test's default).
 TEST(BooleanNefOpen, RandomBoxesAndPyramids) { random_cases(false, {1, 6000}); }
 
-// The 2 seeds of 6001 to 10000 that disagree (measured 2026-12-02): 8293 9146.
+// The longer search, left out of ctest for its run time (about 50 s): seeds 6001 to
+// 12000 all agree too (measured 2026-12-02, after the touching corner of seed 9146).
 TEST(BooleanNefPending, RandomBoxesAndPyramidsNotRegularizedBeyond6000) {
-  random_cases(false, {6001, 10000});
+  random_cases(false, {6001, 12000});
 }
 
 
