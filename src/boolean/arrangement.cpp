@@ -1215,7 +1215,8 @@ void Arrangement::split_cluster(std::uint32_t ci) {
           const Line& side_line = c.lines[P.lines[q]];
           const int sv = side(c, side_line, v);
           int sp = 0;
-          for (std::size_t r = 0; r < P.pts.size() && sp == 0 && sv != 0; ++r) sp = side(c, side_line, P.pts[r]);
+          for (std::size_t r = 0; r < P.pts.size() && sp == 0 && sv != 0; ++r)
+            sp = side(c, side_line, P.pts[r]);
           inside = sv == 0 || sv == sp;
         }
         if (inside) cut(pi, l, kInvalidIndex, kInvalidIndex);

@@ -267,12 +267,13 @@ void split_at_vertices(const Arrangement& a, const std::vector<std::uint32_t>& c
     }
 }
 
-// The sites (indices into `sites`, with their verdicts) whose verdict differs from the points' next to
-// them and that lie on no face between points in and out of the set: no face of the
-// result holds them, so they stand alone. A site on such a face (a corner of a
-// dropped face touching a kept face that nothing split there) is the face's: the
-// points next to it along one axis differ only because the ray's start was shifted
-// off the face. The five more rays of that test only for the few that differ.
+// The sites (indices into `sites`, with their verdicts) whose verdict differs from
+// the points' next to them and that lie on no face between points in and out of the
+// set: no face of the result holds them, so they stand alone. A site on such a face
+// (a corner of a dropped face touching a kept face that nothing split there) is the
+// face's: the points next to it along one axis differ only because the ray's start
+// was shifted off the face. The five more rays of that test only for the few that
+// differ.
 std::vector<std::pair<std::uint32_t, bool>> alone_sites(
     const Arrangement& a, const Expr& expr, const std::vector<std::array<std::uint32_t, 2>>& sites,
     int threads) {
@@ -344,7 +345,8 @@ LowerParts lower_parts(Arrangement& a, const LineClasses& lc, const std::vector<
   const auto inside = [&](std::uint32_t x, std::uint32_t y, std::uint32_t z) {
     if (z == x || z == y || !a.collinear3(x, y, z)) return false;
     for (int ax = 0; ax < 3; ++ax)
-      if (const int d = a.compare3(x, y, ax); d != 0) return a.compare3(x, z, ax) == d && a.compare3(z, y, ax) == d;
+      if (const int d = a.compare3(x, y, ax); d != 0)
+        return a.compare3(x, z, ax) == d && a.compare3(z, y, ax) == d;
     return false;
   };
   const auto cut_back = [&](std::uint32_t& from, std::uint32_t to) {
@@ -504,15 +506,16 @@ std::vector<std::vector<std::uint32_t>> boundary(const Arrangement& a,
 // A region that cannot become one face (its boundary would pass a vertex twice, or
 // swallow a vertex another face uses, a pinned vertex or a cut) merges as far as it
 // can: one shared edge at a time, keeping each union whose boundary passes no vertex
-// twice and swallows no vertex of a face outside it, no pinned vertex and no cut. Edges with an end that does not round exactly go
-// first, so that what stays apart is cut along exact edges where it can be: a vertex
-// left on a cut that the faces would otherwise have dropped is rounded, and may move
-// off the line it lies on.
-std::vector<OutPoly> merge_greedily(const Arrangement& a, const std::vector<const OutPoly*>& members,
-                                    const std::vector<OutPoly>& all,
-                                    const std::unordered_map<std::uint32_t, std::vector<std::uint32_t>>& users,
-                                    const std::unordered_set<std::uint32_t>& pinned,
-                                    const std::unordered_set<std::uint64_t>& cuts) {
+// twice and swallows no vertex of a face outside it, no pinned vertex and no cut.
+// Edges with an end that does not round exactly go first, so that what stays apart is
+// cut along exact edges where it can be: a vertex left on a cut that the faces would
+// otherwise have dropped is rounded, and may move off the line it lies on.
+std::vector<OutPoly> merge_greedily(
+    const Arrangement& a, const std::vector<const OutPoly*>& members,
+    const std::vector<OutPoly>& all,
+    const std::unordered_map<std::uint32_t, std::vector<std::uint32_t>>& users,
+    const std::unordered_set<std::uint32_t>& pinned,
+    const std::unordered_set<std::uint64_t>& cuts) {
   const std::size_t n = members.size();
   // The region's pieces in `all`, and the group each is in.
   std::vector<std::uint32_t> index(n), group(n);
@@ -597,10 +600,9 @@ std::vector<OutPoly> merge_greedily(const Arrangement& a, const std::vector<cons
 
 // The vertices that merging would leave inside a face (`swallowed`, by region) whose
 // own points are in the set while the face's are not, or the other way round.
-std::unordered_set<std::uint32_t> pinned_vertices(const Arrangement& a, const Expr& expr,
-                                                  const std::vector<OutPoly>& polys,
-                                                  const std::vector<std::vector<std::uint32_t>>& swallowed,
-                                                  int threads) {
+std::unordered_set<std::uint32_t> pinned_vertices(
+    const Arrangement& a, const Expr& expr, const std::vector<OutPoly>& polys,
+    const std::vector<std::vector<std::uint32_t>>& swallowed, int threads) {
   std::vector<std::array<std::uint32_t, 2>> sites;
   std::vector<bool> face_mark;
   for (std::uint32_t f = 0; f < swallowed.size(); ++f)
@@ -726,9 +728,11 @@ Result<BooleanResult> build_result(Arrangement& a, Selection selection, const Ex
     if (options.keep_lower_dim) {
       std::vector<std::array<std::uint32_t, 2>> sites;
       for (std::size_t i : joins)
-        sites.push_back({static_cast<std::uint32_t>(uses[i].key >> 32), static_cast<std::uint32_t>(uses[i].key)});
+        sites.push_back({static_cast<std::uint32_t>(uses[i].key >> 32),
+                         static_cast<std::uint32_t>(uses[i].key)});
       const std::vector<SiteVerdict> v = classify_sites(a, expr, sites, threads);
-      for (std::size_t k = 0; k < joins.size(); ++k) joined[k] = v[k].in == polys[uses[joins[k]].poly].mark;
+      for (std::size_t k = 0; k < joins.size(); ++k)
+        joined[k] = v[k].in == polys[uses[joins[k]].poly].mark;
     }
     UnionFind regions(polys.size());
     std::unordered_set<std::uint64_t> cuts;
@@ -756,12 +760,14 @@ Result<BooleanResult> build_result(Arrangement& a, Selection selection, const Ex
         for (const auto& loop : q->loops)
           for (std::uint32_t v : loop)
             if (!std::binary_search(seen.begin(), seen.end(), v)) swallowed[f].push_back(v);
-      if (std::adjacent_find(seen.begin(), seen.end()) != seen.end()) swallowed[f].push_back(kInvalidIndex);
+      if (std::adjacent_find(seen.begin(), seen.end()) != seen.end())
+        swallowed[f].push_back(kInvalidIndex);
     }
     // A cut between two faces that merge by other edges is kept by merging greedily.
     for (std::size_t k = 0; k < joins.size(); ++k) {
       const std::uint32_t f = regions.find(uses[joins[k]].poly);
-      if (!joined[k] && f == regions.find(uses[joins[k] + 1].poly)) swallowed[f].push_back(kInvalidIndex);
+      if (!joined[k] && f == regions.find(uses[joins[k] + 1].poly))
+        swallowed[f].push_back(kInvalidIndex);
     }
     // Non-regularized: a vertex whose verdict differs from its faces' (a closed
     // operand's corner touching a face of the set from outside it) stays a vertex.
@@ -788,7 +794,8 @@ Result<BooleanResult> build_result(Arrangement& a, Selection selection, const Ex
         for (std::uint32_t u : users[v]) keep_apart |= regions.find(u) != f;
       }
       if (keep_apart) {
-        for (OutPoly& q : merge_greedily(a, members[f], polys, users, pinned, cuts)) merged.push_back(std::move(q));
+        for (OutPoly& q : merge_greedily(a, members[f], polys, users, pinned, cuts))
+          merged.push_back(std::move(q));
       } else if (!m.loops.empty()) {
         merged.push_back(std::move(m));
       }

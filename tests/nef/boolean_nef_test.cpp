@@ -612,8 +612,9 @@ TEST(BooleanNefOpen, BoxMinusAPyramidTouchingItsFaceAtACorner) {
   const Model box = box_model({0.5, 0, 0}, {2.5, 1, 3});
   const Model pyramid = pyramid_model(1, 2, {0, 180, 180}, {1, 2, 1});
   const Model bar = box_model({1.5, 1, 0}, {3, 2.5, 2});
-  const Case c{.name = "box [0.5,2.5]x[0,1]x[0,3] minus a pyramid, a base corner on its face, "
-                       "and a bar on that face's plane",
+  const Case c{.name =
+                   "box [0.5,2.5]x[0,1]x[0,3] minus a pyramid, a base corner on its face, "
+                   "and a bar on that face's plane",
                .operands = {&box, &pyramid, &bar},
                .expr = Expr::over(Op::kDifference, 3),
                .regularized = false,
@@ -639,7 +640,6 @@ TEST(BooleanNefOpen, RandomBoxesAndPyramids) { random_cases(false, {1, 6000}); }
 TEST(BooleanNefPending, RandomBoxesAndPyramidsNotRegularizedBeyond6000) {
   random_cases(false, {6001, 12000});
 }
-
 
 }  // namespace
 }  // namespace cellforge::testing
