@@ -329,6 +329,11 @@ bool Arrangement::collinear3(std::uint32_t a, std::uint32_t b, std::uint32_t c) 
   return true;
 }
 
+int Arrangement::tri_sign(const Cluster& c, std::uint32_t t) const {
+  const Tri& x = tris[t];
+  return orient2d_projected(pos[x.v[0]], pos[x.v[1]], pos[x.v[2]], c.k) * c.nk_sign;
+}
+
 int Arrangement::plane_side(std::uint32_t t, std::uint32_t p) const {
   const Tri& tri = tris[t];
   if (p < pos.size()) return orient3d(pos[tri.v[0]], pos[tri.v[1]], pos[tri.v[2]], pos[p]);
@@ -783,11 +788,6 @@ void Arrangement::intersect(int threads) {
         c.k = k;
         c.nk_sign = orient2d_projected(p0, p1, p2, k);
       }
-    }
-    for (std::uint32_t t : c.tris) {
-      const Tri& x = tris[t];
-      c.tri_sign.push_back(orient2d_projected(pos[x.v[0]], pos[x.v[1]], pos[x.v[2]], c.k) *
-                           c.nk_sign);
     }
     c.touched = c.tris.size() > 1;
   }

@@ -110,7 +110,6 @@ struct Constraint {
 
 struct Cluster {
   std::vector<std::uint32_t> tris;
-  std::vector<int> tri_sign;  // +1 when the triangle's normal agrees with the reference
   std::uint32_t ref = 0;      // reference triangle (its plane)
   int k = 2;                  // dominant axis of the reference normal
   int nk_sign = 1;            // sign of the reference normal's component k
@@ -229,6 +228,9 @@ class Arrangement {
   // corners of the planar quad it tiles, else its own three.
   std::span<const std::uint32_t> plane_vertices(const Tri& t) const;
   // Side of point p of the plane of input triangle t: sign n_t . (p - t0).
+  // +1 when triangle t of cluster c turns the way c's reference does in c's (u, v),
+  // -1 when it is reversed (decided when asked: one sign a cluster triangle rarely needs).
+  int tri_sign(const Cluster& c, std::uint32_t t) const;
   int plane_side(std::uint32_t t, std::uint32_t p) const;
 
   // Approximate position (for boxes and output): value and error per coordinate.

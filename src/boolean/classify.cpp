@@ -675,9 +675,12 @@ Selection classify_and_select(const Arrangement& a, const Expr& expr, const Opti
     for (std::uint32_t t : candidates) {
       if (!covers(a, c.tris[t], r)) continue;
       on.push_back(a.tris[c.tris[t]].operand);
-      if (source == kInvalidIndex || (source_sign < 0 && c.tri_sign[t] > 0)) {
-        source = c.tris[t];
-        source_sign = c.tri_sign[t];
+      if (source == kInvalidIndex || source_sign < 0) {
+        const int sign = a.tri_sign(c, c.tris[t]);
+        if (source == kInvalidIndex || sign > 0) {
+          source = c.tris[t];
+          source_sign = sign;
+        }
       }
     }
     // Outside every triangle of the cluster: no face.

@@ -1039,10 +1039,7 @@ Result<BooleanResult> build_result(Arrangement& a, Selection selection, const Ex
     FaceSource s;
     s.operand = static_cast<int>(t.operand);
     s.face = t.face;
-    int tri_sign = 1;
-    for (std::size_t k = 0; k < c.tris.size(); ++k)
-      if (c.tris[k] == p.tri) tri_sign = c.tri_sign[k];
-    s.reversed = (p.normal_sign * tri_sign < 0) != a.faces[t.input_face].flipped;
+    s.reversed = (p.normal_sign * a.tri_sign(c, p.tri) < 0) != a.faces[t.input_face].flipped;
     s.plane = {a.pos[ref.v[0]], a.pos[ref.v[1]], a.pos[ref.v[2]]};
     const FaceId id = built->faces[f];
     if (by_id.size() <= id.value) by_id.resize(id.value + 1);
