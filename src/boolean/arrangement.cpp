@@ -19,6 +19,7 @@
 #include <mutex>
 #include <numeric>
 
+#include "cellforge/geom/intersect.h"
 #include "cellforge/geom/predicates.h"
 #include "cellforge/geom/union_find.h"
 
@@ -661,6 +662,11 @@ void Arrangement::test_pair(std::uint32_t i, std::uint32_t j, PairEvents& ev) co
     neg_a += oa[k] < 0;
   }
   if (pos_a == 3 || neg_a == 3) return;
+  if ((shared == 2 && pos_a + neg_a == 1) || (shared == 1 && (pos_a == 2 || neg_a == 2))) return;
+  if (shared == 0 && oa[0] * oa[1] * oa[2] != 0 && ob[0] * ob[1] * ob[2] != 0) {
+    const Vec3 pa[3] = {a0, a1, a2}, pb[3] = {pos[b.v[0]], pos[b.v[1]], pos[b.v[2]]};
+    if (straddling_triangles_apart(pa, pb, oa, ob)) return;
+  }
   vertices_on_edges(*this, a, b, ob, record);
   vertices_on_edges(*this, b, a, oa, record);
   // b cuts a's cluster where it crosses a's plane, or where one of its edges lies in
@@ -675,7 +681,12 @@ void Arrangement::test_pair(std::uint32_t i, std::uint32_t j, PairEvents& ev) co
       if (o[k] == 0) e[n++] = y.v[k];
     return segment_enters(x, e[0], e[1]);
   };
-  const bool cut_a = cuts(a, b, ob, pos_b, neg_b), cut_b = cuts(b, a, oa, pos_a, neg_a);
+  // A triangle resting on the other's plane by one corner, the rest on one side, meets
+  // the other in that corner at most: the other's trace cuts nothing of it (the touch
+  // below records the corner).
+  auto corner_only = [](int pos, int neg) { return pos + neg == 2 && (pos == 0 || neg == 0); };
+  const bool cut_a = !corner_only(pos_a, neg_a) && cuts(a, b, ob, pos_b, neg_b);
+  const bool cut_b = !corner_only(pos_b, neg_b) && cuts(b, a, oa, pos_a, neg_a);
   // An edge of y in x's plane that meets x (runs inside it, for one operand's own
   // triangles, whose edges meet their neighbours' planes all along a mesh): y's
   // surface may cross x's plane there, so the triangles on either side of the edge

@@ -8,6 +8,7 @@
 #include "cellforge/geom/intersect.h"
 
 #include <algorithm>
+#include <utility>
 
 #include "cellforge/geom/polygon.h"
 
@@ -84,6 +85,20 @@ bool segment_meets_triangle(Vec3 p, Vec3 q, const Vec3 t[3]) {
   return segment_meets_triangle(p, q, t, orient3d(t[0], t[1], t[2], p), orient3d(t[0], t[1], t[2], q));
 }
 
+bool straddling_triangles_apart(const Vec3 a[3], const Vec3 b[3], const int sa[3], const int sb[3]) {
+  // p1: a's corner alone on its side of b's plane, q1: b's alone on its side of a's.
+  // Each triangle's other two corners are ordered so that p1 and q1 lie on the
+  // positive sides (swapping two corners turns a plane over); then the traces are
+  // apart exactly when q1's edges pass p1's on the line (a positive orientation).
+  auto alone = [](const int s[3]) { return s[0] == s[1] ? 2 : (s[0] == s[2] ? 1 : 0); };
+  const int i = alone(sa), j = alone(sb);
+  Vec3 p1 = a[i], p2 = a[(i + 1) % 3], p3 = a[(i + 2) % 3];
+  Vec3 q1 = b[j], q2 = b[(j + 1) % 3], q3 = b[(j + 2) % 3];
+  if (sa[i] < 0) std::swap(q2, q3);
+  if (sb[j] < 0) std::swap(p2, p3);
+  return orient3d(p1, p2, q1, q2) > 0 || orient3d(p1, p3, q3, q1) > 0;
+}
+
 bool triangles_meet(const Vec3 a[3], const Vec3 b[3]) {
   int sb[3], sa[3];
   for (int i = 0; i < 3; ++i) sb[i] = orient3d(a[0], a[1], a[2], b[i]);
@@ -98,6 +113,8 @@ bool triangles_meet(const Vec3 a[3], const Vec3 b[3]) {
     const Vec2 pb[3] = {proj(b[0]), proj(b[1]), proj(b[2])};
     return triangles_meet(pa, pb);
   }
+  const bool strict = sa[0] * sa[1] * sa[2] != 0 && sb[0] * sb[1] * sb[2] != 0;
+  if (strict) return !straddling_triangles_apart(a, b, sa, sb);
   // Each edge against the other triangle, with its ends' sides known from above.
   for (int i = 0; i < 3; ++i) {
     const int j = (i + 1) % 3;

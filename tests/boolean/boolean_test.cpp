@@ -299,6 +299,23 @@ TEST(Boolean, SphereMinusOffsetSphere) {
   EXPECT_GT(i.volume, 0.3 * va);
 }
 
+TEST(Boolean, UntouchedSphereKeepsItsFaces) {
+  // OpenSCAD's sphere: its quads are planar only up to rounding, so neighbouring
+  // tiles cross each other's planes by a rounding's width, and tiles a ring apart
+  // straddle each other's planes without meeting. None of that cuts anything: a
+  // union with a box far away keeps every face, and no input triangle is split.
+  for (int fn : {16, 64, 128}) {
+    const Model a = sphere_model(10, fn);
+    const Model b = box_model({30, 0, 0}, {31, 1, 1});
+    const BoolCase u = run(Op::kUnion, {&a, &b}, false);
+    EXPECT_EQ(u.faces, a.num_faces() + 6) << "fn " << fn;
+    EXPECT_EQ(u.result.report.intersecting_pairs, 0u) << "fn " << fn;
+    EXPECT_EQ(u.result.report.touched_triangles, 0u) << "fn " << fn;
+    EXPECT_EQ(u.result.report.implicit_points, 0u) << "fn " << fn;
+    EXPECT_NEAR(u.volume, shape::mass_properties(a).volume + 1, 1e-9);
+  }
+}
+
 TEST(Boolean, SphereMinusItselfTurnedOntoItsVertices) {
   // A quarter turn maps the sphere's vertices onto vertices (sin and cos are exact).
   const Model a = sphere_model(5, 16);

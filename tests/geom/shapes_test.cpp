@@ -151,6 +151,58 @@ TEST(Intersect, TrianglesInSpace) {
   EXPECT_FALSE(segment_meets_triangle({3, 3, 5}, {3, 3, -5}, t));  // passes beside it
 }
 
+// Triangles that straddle each other's planes: the two-orientation test against the
+// six edge-against-triangle tests, over seeded random pairs on a small grid (where
+// traces touch exactly: an edge through an edge, a trace ending on the other's) and
+// off it (where they pass within a rounding of each other).
+TEST(Intersect, StraddlingTrianglesApartAgreesWithTheEdgeTests) {
+  std::mt19937_64 rng(20261202);
+  std::uniform_int_distribution<int> grid(0, 4);
+  std::uniform_real_distribution<double> unit(0, 1);
+  int straddling = 0, meeting = 0, apart = 0, touching = 0;
+  for (int n = 0; n < 400000; ++n) {
+    Vec3 a[3], b[3];
+    const bool on_grid = n % 2 == 0;
+    for (Vec3* t : {a, b})
+      for (int k = 0; k < 3; ++k)
+        t[k] = on_grid ? Vec3{double(grid(rng)), double(grid(rng)), double(grid(rng))}
+                       : Vec3{unit(rng), unit(rng), unit(rng)};
+    if (!on_grid && n % 4 == 1) b[0] = a[0] + (b[0] - a[0]) * 1e-9;  // nearly a shared corner
+    int sa[3], sb[3];
+    for (int k = 0; k < 3; ++k) {
+      sa[k] = orient3d(b[0], b[1], b[2], a[k]);
+      sb[k] = orient3d(a[0], a[1], a[2], b[k]);
+    }
+    auto straddles = [](const int s[3]) {
+      return s[0] * s[1] * s[2] != 0 && !(s[0] == s[1] && s[1] == s[2]);
+    };
+    if (!straddles(sa) || !straddles(sb)) continue;
+    ++straddling;
+    bool edges_meet = false;
+    for (int i = 0; i < 3; ++i) {
+      const int j = (i + 1) % 3;
+      edges_meet = edges_meet || segment_meets_triangle(a[i], a[j], b) || segment_meets_triangle(b[i], b[j], a);
+    }
+    const bool far = straddling_triangles_apart(a, b, sa, sb);
+    ASSERT_EQ(far, !edges_meet) << "pair " << n;
+    ASSERT_EQ(far, straddling_triangles_apart(b, a, sb, sa)) << "pair " << n;
+    ASSERT_EQ(triangles_meet(a, b), edges_meet) << "pair " << n;
+    (far ? apart : meeting) += 1;
+    if (on_grid && edges_meet) {
+      // An edge of each in one plane: where the traces' ends can coincide exactly.
+      bool coplanar_edges = false;
+      for (int i = 0; i < 3; ++i)
+        for (int k = 0; k < 3; ++k)
+          coplanar_edges = coplanar_edges || orient3d(a[i], a[(i + 1) % 3], b[k], b[(k + 1) % 3]) == 0;
+      touching += coplanar_edges;
+    }
+  }
+  EXPECT_GT(straddling, 50000);
+  EXPECT_GT(meeting, 10000);
+  EXPECT_GT(apart, 10000);
+  EXPECT_GT(touching, 100);
+}
+
 // ---- signed volume
 
 // The unit cube's six faces, counterclockwise seen from outside, as index loops.

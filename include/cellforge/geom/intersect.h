@@ -29,6 +29,13 @@ bool triangles_meet(const Vec2 a[3], const Vec2 b[3]);
 // in its plane).
 bool segment_meets_triangle(Vec3 p, Vec3 q, const Vec3 t[3]);
 
+// Triangles a and b in space that each cross the other's plane with no corner in it
+// (sa: the sides of a's corners against b's plane, orient3d(b..., a[i]); sb: b's
+// against a's; each has both signs and no zero) are apart: their traces on the line of
+// the two planes do not overlap. Two orientations of input points decide it (Guigue and
+// Devillers' test); false when the triangles meet, touching included.
+bool straddling_triangles_apart(const Vec3 a[3], const Vec3 b[3], const int sa[3], const int sb[3]);
+
 // The closed triangles a and b in space share a point. Degenerate triangles (three
 // collinear points) that lie in one plane with the other are reported as not meeting:
 // callers report degeneracy on its own.
