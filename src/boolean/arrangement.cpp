@@ -630,6 +630,8 @@ void Arrangement::test_pair(std::uint32_t i, std::uint32_t j, PairEvents& ev) co
   for (std::uint32_t v : b.v) shared += v == a.v[0] || v == a.v[1] || v == a.v[2];
   // Two tiles of one face that share an edge lie on either side of it: they meet in
   // it alone, and they are coplanar exactly when the face is planar (decided once).
+  // Tiles of one strictly convex face meet only in their shared edges and corners.
+  if (a.input_face == b.input_face && faces[a.input_face].convex) return;
   const bool one_face = a.input_face == b.input_face && shared == 2;
   if (one_face && !faces[a.input_face].planar) return;
   int ob[3], pos_b = 0, neg_b = 0;
@@ -748,6 +750,9 @@ void Arrangement::intersect(int threads) {
   std::vector<std::array<std::uint32_t, 2>> touching;  // triangle, vertex on its plane
   UnionFind coplanar(tris.size());
   UnionFind same_plane(tris.size());
+  for (const SoupFace& f : faces)
+    if (f.convex)
+      for (std::uint32_t t : f.tris) same_plane.unite(f.tris[0], t);
   // Candidate pairs in batches, each cut into one range per thread.
   std::vector<std::array<std::uint32_t, 2>> batch;
   constexpr std::size_t kBatch = 1 << 16;

@@ -56,6 +56,10 @@ struct SoupFace {
   // each of their tests goes to the exact stage, and the pair tests, the patch
   // classification and the merge all ask it.
   bool planar = true;
+  // Planar, of one loop, strictly convex and winding once, with every tile kept: its
+  // tiles meet only in their shared edges and corners, so no pair of them is tested
+  // (they are joined as one plane instead).
+  bool convex = false;
   // A face of one loop of four vertices (a quad of a faceted curved primitive): the
   // loop, and the sign of orient3d over it in that order, so that any tile's test of
   // the fourth vertex is a permutation of it (side_of).

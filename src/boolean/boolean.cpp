@@ -146,6 +146,37 @@ std::vector<std::array<std::uint32_t, 3>> fan_tiles(const std::vector<std::vecto
   return out;
 }
 
+// Whether the planar loop turns the same way, strictly, at every corner and winds
+// once, in the projection where its first tile t0 has area: the direction of its edges
+// then turns through one revolution, so their component along the projection's
+// second axis changes sign exactly twice (k revolutions: 2k times).
+bool strictly_convex(const std::vector<Vec3>& pos, const std::vector<std::uint32_t>& loop, const Tri& t0) {
+  int k = 0;
+  while (k < 3 && orient2d_projected(pos[t0.v[0]], pos[t0.v[1]], pos[t0.v[2]], k) == 0) ++k;
+  if (k == 3) return false;
+  const int turn = orient2d_projected(pos[t0.v[0]], pos[t0.v[1]], pos[t0.v[2]], k);
+  const int axis = (k + 2) % 3;  // the projection's second axis (predicates.h)
+  const std::size_t n = loop.size();
+  int changes = 0, last = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec3 p = pos[loop[i]], q = pos[loop[(i + 1) % n]], r = pos[loop[(i + 2) % n]];
+    if (orient2d_projected(p, q, r, k) != turn) return false;
+    const int d = (q[axis] > p[axis]) - (q[axis] < p[axis]);
+    if (d == 0) continue;
+    if (last != 0 && d != last) ++changes;
+    last = d;
+  }
+  // The change from the last edge back to the first.
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec3 p = pos[loop[i]], q = pos[loop[(i + 1) % n]];
+    const int d = (q[axis] > p[axis]) - (q[axis] < p[axis]);
+    if (d == 0) continue;
+    changes += d != last;
+    break;
+  }
+  return changes == 2;
+}
+
 // The operands' faces that bound a cell on one side, as outward triangles, and their
 // sheets (faces with no cell on either side) as they are.
 Result<Arrangement> make_soup(std::span<const Model* const> operands, int threads) {
@@ -241,6 +272,8 @@ Result<Arrangement> make_soup(std::span<const Model* const> operands, int thread
         for (std::uint32_t v : loop)
           if (f.planar && v != t0.v[0] && v != t0.v[1] && v != t0.v[2])
             f.planar = orient3d(pos[t0.v[0]], pos[t0.v[1]], pos[t0.v[2]], pos[v]) == 0;
+      f.convex = f.planar && f.loops.size() == 1 && f.tris.size() + 2 == f.loops[0].size() &&
+                 strictly_convex(pos, f.loops[0], t0);
     }
   });
   return Arrangement(std::move(pos), std::move(tris), std::move(faces),

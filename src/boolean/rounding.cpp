@@ -142,29 +142,67 @@ TriangleBoxes::TriangleBoxes(const std::vector<std::array<Vec3, 3>>& tris) {
 bool nudge_rounding(MeshInput& in, const std::vector<char>& inexact,
                     const std::function<bool(std::uint32_t, int)>& exact, int threads) {
   constexpr int kRounds = 4;
-  // Every face's triangles; after the first round only the faces around a vertex that
-  // moved are tiled again (a tiling depends on its face's positions alone).
-  std::vector<std::vector<Tri3>> tiles(in.faces.size());
-  std::vector<std::uint32_t> retile(in.faces.size());
-  std::iota(retile.begin(), retile.end(), 0u);
+  // Only a triangle of a face with a rounded corner can have come to cross another
+  // (the faces with all their corners exact meet as the exact arrangement does), and
+  // only triangles near such a face can be what it crosses: the faces far from every
+  // rounded one are neither tiled nor indexed. After the first round only the faces
+  // around a vertex that moved are tiled again (a tiling depends on its face's
+  // positions alone).
+  const std::size_t nf = in.faces.size();
+  std::vector<char> moved_face(nf, 0);
+  for (std::uint32_t f = 0; f < nf; ++f)
+    for (const auto& loop : in.faces[f].loops)
+      for (std::uint32_t v : loop) moved_face[f] |= inexact[v];
+  std::vector<std::vector<Tri3>> tiles(nf);
+  std::vector<char> tiled(nf, 0);
+  auto tile = [&](const std::vector<std::uint32_t>& fs) {
+    auto parts = parallel_ranges<std::vector<std::vector<Tri3>>>(
+        fs.size(), threads, [&](std::size_t lo, std::size_t hi, auto& out) {
+          for (std::size_t k = lo; k < hi; ++k) out.push_back(tile_face(in, in.faces[fs[k]]));
+        });
+    std::size_t k = 0;
+    for (auto& p : parts)
+      for (auto& t : p) {
+        tiled[fs[k]] = 1;
+        tiles[fs[k++]] = std::move(t);
+      }
+  };
+  std::vector<std::uint32_t> retile;
+  for (std::uint32_t f = 0; f < nf; ++f)
+    if (moved_face[f]) retile.push_back(f);
   for (int round = 0; round < kRounds; ++round) {
-    {
-      auto parts = parallel_ranges<std::vector<std::vector<Tri3>>>(
-          retile.size(), threads, [&](std::size_t lo, std::size_t hi, auto& out) {
-            for (std::size_t k = lo; k < hi; ++k) out.push_back(tile_face(in, in.faces[retile[k]]));
-          });
-      std::size_t k = 0;
-      for (auto& p : parts)
-        for (auto& t : p) tiles[retile[k++]] = std::move(t);
+    tile(retile);
+    // The boxes of the moved faces' triangles; the other faces whose box meets one of
+    // them are tiled, and their triangles meeting one are indexed with them.
+    std::vector<Box> near_boxes;
+    for (std::uint32_t f = 0; f < nf; ++f)
+      if (moved_face[f])
+        for (const Tri3& t : tiles[f]) near_boxes.push_back(grown(box_of(in, t)));
+    if (near_boxes.empty()) return true;
+    const Bvh near_moved(near_boxes);
+    auto meets_moved = [&](const Box& b) {
+      bool hit = false;
+      near_moved.query([&](const Box& x) { return !hit && x.overlaps(b); }, [&](std::uint32_t) { hit = true; });
+      return hit;
+    };
+    std::vector<std::uint32_t> near_faces;
+    for (std::uint32_t f = 0; f < nf; ++f) {
+      if (moved_face[f] || tiled[f]) continue;
+      Box b;
+      for (const auto& loop : in.faces[f].loops)
+        for (std::uint32_t v : loop) b.add(in.positions[v]);
+      if (meets_moved(grown(b))) near_faces.push_back(f);
     }
+    tile(near_faces);
     // The crossing pairs among them.
     std::vector<Tri3> tris;
     std::vector<std::uint32_t> face;
-    for (std::uint32_t f = 0; f < tiles.size(); ++f)
-      for (const Tri3& t : tiles[f]) {
-        tris.push_back(t);
-        face.push_back(f);
-      }
+    for (std::uint32_t f = 0; f < nf; ++f)
+      for (const Tri3& t : tiles[f])
+        if (moved_face[f] || meets_moved(grown(box_of(in, t)))) {
+          tris.push_back(t);
+          face.push_back(f);
+        }
     std::vector<std::array<Vec3, 3>> corners(tris.size());
     std::vector<char> moved(tris.size(), 0);
     for (std::size_t i = 0; i < tris.size(); ++i) {
