@@ -4,11 +4,11 @@
 #include "cellforge/boolean/boolean.h"
 
 #include <algorithm>
+#include <bit>
 #include <chrono>
 #include <cmath>
 #include <cstring>
 #include <numeric>
-#include <unordered_map>
 
 #include "boolean/parallel.h"
 #include "boolean/stages.h"
@@ -91,6 +91,29 @@ struct VecHash {
   }
 };
 
+// The input points, one id each: open addressing over the positions' bits, at most
+// half full (`n` bounds the number of points).
+class PointIds {
+ public:
+  explicit PointIds(std::size_t n) : mask_(std::bit_ceil(2 * n + 2) - 1), slots_(mask_ + 1, kInvalidIndex) {}
+  // The id of p; a new one, p pushed onto pos, when p was not seen.
+  std::uint32_t get(Vec3 p, std::vector<Vec3>& pos) {
+    for (std::size_t i = VecHash{}(p) & mask_;; i = (i + 1) & mask_) {
+      std::uint32_t& s = slots_[i];
+      if (s == kInvalidIndex) {
+        s = static_cast<std::uint32_t>(pos.size());
+        pos.push_back(p);
+        return s;
+      }
+      if (pos[s] == p) return s;
+    }
+  }
+
+ private:
+  std::size_t mask_;
+  std::vector<std::uint32_t> slots_;
+};
+
 std::vector<FaceId> face_list(const Model& m) {
   std::vector<FaceId> out;
   out.reserve(m.num_faces());
@@ -120,6 +143,18 @@ std::vector<std::vector<std::array<VertexId, 3>>> triangulate_faces(const Model&
 bool covers_loops(const std::vector<std::vector<std::uint32_t>>& loops,
                   const std::vector<std::array<std::uint32_t, 3>>& tiles) {
   if (loops.size() == 1 && loops[0].size() == 3 && tiles.size() == 1) return true;
+  const auto has_edge = [&](std::uint32_t p, std::uint32_t q) {
+    for (const auto& t : tiles)
+      for (int e = 0; e < 3; ++e)
+        if ((t[e] == p && t[(e + 1) % 3] == q) || (t[e] == q && t[(e + 1) % 3] == p)) return true;
+    return false;
+  };
+  if (tiles.size() <= 4) {  // a quad, the common case: no sorting
+    for (const auto& loop : loops)
+      for (std::size_t i = 0; i < loop.size(); ++i)
+        if (!has_edge(loop[i], loop[(i + 1) % loop.size()])) return false;
+    return true;
+  }
   std::vector<std::uint64_t> edges;
   for (const auto& t : tiles)
     for (int e = 0; e < 3; ++e) {
@@ -181,10 +216,10 @@ bool strictly_convex(const std::vector<Vec3>& pos, const std::vector<std::uint32
 // sheets (faces with no cell on either side) as they are.
 Result<Arrangement> make_soup(std::span<const Model* const> operands, int threads) {
   std::vector<Vec3> pos;
-  std::unordered_map<Vec3, std::uint32_t, VecHash> ids;
   std::size_t vertices = 0;
   for (const Model* m : operands) vertices += m->num_vertices();
-  ids.reserve(vertices);
+  PointIds ids(vertices);
+  pos.reserve(vertices);
   std::vector<Tri> tris;
   std::vector<SoupFace> faces;
   std::vector<WireSeg> wires;
@@ -196,9 +231,7 @@ Result<Arrangement> make_soup(std::span<const Model* const> operands, int thread
       if (id == kInvalidIndex) {
         Vec3 p = m.position(v);
         p = {p.x + 0.0, p.y + 0.0, p.z + 0.0};  // -0.0 and 0.0 are one point
-        auto [jt, nu] = ids.try_emplace(p, static_cast<std::uint32_t>(pos.size()));
-        if (nu) pos.push_back(p);
-        id = jt->second;
+        id = ids.get(p, pos);
       }
       return id;
     };
@@ -221,7 +254,7 @@ Result<Arrangement> make_soup(std::span<const Model* const> operands, int thread
       for (LoopId l = m.outer_loop(f); l.is_valid(); l = m.next_loop(l)) {
         if (m.is_point_loop(l)) continue;
         std::vector<std::uint32_t> loop;
-        for (VertexId v : m.loop_vertices(l)) loop.push_back(vid(v));
+        for (EdgeUseId u : m.uses_of(l)) loop.push_back(vid(m.use_start(u)));
         if (front) std::reverse(loop.begin(), loop.end());
         sf.loops.push_back(std::move(loop));
       }

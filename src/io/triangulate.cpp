@@ -16,6 +16,7 @@
 #include <cstring>
 #include <memory>
 #include <numeric>
+#include <optional>
 #include <unordered_map>
 
 #include "cellforge/geom/intersect.h"
@@ -442,7 +443,7 @@ namespace {
 // tiles it (the first strict ear from corner 0, else the first convex corner, else
 // corner 0), without the general path's allocations: most faces of a mesh are
 // triangles or quads.
-std::vector<Tri> clip_quad(const std::array<Vec2, 4>& q, bool reversed) {
+std::array<Tri, 2> clip_quad(const std::array<Vec2, 4>& q, bool reversed) {
   std::array<std::uint32_t, 4> r{0, 1, 2, 3};
   if (reversed) r = {3, 2, 1, 0};
   const auto at = [&](int k) { return q[r[(k + 4) % 4]]; };
@@ -458,7 +459,16 @@ std::vector<Tri> clip_quad(const std::array<Vec2, 4>& q, bool reversed) {
     if (orient2d(at(k - 1), at(k), at(k + 1)) > 0) pick = k;
   if (pick < 0) pick = 0;
   const auto id = [&](int k) { return r[(k + 4) % 4]; };
-  return {{id(pick - 1), id(pick), id(pick + 1)}, {id(pick - 1), id(pick + 1), id(pick + 2)}};
+  return {Tri{id(pick - 1), id(pick), id(pick + 1)}, Tri{id(pick - 1), id(pick + 1), id(pick + 2)}};
+}
+
+// A quadrilateral's two tiles, unless two of its corners project to one point.
+std::optional<std::array<Tri, 2>> quad_tiles(const std::array<Vec3, 4>& p, const Projection& proj) {
+  const std::array<Vec2, 4> q{proj(p[0]), proj(p[1]), proj(p[2]), proj(p[3])};
+  for (int i = 0; i < 4; ++i)
+    for (int j = i + 1; j < 4; ++j)
+      if (q[i] == q[j]) return std::nullopt;
+  return clip_quad(q, area_sign(q) < 0);
 }
 
 }  // namespace
@@ -468,11 +478,8 @@ std::vector<Tri> triangulate_polygon(const std::vector<std::vector<Vec3>>& loops
   if (loops.size() == 1 && loops[0].size() == 3) return {{0, 1, 2}};
   const Projection proj(normal);
   if (loops.size() == 1 && loops[0].size() == 4) {
-    const std::array<Vec2, 4> q{proj(loops[0][0]), proj(loops[0][1]), proj(loops[0][2]), proj(loops[0][3])};
-    bool distinct = true;
-    for (int i = 0; i < 4; ++i)
-      for (int j = i + 1; j < 4; ++j) distinct &= q[i] != q[j];
-    if (distinct) return clip_quad(q, area_sign(q) < 0);
+    const auto& l = loops[0];
+    if (const auto t = quad_tiles({l[0], l[1], l[2], l[3]}, proj)) return {(*t)[0], (*t)[1]};
   }
   std::vector<Vec2> points;
   std::vector<std::vector<std::uint32_t>> index(loops.size());
@@ -499,6 +506,34 @@ std::vector<Tri> triangulate_polygon(const std::vector<std::vector<Vec3>>& loops
 }
 
 std::vector<std::array<VertexId, 3>> triangulate_face(const Model& m, FaceId f) {
+  // One loop of three or four corners, most faces of a mesh, without the general
+  // path's copies.
+  LoopId only;
+  int rings = 0;
+  for (LoopId l : m.loops_of(f))
+    if (!m.is_point_loop(l)) {
+      only = l;
+      ++rings;
+    }
+  if (rings == 1) {
+    std::array<VertexId, 4> v;
+    std::array<Vec3, 4> p;
+    int n = 0;
+    for (EdgeUseId u : m.uses_of(only)) {
+      if (n == 4) {
+        n = 5;
+        break;
+      }
+      v[n] = m.use_start(u);
+      p[n] = m.position(v[n]);
+      ++n;
+    }
+    if (n == 3) return {{v[0], v[1], v[2]}};
+    if (n == 4 && only == m.outer_loop(f)) {
+      const auto t = quad_tiles(p, Projection(newell_normal(p)));
+      if (t) return {{v[(*t)[0][0]], v[(*t)[0][1]], v[(*t)[0][2]]}, {v[(*t)[1][0]], v[(*t)[1][1]], v[(*t)[1][2]]}};
+    }
+  }
   std::vector<VertexId> ids;
   std::vector<std::vector<Vec3>> loops;
   for (LoopId l : m.loops_of(f)) {
