@@ -18,6 +18,7 @@
 #include <cassert>
 #include <mutex>
 #include <numeric>
+#include <optional>
 
 #include "cellforge/geom/intersect.h"
 #include "cellforge/geom/predicates.h"
@@ -575,15 +576,24 @@ bool coplanar_overlap(const Arrangement& A, const Tri& a, const Tri& b, int k) {
 
 }  // namespace
 
-// orient3d of vertex v against triangle x's plane; 0 without arithmetic for x's own
-// corners (the exact stage would run for every neighbour in a mesh).
-int Arrangement::side_of(const Tri& x, std::uint32_t v) const {
-  if (v == x.v[0] || v == x.v[1] || v == x.v[2]) return 0;
-  // The fourth vertex of x's quad: known from the quad's fold (near-planar quads
-  // would each go to the exact stage).
+// orient3d of y's corners against triangle x's plane; 0 without arithmetic for x's own
+// corners (the exact stage would run for every neighbour in a mesh), and the fourth
+// vertex of x's quad known from the quad's fold (near-planar quads would each go to
+// the exact stage).
+void Arrangement::sides_of(const Tri& x, const Tri& y, int o[3]) const {
   const std::size_t t = static_cast<std::size_t>(&x - tris.data());
-  if (v == quad_other[t]) return quad_side[t];
-  return orient3d(pos[x.v[0]], pos[x.v[1]], pos[x.v[2]], pos[v]);
+  std::optional<PlaneSide> plane;  // at the first corner that needs arithmetic
+  for (int k = 0; k < 3; ++k) {
+    const std::uint32_t v = y.v[k];
+    if (v == x.v[0] || v == x.v[1] || v == x.v[2]) {
+      o[k] = 0;
+    } else if (v == quad_other[t]) {
+      o[k] = quad_side[t];
+    } else {
+      if (!plane) plane.emplace(pos[x.v[0]], pos[x.v[1]], pos[x.v[2]]);
+      o[k] = (*plane)(pos[v]);
+    }
+  }
 }
 
 // Whether segment pq, in the plane of triangle x, meets x's interior (closed: x's
@@ -634,9 +644,9 @@ void Arrangement::test_pair(std::uint32_t i, std::uint32_t j, PairEvents& ev) co
   if (a.input_face == b.input_face && faces[a.input_face].convex) return;
   const bool one_face = a.input_face == b.input_face && shared == 2;
   if (one_face && !faces[a.input_face].planar) return;
-  int ob[3], pos_b = 0, neg_b = 0;
+  int ob[3] = {0, 0, 0}, pos_b = 0, neg_b = 0;
+  if (!one_face) sides_of(a, b, ob);
   for (int k = 0; k < 3; ++k) {
-    ob[k] = one_face ? 0 : side_of(a, b.v[k]);
     pos_b += ob[k] > 0;
     neg_b += ob[k] < 0;
   }
@@ -658,8 +668,8 @@ void Arrangement::test_pair(std::uint32_t i, std::uint32_t j, PairEvents& ev) co
     return;
   }
   int oa[3], pos_a = 0, neg_a = 0;
+  sides_of(b, a, oa);
   for (int k = 0; k < 3; ++k) {
-    oa[k] = side_of(b, a.v[k]);
     pos_a += oa[k] > 0;
     neg_a += oa[k] < 0;
   }
@@ -717,6 +727,9 @@ void Arrangement::test_pair(std::uint32_t i, std::uint32_t j, PairEvents& ev) co
   ++ev.hit;
 }
 
+// Enough pieces of the pair enumeration that two or more threads share them evenly.
+constexpr std::size_t kPairPieces = 256;
+
 void Arrangement::intersect(int threads) {
   // Each quad tile's test of the quad's fourth vertex: the quad's fold sign times the
   // parity of the permutation taking the quad's loop to (tile, vertex), since orient3d
@@ -753,31 +766,23 @@ void Arrangement::intersect(int threads) {
   for (const SoupFace& f : faces)
     if (f.convex)
       for (std::uint32_t t : f.tris) same_plane.unite(f.tris[0], t);
-  // Candidate pairs in batches, each cut into one range per thread.
-  std::vector<std::array<std::uint32_t, 2>> batch;
-  constexpr std::size_t kBatch = 1 << 16;
-  batch.reserve(kBatch);
-  auto run_batch = [&] {
-    std::vector<PairEvents> ev = parallel_ranges<PairEvents>(batch.size(), threads, [&](std::size_t lo, std::size_t hi, PairEvents& out) {
-      for (std::size_t k = lo; k < hi; ++k) test_pair(batch[k][0], batch[k][1], out);
-    });
-    for (const PairEvents& e : ev) {
-      pairs_tested += e.tested;
-      pairs_hit += e.hit;
-      for (auto [p, q, v] : e.edge_points) edge_points.push_back({edge_key(p, q), v});
-      for (auto [x, y] : e.coplanar) coplanar.unite(x, y);
-      for (auto [x, y] : e.same_plane) same_plane.unite(x, y);
-      touching.insert(touching.end(), e.touching.begin(), e.touching.end());
-      crossing.insert(crossing.end(), e.crossing.begin(), e.crossing.end());
-      contact_edges.insert(contact_edges.end(), e.contact_edges.begin(), e.contact_edges.end());
-    }
-    batch.clear();
-  };
-  bvh.pairs([&](std::uint32_t i, std::uint32_t j) {
-    batch.push_back({i, j});
-    if (batch.size() == kBatch) run_batch();
-  });
-  run_batch();
+  // The candidate pairs in pieces of the tree, tested on threads, their events
+  // applied in the tree's order (the same at any thread count).
+  const std::vector<Bvh::Piece> pieces = bvh.pair_pieces(kPairPieces);
+  const std::vector<PairEvents> events =
+      parallel_jobs<PairEvents>(pieces.size(), threads, [&](std::size_t k, PairEvents& out) {
+        bvh.pairs(pieces[k], [&](std::uint32_t i, std::uint32_t j) { test_pair(i, j, out); });
+      });
+  for (const PairEvents& e : events) {
+    pairs_tested += e.tested;
+    pairs_hit += e.hit;
+    for (auto [p, q, v] : e.edge_points) edge_points.push_back({edge_key(p, q), v});
+    for (auto [x, y] : e.coplanar) coplanar.unite(x, y);
+    for (auto [x, y] : e.same_plane) same_plane.unite(x, y);
+    touching.insert(touching.end(), e.touching.begin(), e.touching.end());
+    crossing.insert(crossing.end(), e.crossing.begin(), e.crossing.end());
+    contact_edges.insert(contact_edges.end(), e.contact_edges.begin(), e.contact_edges.end());
+  }
   std::sort(contact_edges.begin(), contact_edges.end());
   contact_edges.erase(std::unique(contact_edges.begin(), contact_edges.end()), contact_edges.end());
 
@@ -845,8 +850,7 @@ void Arrangement::add_pair(std::uint32_t t, std::uint32_t b) {
   const Tri& a = tris[t];
   const Tri& o = tris[b];
   int s[3];
-  for (int k = 0; k < 3; ++k)
-    s[k] = side_of(a, o.v[k]);
+  sides_of(a, o, s);
   std::uint32_t ends[3];
   int n = 0;
   const std::size_t points_before = points.size();

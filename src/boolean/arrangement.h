@@ -62,7 +62,7 @@ struct SoupFace {
   bool convex = false;
   // A face of one loop of four vertices (a quad of a faceted curved primitive): the
   // loop, and the sign of orient3d over it in that order, so that any tile's test of
-  // the fourth vertex is a permutation of it (side_of).
+  // the fourth vertex is a permutation of it (sides_of).
   std::array<std::uint32_t, 4> quad{kNoQuad, kNoQuad, kNoQuad, kNoQuad};
   std::int8_t fold = 0;
   static constexpr std::uint32_t kNoQuad = 0xffffffffu;
@@ -153,7 +153,7 @@ class Arrangement {
   std::vector<Vec3> pos;
   std::vector<Tri> tris;
   // By triangle, for the tiles of a quad: the quad's fourth vertex and its side of the
-  // tile's plane (side_of); kInvalidIndex elsewhere. Set by intersect().
+  // tile's plane (sides_of); kInvalidIndex elsewhere. Set by intersect().
   std::vector<std::uint32_t> quad_other;
   std::vector<std::int8_t> quad_side;
   std::vector<SoupFace> faces;
@@ -259,7 +259,8 @@ class Arrangement {
   std::uint32_t add_line(Cluster& c, Line l);
   void add_pair(std::uint32_t t, std::uint32_t b);
   bool segment_enters(const Tri& x, std::uint32_t p, std::uint32_t q, bool closed = false) const;
-  int side_of(const Tri& x, std::uint32_t v) const;
+  // orient3d of y's corners against x's plane, into o (the plane set up once).
+  void sides_of(const Tri& x, const Tri& y, int o[3]) const;
   void split_cluster(std::uint32_t ci);
   bool split_piece(Cluster& c, std::uint32_t ci, std::size_t pi, std::uint32_t li,
                    std::uint32_t s0, std::uint32_t s1, std::vector<Piece>& out,

@@ -649,25 +649,26 @@ Result<BooleanResult> build_result(Arrangement& a, Selection selection, const Ex
   std::sort(used.begin(), used.end());
   used.erase(std::unique(used.begin(), used.end()), used.end());
   const std::vector<std::uint32_t> canon = canonical_points(a, used);
+  // In place (a face's loops and keys are rewritten, never copied: most faces go
+  // through every step below unchanged).
   for (OutPoly& p : polys)
     for (std::size_t l = 0; l < p.loops.size(); ++l) {
-      std::vector<std::uint32_t> pts, keys;
-      const auto& loop = p.loops[l];
+      auto& loop = p.loops[l];
+      auto& keys = p.keys[l];
+      std::size_t n = 0;
       for (std::size_t i = 0; i < loop.size(); ++i) {
         const std::uint32_t c = canon[loop[i]];
-        if (!pts.empty() && pts.back() == c) {
-          keys.back() = p.keys[l][i];
+        if (n > 0 && loop[n - 1] == c) {
+          keys[n - 1] = keys[i];
           continue;
         }
-        pts.push_back(c);
-        keys.push_back(p.keys[l][i]);
+        loop[n] = c;
+        keys[n] = keys[i];
+        ++n;
       }
-      while (pts.size() > 1 && pts.back() == pts.front()) {
-        pts.pop_back();
-        keys.pop_back();
-      }
-      p.loops[l] = std::move(pts);
-      p.keys[l] = std::move(keys);
+      while (n > 1 && loop[n - 1] == loop[0]) --n;
+      loop.resize(n);
+      keys.resize(n);
     }
 
   // 2. No T-junctions.
@@ -675,6 +676,8 @@ Result<BooleanResult> build_result(Arrangement& a, Selection selection, const Ex
   for (OutPoly& p : polys)
     for (std::size_t l = 0; l < p.loops.size(); ++l) {
       const auto& loop = p.loops[l];
+      if (std::all_of(p.keys[l].begin(), p.keys[l].end(), [](std::uint32_t k) { return k == kInvalidIndex; }))
+        continue;  // on no line of the arrangement: nothing to insert
       std::vector<std::uint32_t> out;
       for (std::size_t i = 0; i < loop.size(); ++i) {
         out.push_back(loop[i]);
@@ -698,7 +701,7 @@ Result<BooleanResult> build_result(Arrangement& a, Selection selection, const Ex
     std::uint32_t poly;
     bool forward;
   };
-  auto edge_uses = [](const std::vector<OutPoly>& ps) {
+  auto edge_uses = [](const auto& ps) {  // OutPolys, or MeshFaces: anything with loops
     std::vector<Use> uses;
     for (std::uint32_t f = 0; f < ps.size(); ++f)
       for (const auto& loop : ps[f].loops)
@@ -740,13 +743,20 @@ Result<BooleanResult> build_result(Arrangement& a, Selection selection, const Ex
       if (joined[k]) regions.unite(uses[joins[k]].poly, uses[joins[k] + 1].poly);
       if (!joined[k]) cuts.insert(uses[joins[k]].key);
     }
-    // Faces using each vertex: a merge may not swallow a vertex another face needs.
+    std::vector<std::vector<const OutPoly*>> members(polys.size());
+    for (std::uint32_t f = 0; f < polys.size(); ++f) members[regions.find(f)].push_back(&polys[f]);
+    // Faces using each vertex of a region of several faces: a merge may not swallow a
+    // vertex another face needs.
+    std::vector<char> in_region(a.pos.size() + a.points.size(), 0);
+    for (std::uint32_t f = 0; f < polys.size(); ++f)
+      if (members[regions.find(f)].size() > 1)
+        for (const auto& loop : polys[f].loops)
+          for (std::uint32_t v : loop) in_region[v] = 1;
     std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> users;
     for (std::uint32_t f = 0; f < polys.size(); ++f)
       for (const auto& loop : polys[f].loops)
-        for (std::uint32_t v : loop) users[v].push_back(f);
-    std::vector<std::vector<const OutPoly*>> members(polys.size());
-    for (std::uint32_t f = 0; f < polys.size(); ++f) members[regions.find(f)].push_back(&polys[f]);
+        for (std::uint32_t v : loop)
+          if (in_region[v]) users[v].push_back(f);
     // The boundary of each region of several faces, and the vertices it leaves inside.
     std::vector<std::vector<std::vector<std::uint32_t>>> outline(polys.size());
     std::vector<std::vector<std::uint32_t>> swallowed(polys.size());
@@ -777,13 +787,11 @@ Result<BooleanResult> build_result(Arrangement& a, Selection selection, const Ex
     std::vector<OutPoly> merged;
     for (std::uint32_t f = 0; f < polys.size(); ++f) {
       if (members[f].empty()) continue;
-      if (members[f].size() == 1) {
-        merged.push_back(*members[f][0]);
+      OutPoly& first = polys[static_cast<std::size_t>(members[f][0] - polys.data())];
+      if (members[f].size() == 1) {  // no other region reads it: moved
+        merged.push_back(std::move(first));
         continue;
       }
-      OutPoly m = *members[f][0];
-      m.loops = std::move(outline[f]);
-      m.keys.clear();
       // A boundary through a vertex twice (two holes touching at a corner), or a merge
       // that would leave inside the face a vertex other faces use (a corner touching
       // it) or a pinned one, is left as the pieces it came from.
@@ -796,7 +804,10 @@ Result<BooleanResult> build_result(Arrangement& a, Selection selection, const Ex
       if (keep_apart) {
         for (OutPoly& q : merge_greedily(a, members[f], polys, users, pinned, cuts))
           merged.push_back(std::move(q));
-      } else if (!m.loops.empty()) {
+      } else if (!outline[f].empty()) {
+        OutPoly m = std::move(first);
+        m.loops = std::move(outline[f]);
+        m.keys.clear();
         merged.push_back(std::move(m));
       }
     }
@@ -836,24 +847,25 @@ Result<BooleanResult> build_result(Arrangement& a, Selection selection, const Ex
           return true;
       return false;
     };
-    std::unordered_map<std::uint32_t, char> drop;
+    std::vector<char> drop(total, 0);
+    bool any_drop = false;
     for (std::size_t i = 0; i < nb.size();) {
       std::size_t j = i;
       while (j < nb.size() && nb[j].first == nb[i].first) ++j;
       if (j - i == 2 && !lower.ends.count(nb[i].first) &&
           (on_one_line(nb[i].second, nb[i].first, nb[i + 1].second) ||
-                         a.collinear3(nb[i].second, nb[i].first, nb[i + 1].second)))
-        drop[nb[i].first] = 1;
+           a.collinear3(nb[i].second, nb[i].first, nb[i + 1].second)))
+        drop[nb[i].first] = any_drop = true;
       i = j;
     }
     // Non-regularized: only where the set is the same on both edges and the vertex.
-    if (options.keep_lower_dim && !drop.empty()) {
+    if (options.keep_lower_dim && any_drop) {
       std::vector<std::uint32_t> candidates;
       std::vector<std::array<std::uint32_t, 2>> sites;
       for (std::size_t i = 0; i < nb.size();) {
         std::size_t j = i;
         while (j < nb.size() && nb[j].first == nb[i].first) ++j;
-        if (drop.count(nb[i].first)) {
+        if (drop[nb[i].first]) {
           candidates.push_back(nb[i].first);
           sites.push_back({nb[i].second, nb[i].first});
           sites.push_back({nb[i].first, nb[i + 1].second});
@@ -863,33 +875,33 @@ Result<BooleanResult> build_result(Arrangement& a, Selection selection, const Ex
       }
       const std::vector<SiteVerdict> v = classify_sites(a, expr, sites, threads);
       for (std::size_t k = 0; k < candidates.size(); ++k)
-        if (v[3 * k].in != v[3 * k + 1].in || v[3 * k].in != v[3 * k + 2].in) drop.erase(candidates[k]);
+        if (v[3 * k].in != v[3 * k + 1].in || v[3 * k].in != v[3 * k + 2].in) drop[candidates[k]] = 0;
     }
-    std::vector<OutPoly> kept;
+    std::size_t n = 0;  // faces kept, compacted in place
     for (OutPoly& p : polys) {
-      std::vector<std::vector<std::uint32_t>> loops;
-      for (const auto& loop : p.loops) {
-        std::vector<std::uint32_t> l;
-        for (std::uint32_t v : loop)
-          if (!drop.count(v)) l.push_back(v);
-        if (l.size() >= 3) {
-          loops.push_back(std::move(l));
-        } else if (loops.empty()) {
+      std::size_t loops = 0;
+      for (auto& loop : p.loops) {
+        std::erase_if(loop, [&](std::uint32_t v) { return drop[v] != 0; });
+        if (loop.size() >= 3) {
+          if (&loop != &p.loops[loops]) p.loops[loops] = std::move(loop);
+          ++loops;
+        } else if (loops == 0) {
           break;  // the outer loop vanished: the face was degenerate
         }
       }
-      if (loops.empty()) continue;
-      p.loops = std::move(loops);
-      kept.push_back(std::move(p));
+      if (loops == 0) continue;
+      p.loops.resize(loops);
+      if (&p != &polys[n]) polys[n] = std::move(p);
+      ++n;
     }
-    polys = std::move(kept);
+    polys.resize(n);
   }
 
   // Face-connected shells (across edges two faces use), each of positive volume a
   // cell, each of negative volume a cavity of the innermost cell around it, by the
   // exact nesting of the shells (geom/winding.h) on their rounded triangles.
   auto assign_shell_cells = [&](MeshInput& in, const std::vector<OutPoly>& polys, int) {
-    const std::vector<Use> uses = edge_uses(polys);
+    const std::vector<Use> uses = edge_uses(in.faces);
     UnionFind shells(polys.size());
     for (std::size_t i = 0; i < uses.size();) {
       std::size_t j = i;
@@ -937,10 +949,13 @@ Result<BooleanResult> build_result(Arrangement& a, Selection selection, const Ex
   BooleanResult result;
   MeshInput in;
   in.group_name = "boolean";
-  std::unordered_map<std::uint32_t, std::uint32_t> index;
+  // Arrangement point -> result vertex, and back.
+  std::vector<std::uint32_t> index(a.pos.size() + a.points.size(), kInvalidIndex), point_of;
   auto add_point = [&](std::uint32_t v) {
-    if (index.try_emplace(v, static_cast<std::uint32_t>(in.positions.size())).second)
-      in.positions.push_back(a.approx3(v));
+    if (index[v] != kInvalidIndex) return;
+    index[v] = static_cast<std::uint32_t>(in.positions.size());
+    in.positions.push_back(a.approx3(v));
+    point_of.push_back(v);
   };
   for (const OutPoly& p : polys)
     for (const auto& loop : p.loops)
@@ -951,13 +966,13 @@ Result<BooleanResult> build_result(Arrangement& a, Selection selection, const Ex
     in.wires.push_back({index[w[0]], index[w[1]]});
   }
   for (std::uint32_t v : lower.points) add_point(v);
-  for (std::uint32_t f = 0; f < polys.size(); ++f) {
+  // The faces' loops, renumbered in place, become the mesh's (polys keeps the rest).
+  in.faces.reserve(polys.size());
+  for (OutPoly& p : polys) {
+    for (auto& loop : p.loops)
+      for (std::uint32_t& v : loop) v = index[v];
     MeshFace mf;
-    for (const auto& loop : polys[f].loops) {
-      std::vector<std::uint32_t> idx;
-      for (std::uint32_t v : loop) idx.push_back(index[v]);
-      mf.loops.push_back(std::move(idx));
-    }
+    mf.loops = std::move(p.loops);
     in.faces.push_back(std::move(mf));
   }
   // Regularized: face-connected shells, each of positive volume a cell, each of
@@ -965,9 +980,7 @@ Result<BooleanResult> build_result(Arrangement& a, Selection selection, const Ex
   // (io/volumes.h), where the radial order at every edge is known.
   if (!closed) assign_shell_cells(in, polys, threads);
   std::vector<char> inexact(in.positions.size(), 0);
-  for (auto [point, i] : index) inexact[i] = !a.rounds_exactly(point);
-  std::vector<std::uint32_t> point_of(in.positions.size());
-  for (auto [point, i] : index) point_of[i] = point;
+  for (std::uint32_t i = 0; i < point_of.size(); ++i) inexact[i] = !a.rounds_exactly(point_of[i]);
   // The repair's last check tiles each face as the exporters tile the face it becomes
   // (tile_face), so a clean check there is the count on the built model.
   const bool clean = nudge_rounding(
@@ -1047,7 +1060,7 @@ Result<BooleanResult> build_result(Arrangement& a, Selection selection, const Ex
   }
   result.sources = std::move(by_id);
   result.rounded.assign(result.model.num_vertices(), false);
-  for (auto [point, i] : index) {
+  for (std::uint32_t i = 0; i < point_of.size(); ++i) {
     const VertexId v = built->vertices[i];
     if (v.value >= result.rounded.size()) result.rounded.resize(v.value + 1, false);
     result.rounded[v.value] = inexact[i];

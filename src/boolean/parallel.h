@@ -46,4 +46,28 @@ std::vector<Out> parallel_ranges(std::size_t n, int threads, Body&& body) {
   return out;
 }
 
+// Jobs [0, n) of uneven sizes on threads, handed out one at a time; job k fills
+// out[k], so reading the parts in order gives what one thread would have made.
+template <class Out, class Body>
+std::vector<Out> parallel_jobs(std::size_t n, int threads, Body&& body) {
+  std::vector<Out> out(n);
+  const std::size_t helpers =
+      std::min<std::size_t>(static_cast<std::size_t>(thread_count(threads)), std::max<std::size_t>(n, 1)) - 1;
+  std::atomic<std::size_t> next{0}, exact{0};
+  auto run = [&] {
+    for (std::size_t k = next++; k < n; k = next++) body(k, out[k]);
+  };
+  std::vector<std::thread> workers;
+  for (std::size_t w = 0; w < helpers; ++w)
+    workers.emplace_back([&] {
+      const std::size_t before = exact_evaluations();
+      run();
+      exact += exact_evaluations() - before;
+    });
+  run();
+  for (std::thread& w : workers) w.join();
+  exact_evaluations() += exact;
+  return out;
+}
+
 }  // namespace cellforge::boolean

@@ -101,9 +101,11 @@ bool straddling_triangles_apart(const Vec3 a[3], const Vec3 b[3], const int sa[3
 
 bool triangles_meet(const Vec3 a[3], const Vec3 b[3]) {
   int sb[3], sa[3];
-  for (int i = 0; i < 3; ++i) sb[i] = orient3d(a[0], a[1], a[2], b[i]);
+  const PlaneSide plane_a(a[0], a[1], a[2]);
+  for (int i = 0; i < 3; ++i) sb[i] = plane_a(b[i]);
   if (same_strict_side(sb)) return false;
-  for (int i = 0; i < 3; ++i) sa[i] = orient3d(b[0], b[1], b[2], a[i]);
+  const PlaneSide plane_b(b[0], b[1], b[2]);
+  for (int i = 0; i < 3; ++i) sa[i] = plane_b(a[i]);
   if (same_strict_side(sa)) return false;
   if (sb[0] == 0 && sb[1] == 0 && sb[2] == 0) {
     const Vec3 n = projection_normal(a);

@@ -25,7 +25,7 @@ constexpr double kEps = 0x1p-53;
 // Shewchuk (1997), section 4.2: ccwerrboundA and o3derrboundA, for the computed
 // permanents below (their own rounding included).
 constexpr double kOrient2dBound = (3.0 + 16.0 * kEps) * kEps;
-constexpr double kOrient3dBound = (7.0 + 56.0 * kEps) * kEps;
+constexpr double kOrient3dBound = kOrient3dErrorBound;
 // For x1 y1 + x2 y2 + x3 y3 with x_i, y_i rounded differences: each term carries at
 // most 5 roundings (two differences, the product, at most two additions), so the
 // error is at most g5 T with g5 = 5 eps / (1 - 5 eps) and T = sum |x_i y_i| in exact

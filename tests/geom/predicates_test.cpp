@@ -277,6 +277,35 @@ TEST(Orient3d, CoplanarLatticeNudgedByOneUlp) {
   }
 }
 
+// The plane set up once must give orient3d's sign for every point, above all where the
+// double determinant is noise: its filter decides there only when it is right.
+TEST(PlaneSide, AgreesWithTheOracleNearThePlane) {
+  const Vec3 q{12, 12, 12}, r{24, 24, 24}, s{1, 2, 3};
+  const PlaneSide plane(q, r, s);
+  constexpr double u = 0x1p-53;
+  for (int i = 0; i < 24; ++i)
+    for (int j = 0; j < 24; ++j)
+      for (int k = 0; k < 24; ++k) {
+        const Vec3 p{0.5 + i * u, 0.5 + j * u, 0.5 + k * u};
+        ASSERT_EQ(plane(p), oracle_orient3d(q, r, s, p)) << i << ' ' << j << ' ' << k;
+      }
+  int naive_wrong = 0;
+  for (std::uint64_t seed = 90000; seed < 96000; ++seed) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    std::mt19937_64 rng(seed);
+    auto [a, b, c, d] = random_quad(rng, static_cast<int>(seed % 3));
+    const PlaneSide abc(a, b, c);
+    ASSERT_EQ(abc(d), oracle_orient3d(a, b, c, d));
+    naive_wrong += naive_orient3d(a, b, c, d) != oracle_orient3d(a, b, c, d);
+    d.z = std::nextafter(d.z, INFINITY);
+    ASSERT_EQ(abc(d), oracle_orient3d(a, b, c, d));
+    // Far points and large magnitudes, decided by the filter.
+    const Vec3 far{d.x * 1e6, d.y * -3e5, d.z * 7e4};
+    ASSERT_EQ(abc(far), oracle_orient3d(a, b, c, far));
+  }
+  EXPECT_GT(naive_wrong, 20);  // the cases are hard ones
+}
+
 // ---- Projections, collinearity, ordering along a line ------------------------------
 
 TEST(Orient2dProjected, IsTheSignOfACrossProductComponent) {

@@ -46,6 +46,58 @@ class Bvh {
   void pairs(F&& f) const {
     if (!nodes_.empty()) self(0, f);
   }
+  // pairs() cut into pieces for threads: about `at_least` pieces (fewer when the tree
+  // is small), each a subtree or a pair of subtrees, in the order pairs() visits them,
+  // so that pairs(piece, f) over the pieces in order calls f on the same pairs in the
+  // same order as pairs(f).
+  struct Piece {
+    std::uint32_t a = 0, b = 0;
+    bool self = true;
+  };
+  std::vector<Piece> pair_pieces(std::size_t at_least) const {
+    std::vector<Piece> out;
+    if (nodes_.empty()) return out;
+    out.push_back({});
+    for (bool grew = true; grew && out.size() < at_least;) {
+      grew = false;
+      std::vector<Piece> next;
+      for (const Piece& p : out) {
+        const Node& na = nodes_[p.a];
+        const Node& nb = nodes_[p.b];
+        if (p.self) {
+          if (na.leaf) {
+            next.push_back(p);
+            continue;
+          }
+          next.push_back({na.left, na.left, true});
+          next.push_back({na.right, na.right, true});
+          next.push_back({na.left, na.right, false});
+        } else if (!na.box.overlaps(nb.box)) {
+          // no pair below
+        } else if (na.leaf && nb.leaf) {
+          next.push_back(p);
+          continue;
+        } else if (nb.leaf || (!na.leaf && na.end - na.begin >= nb.end - nb.begin)) {
+          next.push_back({na.left, p.b, false});
+          next.push_back({na.right, p.b, false});
+        } else {
+          next.push_back({p.a, nb.left, false});
+          next.push_back({p.a, nb.right, false});
+        }
+        grew = true;
+      }
+      out = std::move(next);
+    }
+    return out;
+  }
+  template <class F>
+  void pairs(const Piece& piece, F&& f) const {
+    if (piece.self) {
+      self(piece.a, f);
+    } else {
+      cross(piece.a, piece.b, f);
+    }
+  }
   // Calls f(i) for every box that `accept` lets through (accept tests a Box).
   template <class Accept, class F>
   void query(Accept&& accept, F&& f) const {

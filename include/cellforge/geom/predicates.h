@@ -36,6 +36,39 @@ int orient2d(Vec2 a, Vec2 b, Vec2 c);
 // 0 when the four points are coplanar.
 int orient3d(Vec3 a, Vec3 b, Vec3 c, Vec3 d);
 
+// Shewchuk's a-priori bound for orient3d's double evaluation, (7 + 56 eps) eps times
+// the computed permanent (its own rounding included); predicates.cpp and PlaneSide.
+inline constexpr double kOrient3dErrorBound = (7.0 + 56.0 * 0x1p-53) * 0x1p-53;
+
+// The plane through a, b, c set up once for the sides of many points:
+// side(d) == orient3d(a, b, c, d) for every d. The cross product (b - a) x (c - a) and
+// its permanent are computed once; each point costs one dot product and the bound, and
+// a point the filter leaves undecided goes to orient3d. The evaluation has the
+// structure of orient3d's (each coordinate of d - a times a 2x2 minor, summed in the
+// same order), so the same bound holds.
+class PlaneSide {
+ public:
+  PlaneSide(Vec3 a, Vec3 b, Vec3 c) : a_(a), b_(b), c_(c) {
+    const Vec3 u = b - a, v = c - a;
+    const double uyvz = u.y * v.z, uzvy = u.z * v.y, uzvx = u.z * v.x;
+    const double uxvz = u.x * v.z, uxvy = u.x * v.y, uyvx = u.y * v.x;
+    n_ = {uyvz - uzvy, uzvx - uxvz, uxvy - uyvx};
+    m_ = {abs_(uyvz) + abs_(uzvy), abs_(uzvx) + abs_(uxvz), abs_(uxvy) + abs_(uyvx)};
+  }
+  int operator()(Vec3 d) const {
+    const Vec3 w = d - a_;
+    const double det = w.x * n_.x + w.y * n_.y + w.z * n_.z;
+    const double bound = kOrient3dErrorBound * (abs_(w.x) * m_.x + abs_(w.y) * m_.y + abs_(w.z) * m_.z);
+    if (det > bound) return 1;
+    if (-det > bound) return -1;
+    return orient3d(a_, b_, c_, d);
+  }
+
+ private:
+  static double abs_(double x) { return x < 0 ? -x : x; }
+  Vec3 a_, b_, c_, n_, m_;
+};
+
 // orient2d of the points with axis drop_axis (0, 1 or 2) removed, the two remaining
 // axes taken in cyclic order (drop x: (y, z); drop y: (z, x); drop z: (x, y)). So the
 // result is the sign of component drop_axis of (b - a) x (c - a), and a polygon keeps
