@@ -223,6 +223,11 @@ Result<Arrangement> make_soup(std::span<const Model* const> operands, int thread
   std::vector<Tri> tris;
   std::vector<SoupFace> faces;
   std::vector<WireSeg> wires;
+  std::size_t face_count = 0;
+  for (const Model* m : operands) face_count += m->num_faces();
+  faces.reserve(face_count);
+  std::vector<std::uint32_t> scratch;                // a loop being read
+  std::vector<std::array<std::uint32_t, 3>> tiles;  // a face's triangles
   for (std::uint32_t k = 0; k < operands.size(); ++k) {
     const Model& m = *operands[k];
     std::vector<std::uint32_t> vmap(m.vertex_slots(), kInvalidIndex);  // by vertex slot
@@ -251,15 +256,17 @@ Result<Arrangement> make_soup(std::span<const Model* const> operands, int thread
       sf.face = f.value;
       sf.flipped = front;
       sf.sheet = !front && !back;
+      // Each vector allocated once at its size (scratch reused across faces): the
+      // soup of a big mesh is mostly allocation otherwise.
       for (LoopId l = m.outer_loop(f); l.is_valid(); l = m.next_loop(l)) {
         if (m.is_point_loop(l)) continue;
-        std::vector<std::uint32_t> loop;
-        for (EdgeUseId u : m.uses_of(l)) loop.push_back(vid(m.use_start(u)));
-        if (front) std::reverse(loop.begin(), loop.end());
-        sf.loops.push_back(std::move(loop));
+        scratch.clear();
+        for (EdgeUseId u : m.uses_of(l)) scratch.push_back(vid(m.use_start(u)));
+        if (front) std::reverse(scratch.begin(), scratch.end());
+        sf.loops.emplace_back(scratch.begin(), scratch.end());
       }
       const auto sfi = static_cast<std::uint32_t>(faces.size());
-      std::vector<std::array<std::uint32_t, 3>> tiles;
+      tiles.clear();
       for (const auto& t : triangles) {
         std::array<std::uint32_t, 3> tri{vid(t[0]), vid(t[1]), vid(t[2])};
         if (front) std::swap(tri[1], tri[2]);
@@ -271,6 +278,7 @@ Result<Arrangement> make_soup(std::span<const Model* const> operands, int thread
       // signed, have the face's winding number everywhere, which is all the
       // classification reads, and they take every edge of every loop.
       if (!covers_loops(sf.loops, tiles)) tiles = fan_tiles(sf.loops);
+      sf.tris.reserve(tiles.size());
       for (const auto& t : tiles) {
         const Tri tri{t, k, f.value, sfi};
         if (collinear3d(pos[tri.v[0]], pos[tri.v[1]], pos[tri.v[2]])) continue;

@@ -38,7 +38,11 @@ class Bvh {
   explicit Bvh(std::vector<Box> boxes) : boxes_(std::move(boxes)) {
     order_.resize(boxes_.size());
     std::iota(order_.begin(), order_.end(), 0u);
+    twice_centre_.resize(boxes_.size());
+    for (std::size_t i = 0; i < boxes_.size(); ++i) twice_centre_[i] = boxes_[i].lo + boxes_[i].hi;
+    nodes_.reserve(boxes_.size() / 2 + 1);
     if (!boxes_.empty()) build(0, static_cast<std::uint32_t>(order_.size()));
+    std::vector<Vec3>().swap(twice_centre_);
   }
 
   // Calls f(i, j) once for every pair i < j of overlapping boxes.
@@ -128,26 +132,28 @@ class Bvh {
   std::uint32_t build(std::uint32_t begin, std::uint32_t end) {
     const auto id = static_cast<std::uint32_t>(nodes_.size());
     nodes_.push_back({});
-    Box box, centres;
-    for (std::uint32_t k = begin; k < end; ++k) {
-      const Box& b = boxes_[order_[k]];
-      box.add(b);
-      centres.add((b.lo + b.hi) * 0.5);
-    }
-    nodes_[id].box = box;
     nodes_[id].begin = begin;
     nodes_[id].end = end;
-    if (end - begin <= 4) return id;
+    if (end - begin <= 4) {
+      Box box;
+      for (std::uint32_t k = begin; k < end; ++k) box.add(boxes_[order_[k]]);
+      nodes_[id].box = box;
+      return id;
+    }
+    // Split at the median centre along the axis the centres spread most on (twice the
+    // centres: the same order, one addition less). A node's box is its children's.
+    Box centres;
+    for (std::uint32_t k = begin; k < end; ++k) centres.add(twice_centre_[order_[k]]);
     const Vec3 ext = centres.hi - centres.lo;
     const int axis = ext.x >= ext.y && ext.x >= ext.z ? 0 : (ext.y >= ext.z ? 1 : 2);
     const std::uint32_t mid = begin + (end - begin) / 2;
     std::nth_element(order_.begin() + begin, order_.begin() + mid, order_.begin() + end,
-                     [&](std::uint32_t a, std::uint32_t b) {
-                       return boxes_[a].lo[axis] + boxes_[a].hi[axis] <
-                              boxes_[b].lo[axis] + boxes_[b].hi[axis];
-                     });
+                     [&](std::uint32_t a, std::uint32_t b) { return twice_centre_[a][axis] < twice_centre_[b][axis]; });
     const std::uint32_t left = build(begin, mid);
     const std::uint32_t right = build(mid, end);
+    Box box = nodes_[left].box;
+    box.add(nodes_[right].box);
+    nodes_[id].box = box;
     nodes_[id].leaf = false;
     nodes_[id].left = left;
     nodes_[id].right = right;
@@ -188,6 +194,7 @@ class Bvh {
   }
 
   std::vector<Box> boxes_;
+  std::vector<Vec3> twice_centre_;  // lo + hi of each box, while building
   std::vector<std::uint32_t> order_;
   std::vector<Node> nodes_;
 };
