@@ -428,6 +428,18 @@ TEST(BooleanNefOpen, SheetsAndAWireLeftOfAHollowBox) {
   EXPECT_EQ(o.nef, (LowerDim{2, 1, 0}));
 }
 
+// The case has no lower-dimensional part, in cellforge as in Nef, and the point `at`
+// is a vertex of the result out of the set while the face beside it (at `beside`) is in.
+void expect_vertex_out_face_in(const Case& c, Vec3 at, Vec3 beside) {
+  const Outcome o = nef::compare(c);
+  EXPECT_EQ(o.cellforge, LowerDim{});
+  EXPECT_EQ(o.nef, LowerDim{});
+  const nef::Where w = nef::cellforge_where(c, at);
+  EXPECT_EQ(w.dim, 0);
+  EXPECT_FALSE(w.in);
+  EXPECT_TRUE(nef::cellforge_where(c, beside).in);
+}
+
 // Seed 565 of the non-regularized random cases (seeds 1044 and 1286 alike): a box
 // minus a square pyramid whose apex (2, 1.5, 1) touches the box's face x = 2 from
 // outside (base in x = 1, corners (1, 1.5 +- 1, 1) and (1, 1.5, 1 +- 1)). The closed
@@ -443,13 +455,7 @@ TEST(BooleanNefOpen, BoxMinusAPyramidTouchingItsFaceAtTheApex) {
                .expr = binary(Op::kDifference, 0, 1),
                .regularized = false,
                .grid_step = 0.25};
-  const Outcome o = nef::compare(c);
-  EXPECT_EQ(o.cellforge, LowerDim{});
-  EXPECT_EQ(o.nef, LowerDim{});
-  const nef::Where apex = nef::cellforge_where(c, {2, 1.5, 1});
-  EXPECT_EQ(apex.dim, 0);
-  EXPECT_FALSE(apex.in);
-  EXPECT_TRUE(nef::cellforge_where(c, {2, 1.5, 1.25}).in);  // the face next to it
+  expect_vertex_out_face_in(c, {2, 1.5, 1}, {2, 1.5, 1.25});
 }
 
 // Seed 304 of the non-regularized random cases (313, 630, 1046, 1172, 1449, 1501, 1633,
@@ -620,13 +626,7 @@ TEST(BooleanNefOpen, BoxMinusAPyramidTouchingItsFaceAtACorner) {
                .expr = Expr::over(Op::kDifference, 3),
                .regularized = false,
                .grid_step = 0.25};
-  const Outcome o = nef::compare(c);
-  EXPECT_EQ(o.cellforge, LowerDim{});
-  EXPECT_EQ(o.nef, LowerDim{});
-  const nef::Where corner = nef::cellforge_where(c, {1, 1, 1});
-  EXPECT_EQ(corner.dim, 0);
-  EXPECT_FALSE(corner.in);
-  EXPECT_TRUE(nef::cellforge_where(c, {1, 1, 1.25}).in);  // the face next to it
+  expect_vertex_out_face_in(c, {1, 1, 1}, {1, 1, 1.25});
 }
 
 // Non-regularized random cases: seeds 1 to 6000 agree and validate (about 45 s), with
