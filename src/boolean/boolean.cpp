@@ -246,6 +246,9 @@ Result<Arrangement> make_soup(std::span<const Model* const> operands, int thread
         triangulate_faces(m, face_ids, threads, [&](FaceId f) {
           return !(m.front_volume(f).is_valid() && m.back_volume(f).is_valid());
         });
+    std::size_t tiles_here = 0;
+    for (const auto& t : tiled) tiles_here += t.size();
+    tris.reserve(tris.size() + tiles_here);
     for (std::size_t fi = 0; fi < face_ids.size(); ++fi) {
       const FaceId f = face_ids[fi];
       const auto& triangles = tiled[fi];
