@@ -24,6 +24,23 @@ inline int thread_count(int requested) {
   return static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
 }
 
+// work(k) for k in [0, count), each on its own thread (k = 0 on this one); the exact
+// evaluations made on the others are counted on this one.
+template <class Work>
+void on_threads(std::size_t count, Work&& work) {
+  std::vector<std::thread> workers;
+  std::atomic<std::size_t> exact{0};
+  for (std::size_t k = 1; k < count; ++k)
+    workers.emplace_back([&, k] {
+      const std::size_t before = exact_evaluations();
+      work(k);
+      exact += exact_evaluations() - before;
+    });
+  if (count > 0) work(0);
+  for (std::thread& w : workers) w.join();
+  exact_evaluations() += exact;
+}
+
 template <class Out, class Body>
 std::vector<Out> parallel_ranges(std::size_t n, int threads, Body&& body) {
   // Ranges too small to pay for a thread stay on this one.
@@ -32,17 +49,7 @@ std::vector<Out> parallel_ranges(std::size_t n, int threads, Body&& body) {
       std::max<std::size_t>(1, std::min<std::size_t>(static_cast<std::size_t>(thread_count(threads)),
                                                      n / kMinRange));
   std::vector<Out> out(parts);
-  std::vector<std::thread> workers;
-  std::atomic<std::size_t> exact{0};
-  for (std::size_t k = 1; k < parts; ++k)
-    workers.emplace_back([&, k] {
-      const std::size_t before = exact_evaluations();
-      body(n * k / parts, n * (k + 1) / parts, out[k]);
-      exact += exact_evaluations() - before;
-    });
-  body(0, n / parts, out[0]);
-  for (std::thread& w : workers) w.join();
-  exact_evaluations() += exact;
+  on_threads(parts, [&](std::size_t k) { body(n * k / parts, n * (k + 1) / parts, out[k]); });
   return out;
 }
 
@@ -51,22 +58,11 @@ std::vector<Out> parallel_ranges(std::size_t n, int threads, Body&& body) {
 template <class Out, class Body>
 std::vector<Out> parallel_jobs(std::size_t n, int threads, Body&& body) {
   std::vector<Out> out(n);
-  const std::size_t helpers =
-      std::min<std::size_t>(static_cast<std::size_t>(thread_count(threads)), std::max<std::size_t>(n, 1)) - 1;
-  std::atomic<std::size_t> next{0}, exact{0};
-  auto run = [&] {
-    for (std::size_t k = next++; k < n; k = next++) body(k, out[k]);
-  };
-  std::vector<std::thread> workers;
-  for (std::size_t w = 0; w < helpers; ++w)
-    workers.emplace_back([&] {
-      const std::size_t before = exact_evaluations();
-      run();
-      exact += exact_evaluations() - before;
-    });
-  run();
-  for (std::thread& w : workers) w.join();
-  exact_evaluations() += exact;
+  std::atomic<std::size_t> next{0};
+  on_threads(std::min<std::size_t>(static_cast<std::size_t>(thread_count(threads)), std::max<std::size_t>(n, 1)),
+             [&](std::size_t) {
+               for (std::size_t k = next++; k < n; k = next++) body(k, out[k]);
+             });
   return out;
 }
 

@@ -22,10 +22,9 @@ namespace {
 using expansion_kernels::exact_diff;
 
 constexpr double kEps = 0x1p-53;
-// Shewchuk (1997), section 4.2: ccwerrboundA and o3derrboundA, for the computed
-// permanents below (their own rounding included).
+// Shewchuk (1997), section 4.2: ccwerrboundA (o3derrboundA is kOrient3dErrorBound,
+// predicates.h), for the computed permanents below (their own rounding included).
 constexpr double kOrient2dBound = (3.0 + 16.0 * kEps) * kEps;
-constexpr double kOrient3dBound = kOrient3dErrorBound;
 // For x1 y1 + x2 y2 + x3 y3 with x_i, y_i rounded differences: each term carries at
 // most 5 roundings (two differences, the product, at most two additions), so the
 // error is at most g5 T with g5 = 5 eps / (1 - 5 eps) and T = sum |x_i y_i| in exact
@@ -84,7 +83,7 @@ int orient3d(Vec3 a, Vec3 b, Vec3 c, Vec3 d) {
   const double permanent = (std::fabs(vywz) + std::fabs(vzwy)) * std::fabs(u.x) +
                            (std::fabs(vzwx) + std::fabs(vxwz)) * std::fabs(u.y) +
                            (std::fabs(vxwy) + std::fabs(vywx)) * std::fabs(u.z);
-  const int s = filtered_sign(det, kOrient3dBound * permanent);
+  const int s = filtered_sign(det, kOrient3dErrorBound * permanent);
   if (s != 0) return s;
   // Four points with one coordinate equal (a face parallel to a coordinate plane: a
   // cap of a sphere or cylinder, a box) lie in that plane: 0 without the exact stage,

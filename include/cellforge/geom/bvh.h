@@ -38,11 +38,10 @@ class Bvh {
   explicit Bvh(std::vector<Box> boxes) : boxes_(std::move(boxes)) {
     order_.resize(boxes_.size());
     std::iota(order_.begin(), order_.end(), 0u);
-    twice_centre_.resize(boxes_.size());
-    for (std::size_t i = 0; i < boxes_.size(); ++i) twice_centre_[i] = boxes_[i].lo + boxes_[i].hi;
+    std::vector<Vec3> twice_centre(boxes_.size());  // lo + hi: the split keys
+    for (std::size_t i = 0; i < boxes_.size(); ++i) twice_centre[i] = boxes_[i].lo + boxes_[i].hi;
     nodes_.reserve(boxes_.size() / 2 + 1);
-    if (!boxes_.empty()) build(0, static_cast<std::uint32_t>(order_.size()));
-    std::vector<Vec3>().swap(twice_centre_);
+    if (!boxes_.empty()) build(0, static_cast<std::uint32_t>(order_.size()), twice_centre);
   }
 
   // Calls f(i, j) once for every pair i < j of overlapping boxes.
@@ -81,7 +80,7 @@ class Bvh {
         } else if (na.leaf && nb.leaf) {
           next.push_back(p);
           continue;
-        } else if (nb.leaf || (!na.leaf && na.end - na.begin >= nb.end - nb.begin)) {
+        } else if (split_a(na, nb)) {
           next.push_back({na.left, p.b, false});
           next.push_back({na.right, p.b, false});
         } else {
@@ -129,7 +128,7 @@ class Bvh {
     bool leaf = true;
   };
 
-  std::uint32_t build(std::uint32_t begin, std::uint32_t end) {
+  std::uint32_t build(std::uint32_t begin, std::uint32_t end, const std::vector<Vec3>& twice_centre) {
     const auto id = static_cast<std::uint32_t>(nodes_.size());
     nodes_.push_back({});
     nodes_[id].begin = begin;
@@ -143,14 +142,14 @@ class Bvh {
     // Split at the median centre along the axis the centres spread most on (twice the
     // centres: the same order, one addition less). A node's box is its children's.
     Box centres;
-    for (std::uint32_t k = begin; k < end; ++k) centres.add(twice_centre_[order_[k]]);
+    for (std::uint32_t k = begin; k < end; ++k) centres.add(twice_centre[order_[k]]);
     const Vec3 ext = centres.hi - centres.lo;
     const int axis = ext.x >= ext.y && ext.x >= ext.z ? 0 : (ext.y >= ext.z ? 1 : 2);
     const std::uint32_t mid = begin + (end - begin) / 2;
     std::nth_element(order_.begin() + begin, order_.begin() + mid, order_.begin() + end,
-                     [&](std::uint32_t a, std::uint32_t b) { return twice_centre_[a][axis] < twice_centre_[b][axis]; });
-    const std::uint32_t left = build(begin, mid);
-    const std::uint32_t right = build(mid, end);
+                     [&](std::uint32_t a, std::uint32_t b) { return twice_centre[a][axis] < twice_centre[b][axis]; });
+    const std::uint32_t left = build(begin, mid, twice_centre);
+    const std::uint32_t right = build(mid, end, twice_centre);
     Box box = nodes_[left].box;
     box.add(nodes_[right].box);
     nodes_[id].box = box;
@@ -180,7 +179,7 @@ class Bvh {
     if (na.leaf && nb.leaf) {
       for (std::uint32_t i = na.begin; i < na.end; ++i)
         for (std::uint32_t j = nb.begin; j < nb.end; ++j) emit(order_[i], order_[j], f);
-    } else if (nb.leaf || (!na.leaf && na.end - na.begin >= nb.end - nb.begin)) {
+    } else if (split_a(na, nb)) {
       cross(na.left, b, f);
       cross(na.right, b, f);
     } else {
@@ -188,13 +187,17 @@ class Bvh {
       cross(a, nb.right, f);
     }
   }
+  // Which of two overlapping nodes, not both leaves, a traversal descends into: the
+  // larger (a when equal), never a leaf.
+  static bool split_a(const Node& na, const Node& nb) {
+    return nb.leaf || (!na.leaf && na.end - na.begin >= nb.end - nb.begin);
+  }
   template <class F>
   void emit(std::uint32_t i, std::uint32_t j, F& f) const {
     if (boxes_[i].overlaps(boxes_[j])) f(std::min(i, j), std::max(i, j));
   }
 
   std::vector<Box> boxes_;
-  std::vector<Vec3> twice_centre_;  // lo + hi of each box, while building
   std::vector<std::uint32_t> order_;
   std::vector<Node> nodes_;
 };

@@ -22,6 +22,7 @@
 // [2^-80, 2^120]. Coordinates must be finite.
 #pragma once
 
+#include <cmath>
 #include <span>
 
 #include "cellforge/geom/expansion.h"
@@ -53,19 +54,18 @@ class PlaneSide {
     const double uyvz = u.y * v.z, uzvy = u.z * v.y, uzvx = u.z * v.x;
     const double uxvz = u.x * v.z, uxvy = u.x * v.y, uyvx = u.y * v.x;
     n_ = {uyvz - uzvy, uzvx - uxvz, uxvy - uyvx};
-    m_ = {abs_(uyvz) + abs_(uzvy), abs_(uzvx) + abs_(uxvz), abs_(uxvy) + abs_(uyvx)};
+    m_ = {std::fabs(uyvz) + std::fabs(uzvy), std::fabs(uzvx) + std::fabs(uxvz), std::fabs(uxvy) + std::fabs(uyvx)};
   }
   int operator()(Vec3 d) const {
     const Vec3 w = d - a_;
     const double det = w.x * n_.x + w.y * n_.y + w.z * n_.z;
-    const double bound = kOrient3dErrorBound * (abs_(w.x) * m_.x + abs_(w.y) * m_.y + abs_(w.z) * m_.z);
+    const double bound = kOrient3dErrorBound * (std::fabs(w.x) * m_.x + std::fabs(w.y) * m_.y + std::fabs(w.z) * m_.z);
     if (det > bound) return 1;
     if (-det > bound) return -1;
     return orient3d(a_, b_, c_, d);
   }
 
  private:
-  static double abs_(double x) { return x < 0 ? -x : x; }
   Vec3 a_, b_, c_, n_, m_;
 };
 
