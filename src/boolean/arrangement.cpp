@@ -318,7 +318,15 @@ bool Arrangement::equal3(std::uint32_t p, std::uint32_t q) const {
 }
 
 bool Arrangement::collinear3(std::uint32_t a, std::uint32_t b, std::uint32_t c) const {
-  for (int k = 0; k < 3; ++k) {
+  if (a < pos.size() && b < pos.size() && c < pos.size()) return collinear3d(pos[a], pos[b], pos[c]);
+  // The projection where the approximate cross product is largest first: three
+  // points that are not collinear are told apart there by the filter.
+  const Vec3 pa = approx3(a), u = approx3(b) - pa, v = approx3(c) - pa;
+  const double n[3] = {std::fabs(u.y * v.z - u.z * v.y), std::fabs(u.z * v.x - u.x * v.z),
+                       std::fabs(u.x * v.y - u.y * v.x)};
+  int order[3] = {0, 1, 2};
+  std::sort(order, order + 3, [&](int x, int y) { return n[x] > n[y]; });
+  for (int k : order) {
     const int i = (k + 1) % 3, j = (k + 2) % 3;
     const int s = decide([&]<class T>() {
       const H3<T> p = point3<T>(a), q = point3<T>(b), r = point3<T>(c);

@@ -221,6 +221,17 @@ class RayCaster {
     const PointDef& d = a_.points[p - a_.pos.size()];
     if (d.kind == PointKind::kLpi && a_.plane_of[a_.cluster_of[d.c]] == plane) return 0;
     if (d.kind == PointKind::kCross && a_.plane_of[d.a] == plane) return 0;
+    // A point of the line ab (an edge's line meeting a plane, two segments meeting)
+    // is on the plane when a and b are (the point may lie beyond them: a chord runs
+    // across a whole piece).
+    if ((d.kind == PointKind::kLpi || d.kind == PointKind::kMeet) && d.a < a_.pos.size() && d.b < a_.pos.size()) {
+      const auto on = a_.plane_vertices(t);
+      auto on_plane = [&](std::uint32_t v) {
+        return std::find(on.begin(), on.end(), v) != on.end() ||
+               orient3d(a_.pos[t.v[0]], a_.pos[t.v[1]], a_.pos[t.v[2]], a_.pos[v]) == 0;
+      };
+      if (on_plane(d.a) && on_plane(d.b)) return 0;
+    }
     return kUncertain;
   }
 
@@ -573,6 +584,7 @@ Selection classify_and_select(const Arrangement& a, const Expr& expr, const Opti
     int keep = 0;
     FaceKind kind = FaceKind::kBoundary;
     bool mark = true;
+    std::uint32_t settled = kInvalidIndex;  // OutSide::settled
   };
   struct Part {
     std::vector<Verdict> verdicts;
@@ -586,6 +598,13 @@ Selection classify_and_select(const Arrangement& a, const Expr& expr, const Opti
     }
     const Selector::Sides s = selector.sides(w, on);
     v.mark = s.on;
+    // One operand holds the face and its membership flips across it, yet the set is
+    // the same on both sides and on the face: the set does not depend on it here.
+    const std::uint32_t x = on.empty() ? kInvalidIndex : on[0];
+    if (s.front == s.back && s.on == s.front && x != kInvalidIndex &&
+        std::all_of(on.begin(), on.end(), [&](std::uint32_t o) { return o == x; }) &&
+        (w.front[x] > 0) != (w.back[x] > 0))
+      v.settled = x;
     if (s.front != s.back) {
       v.keep = s.back ? 1 : -1;
     } else if (!s.front && s.on && options.keep_lower_dim) {
@@ -692,6 +711,9 @@ Selection classify_and_select(const Arrangement& a, const Expr& expr, const Opti
     pieces[k].keep = root.keep;
     pieces[k].kind = root.kind;
     pieces[k].mark = root.mark;
+    const bool same_operand = pieces[k].source != kInvalidIndex && root.source != kInvalidIndex &&
+                              a.tris[pieces[k].source].operand == a.tris[root.source].operand;
+    pieces[k].settled = same_operand ? root.settled : kInvalidIndex;
   }
   for (std::size_t k = 0; k < jobs.size(); ++k) {
     const Verdict& v = pieces[k];
@@ -835,13 +857,14 @@ Selection classify_and_select(const Arrangement& a, const Expr& expr, const Opti
       const Cluster& c = a.clusters[jobs[k][0]];
       const Piece& p = c.pieces[jobs[k][1]];
       for (std::size_t i = 0; i < p.pts.size(); ++i)
-        selection.sides.push_back({p.pts[i], p.pts[(i + 1) % p.pts.size()], c.lines[p.lines[i]].key});
+        selection.sides.push_back(
+            {p.pts[i], p.pts[(i + 1) % p.pts.size()], c.lines[p.lines[i]].key, pieces[k].settled});
     }
     for (std::uint32_t t = 0; t < a.tris.size(); ++t) {
       if (!untouched(t) || tri_keep[t] != 0) continue;
       for (int e = 0; e < 3; ++e) {
         const std::uint32_t p = a.tris[t].v[e], q = a.tris[t].v[(e + 1) % 3];
-        selection.sides.push_back({p, q, a.find_edge_key(p, q)});
+        selection.sides.push_back({p, q, a.find_edge_key(p, q), verdict_of(t).settled});
       }
     }
   }

@@ -292,6 +292,53 @@ std::vector<std::pair<std::uint32_t, bool>> alone_sites(
   return out;
 }
 
+// A box around the point p (q == p), or around the middle third of the open edge pq
+// (an edge has one verdict along its inside, sampled at (p + 2q) / 3): the points'
+// approximations grown by their error bounds, and by a unit in the last place for the
+// thirds' rounding.
+// With `whole`, around the closed edge.
+Box site_box(const Arrangement& a, std::uint32_t p, std::uint32_t q, bool whole) {
+  double ep = 0, eq = 0;
+  const Vec3 x = a.approx3(p, &ep), y = a.approx3(q, &eq);
+  Box box;
+  if (p == q || whole) {
+    box.add(x - Vec3{ep, ep, ep});
+    box.add(x + Vec3{ep, ep, ep});
+    box.add(y - Vec3{eq, eq, eq});
+    box.add(y + Vec3{eq, eq, eq});
+    return box;
+  }
+  const double e = std::max(ep, eq);
+  for (const Vec3 m : {x + (y - x) * (1.0 / 3), x + (y - x) * (2.0 / 3)}) {
+    const double r = e + 4 * kUnit * std::max({std::abs(m.x), std::abs(m.y), std::abs(m.z), std::abs(x.x),
+                                               std::abs(x.y), std::abs(x.z), std::abs(y.x), std::abs(y.y),
+                                               std::abs(y.z)});
+    box.add(m - Vec3{r, r, r});
+    box.add(m + Vec3{r, r, r});
+  }
+  return box;
+}
+
+// Whether only operand x has anything near the point p (q == p) or near the middle of
+// the edge pq: no triangle of another operand has a box meeting the site's, and no
+// operand has wires or points. Then every other operand's winding number is one
+// constant there, the one on each side of x's faces.
+// kAnyOperand for x: whether a single operand, whichever it is, has all there is near
+// the site (then a face through the site is that operand's).
+constexpr std::uint32_t kAnyOperand = kInvalidIndex - 1;
+bool only_operand_near(const Arrangement& a, std::uint32_t x, std::uint32_t p, std::uint32_t q,
+                       bool whole = false) {
+  if (x == kInvalidIndex || !a.wires.empty()) return false;
+  const Box box = site_box(a, p, q, whole);
+  bool alone = true;
+  a.bvh.query([&](const Box& b) { return alone && b.overlaps(box); },
+              [&](std::uint32_t t) {
+                if (x == kAnyOperand) x = a.tris[t].operand;
+                alone &= a.tris[t].operand == x;
+              });
+  return alone;
+}
+
 // The lower-dimensional parts of a non-regularized result: the edges of the
 // arrangement's faces and the operands' wire pieces that no kept face holds, in the
 // set with the points around them not, or out of it inside a volume (a cut), as
@@ -315,7 +362,10 @@ LowerParts lower_parts(Arrangement& a, const LineClasses& lc, const std::vector<
         held_points.insert(loop[i]);
       }
   std::vector<std::array<std::uint32_t, 2>> raw, edges;
-  std::vector<std::uint32_t> corners, chain;
+  std::vector<std::uint32_t> raw_settled_by, corners, chain;
+  // The corners and edges of settled sides (OutSide::settled) with nothing of another
+  // operand near them: neither can stand alone.
+  std::unordered_set<std::uint32_t> settled_corners;
   for (const OutSide& side : sides) {
     const std::uint32_t p = canon[side.p], q = canon[side.q];
     if (p == q) continue;
@@ -324,9 +374,14 @@ LowerParts lower_parts(Arrangement& a, const LineClasses& lc, const std::vector<
     chain.push_back(q);
     for (std::size_t i = 0; i + 1 < chain.size(); ++i) {
       corners.push_back(chain[i]);
-      if (chain[i] != chain[i + 1]) raw.push_back({chain[i], chain[i + 1]});
+      if (chain[i] != chain[i + 1]) {
+        raw.push_back({chain[i], chain[i + 1]});
+        raw_settled_by.push_back(side.settled);
+      }
     }
     corners.push_back(q);
+    for (std::uint32_t v : chain)
+      if (!settled_corners.count(v) && only_operand_near(a, side.settled, v, v)) settled_corners.insert(v);
   }
   // Two sides along one line may be cut at different points (the line known under
   // two keys whose classes hold different points): an edge that another edge or a
@@ -342,11 +397,13 @@ LowerParts lower_parts(Arrangement& a, const LineClasses& lc, const std::vector<
     next_to[x].push_back(y);
     next_to[y].push_back(x);
   }
+  // Between the two along an axis first: collinear neighbours beyond an end (the next
+  // piece of a chain) are the common case, and only arithmetic tells them collinear.
   const auto inside = [&](std::uint32_t x, std::uint32_t y, std::uint32_t z) {
-    if (z == x || z == y || !a.collinear3(x, y, z)) return false;
+    if (z == x || z == y) return false;
     for (int ax = 0; ax < 3; ++ax)
       if (const int d = a.compare3(x, y, ax); d != 0)
-        return a.compare3(x, z, ax) == d && a.compare3(z, y, ax) == d;
+        return a.compare3(x, z, ax) == d && a.compare3(z, y, ax) == d && a.collinear3(x, y, z);
     return false;
   };
   const auto cut_back = [&](std::uint32_t& from, std::uint32_t to) {
@@ -360,12 +417,25 @@ LowerParts lower_parts(Arrangement& a, const LineClasses& lc, const std::vector<
         }
     }
   };
-  for (auto [x, y] : raw) {
+  std::unordered_set<std::uint64_t> settled_edges;
+  for (std::size_t i = 0; i < raw.size(); ++i) {
+    auto [x, y] = raw[i];
+    // Nothing of another operand near the whole of a settled edge: neither it nor a
+    // part of it stands alone, and it need not be cut back.
+    if (only_operand_near(a, raw_settled_by[i], x, y, /*whole=*/true)) {
+      seen.insert(ordered(x, y));
+      continue;
+    }
     cut_back(x, y);
     cut_back(y, x);
-    if (x == y || held_edges.count(ordered(x, y)) || !seen.insert(ordered(x, y)).second) continue;
-    edges.push_back({x, y});
+    if (x == y || held_edges.count(ordered(x, y))) continue;
+    if (only_operand_near(a, raw_settled_by[i], x, y)) settled_edges.insert(ordered(x, y));
+    if (seen.insert(ordered(x, y)).second) edges.push_back({x, y});
   }
+  // An edge inside the pieces of a settled side has the verdict of all around it.
+  edges.erase(std::remove_if(edges.begin(), edges.end(),
+                             [&](const auto& e) { return settled_edges.count(ordered(e[0], e[1])) > 0; }),
+              edges.end());
   // The operands' wires, cut at every crossing, and their isolated points: these may
   // also lie on a kept face (held by it).
   std::vector<std::array<std::uint32_t, 2>> wire_edges;
@@ -425,7 +495,7 @@ LowerParts lower_parts(Arrangement& a, const LineClasses& lc, const std::vector<
   for (const std::vector<std::uint32_t>* list : {&corners, &loose})
     for (std::uint32_t p : *list)
       if (!held_points.count(p) && !out.ends.count(p) && !inside_wires.count(p) &&
-          (list == &loose || !std::binary_search(loose.begin(), loose.end(), p)))
+          (list == &loose || (!std::binary_search(loose.begin(), loose.end(), p) && !settled_corners.count(p))))
         sites.push_back({p, p});
   for (auto [i, in] : alone_sites(a, expr, sites, threads)) out.points.push_back(sites[i][0]);
   return out;
@@ -605,9 +675,10 @@ std::unordered_set<std::uint32_t> pinned_vertices(
     const std::vector<std::vector<std::uint32_t>>& swallowed, int threads) {
   std::vector<std::array<std::uint32_t, 2>> sites;
   std::vector<bool> face_mark;
+  // A vertex near one operand's elements alone lies on its face and has its verdict.
   for (std::uint32_t f = 0; f < swallowed.size(); ++f)
     for (std::uint32_t v : swallowed[f])
-      if (v != kInvalidIndex) {
+      if (v != kInvalidIndex && !only_operand_near(a, kAnyOperand, v, v)) {
         sites.push_back({v, v});
         face_mark.push_back(polys[f].mark);
       }
@@ -729,13 +800,19 @@ Result<BooleanResult> build_result(Arrangement& a, Selection selection, const Ex
     // in a face of the set: a wire of the subtrahend lying on it).
     std::vector<char> joined(joins.size(), 1);
     if (options.keep_lower_dim) {
+      // An edge with one operand's elements alone near it has its faces' verdict.
       std::vector<std::array<std::uint32_t, 2>> sites;
-      for (std::size_t i : joins)
-        sites.push_back({static_cast<std::uint32_t>(uses[i].key >> 32),
-                         static_cast<std::uint32_t>(uses[i].key)});
+      std::vector<std::size_t> asked;
+      for (std::size_t k = 0; k < joins.size(); ++k) {
+        const std::uint64_t key = uses[joins[k]].key;
+        const auto p = static_cast<std::uint32_t>(key >> 32), q = static_cast<std::uint32_t>(key);
+        if (only_operand_near(a, kAnyOperand, p, q)) continue;
+        sites.push_back({p, q});
+        asked.push_back(k);
+      }
       const std::vector<SiteVerdict> v = classify_sites(a, expr, sites, threads);
-      for (std::size_t k = 0; k < joins.size(); ++k)
-        joined[k] = v[k].in == polys[uses[joins[k]].poly].mark;
+      for (std::size_t i = 0; i < asked.size(); ++i)
+        joined[asked[i]] = v[i].in == polys[uses[joins[asked[i]]].poly].mark;
     }
     UnionFind regions(polys.size());
     std::unordered_set<std::uint64_t> cuts;
@@ -865,7 +942,11 @@ Result<BooleanResult> build_result(Arrangement& a, Selection selection, const Ex
       for (std::size_t i = 0; i < nb.size();) {
         std::size_t j = i;
         while (j < nb.size() && nb[j].first == nb[i].first) ++j;
-        if (drop[nb[i].first]) {
+        // The vertex and both edges with one operand's elements alone near each: all
+        // three have the verdict of the faces between them.
+        const std::uint32_t v = nb[i].first, x = nb[i].second, y = nb[i + 1].second;
+        if (drop[v] && !(only_operand_near(a, kAnyOperand, v, v) && only_operand_near(a, kAnyOperand, x, v) &&
+                         only_operand_near(a, kAnyOperand, v, y))) {
           candidates.push_back(nb[i].first);
           sites.push_back({nb[i].second, nb[i].first});
           sites.push_back({nb[i].first, nb[i + 1].second});
@@ -1005,22 +1086,51 @@ Result<BooleanResult> build_result(Arrangement& a, Selection selection, const Ex
     if (!cells) return Error{ErrorCode::kUnsupported, "boolean: the result's cells: " + cells.error().message};
     if (options.keep_lower_dim) {
       // Edges and vertices: in the set or not, at a point of each.
-      std::vector<std::uint32_t> arr(m.vertex_slots(), kInvalidIndex);
-      for (std::uint32_t i = 0; i < in.positions.size(); ++i) arr[built->vertices[i].value] = point_of[i];
+      // Where only one operand has anything near an edge or a vertex of one of its
+      // faces, the other operands' windings are those beside the face, so the edge's
+      // or vertex's verdict is the face's own (its mark): no ray.
+      struct FaceMark {
+        std::uint32_t operand;
+        bool mark;
+      };
+      std::unordered_map<std::uint64_t, FaceMark> edge_face;
+      std::vector<FaceMark> vertex_face(in.positions.size(), FaceMark{kInvalidIndex, true});
+      for (std::uint32_t f = 0; f < polys.size(); ++f) {
+        const FaceMark fm{a.tris[polys[f].tri].operand, polys[f].mark};
+        for (const auto& loop : in.faces[f].loops)
+          for (std::size_t i = 0; i < loop.size(); ++i) {
+            edge_face.try_emplace(ordered(loop[i], loop[(i + 1) % loop.size()]), fm);
+            if (vertex_face[loop[i]].operand == kInvalidIndex) vertex_face[loop[i]] = fm;
+          }
+      }
+      std::vector<std::uint32_t> input_of(m.vertex_slots(), kInvalidIndex);
+      for (std::uint32_t i = 0; i < in.positions.size(); ++i) input_of[built->vertices[i].value] = i;
+      result.edge_in.assign(m.edge_slots(), true);
+      result.vertex_in.assign(m.vertex_slots(), true);
       std::vector<std::array<std::uint32_t, 2>> sites;
       std::vector<EdgeId> edges;
       std::vector<VertexId> vertices;
       for (EdgeId e : m.edges()) {
+        const std::uint32_t u = input_of[m.start_of(e).value], v = input_of[m.end_of(e).value];
+        const auto it = edge_face.find(ordered(u, v));
+        if (it != edge_face.end() && only_operand_near(a, it->second.operand, point_of[u], point_of[v])) {
+          result.edge_in[e.value] = it->second.mark;
+          continue;
+        }
         edges.push_back(e);
-        sites.push_back({arr[m.start_of(e).value], arr[m.end_of(e).value]});
+        sites.push_back({point_of[u], point_of[v]});
       }
       for (VertexId v : m.vertices()) {
+        const std::uint32_t u = input_of[v.value];
+        const FaceMark fm = vertex_face[u];
+        if (fm.operand != kInvalidIndex && only_operand_near(a, fm.operand, point_of[u], point_of[u])) {
+          result.vertex_in[v.value] = fm.mark;
+          continue;
+        }
         vertices.push_back(v);
-        sites.push_back({arr[v.value], arr[v.value]});
+        sites.push_back({point_of[u], point_of[u]});
       }
       const std::vector<SiteVerdict> in_set = classify_sites(a, expr, sites, threads);
-      result.edge_in.assign(m.edge_slots(), true);
-      result.vertex_in.assign(m.vertex_slots(), true);
       for (std::size_t k = 0; k < edges.size(); ++k) result.edge_in[edges[k].value] = in_set[k].in;
       for (std::size_t k = 0; k < vertices.size(); ++k)
         result.vertex_in[vertices[k].value] = in_set[edges.size() + k].in;

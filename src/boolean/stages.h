@@ -36,9 +36,15 @@ struct OutPoly {
 
 // An edge of the arrangement's faces (a piece's side, an untouched triangle's edge)
 // with its global line key, for the lower-dimensional parts of a non-regularized
-// result.
+// result. `settled`: the operand whose face it bounds, when that face is dropped and
+// the set is the same on its front, its back and on it, the operand's membership
+// differing between the two sides: then the set does not depend on that operand's
+// membership there, and wherever no other operand's element comes near the side, every
+// point around it and on it has that verdict (nothing of the lower-dimensional parts
+// lies there, and no ray need tell). kInvalidIndex otherwise.
 struct OutSide {
   std::uint32_t p, q, key;
+  std::uint32_t settled = kInvalidIndex;
 };
 
 struct Selection {
