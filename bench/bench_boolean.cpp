@@ -12,10 +12,12 @@
 //
 //   bench_boolean [--max-fn N] [--menger4] [--case SUBSTR] [--runs N] [--threads N]
 //                 [--timeout S] [--peers coref,nef,manifold|none] [--peer-timeout S]
-//                 [--keep-lower-dim]
+//                 [--keep-lower-dim] [--chains]
 //
 // --keep-lower-dim times cellforge's non-regularized operations (Nef's results are
-// not regularized either).
+// not regularized either). --chains times chains of Booleans instead (chain_cases):
+// rounded between steps, exact at every step, exact and evaluated once, beside Nef
+// evaluating the same chain step by step (exact throughout, as it always is).
 #include <fcntl.h>
 #include <malloc.h>
 #include <poll.h>
@@ -40,6 +42,7 @@
 #include <vector>
 
 #include "cellforge/boolean/boolean.h"
+#include "cellforge/boolean/exact.h"
 #include "cellforge/shape/mass.h"
 #include "cellforge/shape/primitives.h"
 #include "cellforge/io/triangulate.h"
@@ -120,6 +123,9 @@ Model cylinder(double r, double h, int fn, Vec3 at) {
 struct Operands {
   std::vector<Model> models;
   Expr expr;
+  // A chain (--chains): step i combines the result so far with models[i + 1] by
+  // steps[i]; expr is the same chain as one nested expression (the peers' input).
+  std::vector<Op> steps;
 };
 
 struct Case {
@@ -212,16 +218,62 @@ Operands two_boxes(Op op, Vec3 lo_a, Vec3 hi_a, Vec3 lo_b, Vec3 hi_b) {
   return o;
 }
 
+// The chain models[0] op steps[0] models[1] op steps[1] ... as one left-nested
+// expression.
+Operands as_chain(Operands o, std::vector<Op> steps) {
+  Expr e = Expr::of(0);
+  for (std::size_t i = 0; i < steps.size(); ++i) e = Expr::op(steps[i], {std::move(e), Expr::of(static_cast<int>(i + 1))});
+  o.expr = std::move(e);
+  o.steps = std::move(steps);
+  return o;
+}
+
+// Chains of Booleans (issue 16): a plate minus its cylinders one per step; a sphere
+// (fn 32) with ten smaller spheres (fn 32) around its equator taken away and added
+// in turn.
+std::vector<Case> chain_cases() {
+  std::vector<Case> cases;
+  for (auto [nx, ny] : {std::pair{5, 2}, std::pair{6, 5}}) {
+    const int n = nx * ny;
+    cases.push_back({"chain: plate - " + std::to_string(n) + " cylinders, one a step", "chain plate", [nx, ny, n] {
+                       return as_chain(plate_with_holes(nx, ny), std::vector<Op>(static_cast<std::size_t>(n), Op::kDifference));
+                     }});
+  }
+  cases.push_back({"chain: sphere -/u 10 spheres in turn", "chain spheres", [] {
+                     Operands o;
+                     o.models.push_back(sphere(10, 32));
+                     std::vector<Op> steps;
+                     for (int i = 0; i < 10; ++i) {
+                       const double t = 0.6283185307179586 * i;
+                       o.models.push_back(sphere(4, 32, {9 * std::cos(t), 9 * std::sin(t), 2.0 * (i % 3 - 1)}));
+                       steps.push_back(i % 2 == 0 ? Op::kDifference : Op::kUnion);
+                     }
+                     return as_chain(std::move(o), std::move(steps));
+                   }});
+  return cases;
+}
+
 std::vector<Case> all_cases(int max_fn, bool menger4) {
   std::vector<Case> cases;
   for (int fn = 64; fn <= max_fn; fn *= 2)
     cases.push_back({"sphere-sphere fn=" + std::to_string(fn), "sphere", [fn] { return spheres(fn); }});
   cases.push_back({"plate - 100 cylinders", "plate", [] { return plate_with_holes(10, 10); }});
   cases.push_back({"plate - 1000 cylinders", "plate", [] { return plate_with_holes(40, 25); }});
+  cases.push_back({"menger level 2", "menger", [] { return menger(2); }});
   cases.push_back({"menger level 3", "menger", [] { return menger(3); }});
   if (menger4) cases.push_back({"menger level 4", "menger", [] { return menger(4); }});
   cases.push_back({"union 1000 random boxes", "boxes", [] { return random_boxes(1000, 15, false); }});
   cases.push_back({"union 1000 grid boxes", "grid boxes", [] { return random_boxes(1000, 15, true); }});
+  // A sheet through a solid: the common face of two boxes (their intersection, not
+  // regularized) across a sphere; regularized, the sheet is empty and the sphere stays.
+  cases.push_back({"sphere fn=64 - sheet through it", "sheet", [] {
+                     Operands o;
+                     o.models.push_back(sphere(10, 64));
+                     o.models.push_back(box({-12, -12, -12}, {12, 12, 0.5}));
+                     o.models.push_back(box({-12, -12, 0.5}, {12, 12, 12}));
+                     o.expr = Expr::op(Op::kDifference, {Expr::of(0), Expr::op(Op::kIntersection, {Expr::of(1), Expr::of(2)})});
+                     return o;
+                   }});
   cases.push_back({"cubes sharing a face, union", "face",
                    [] { return two_boxes(Op::kUnion, {0, 0, 0}, {1, 1, 1}, {0, 0, 1}, {1, 1, 2}); }});
   cases.push_back({"cubes sharing an edge, union", "edge",
@@ -363,6 +415,7 @@ struct Settings {
   int runs = 0;  // 0: by the first run's time
   int threads = 1;
   bool keep_lower_dim = false;  // non-regularized, as CGAL Nef computes it
+  bool chains = false;          // the chain cases instead
   double timeout = 1800, peer_timeout = 60, budget = 20;
   bool coref = true, nef = true, manifold = true;
 };
@@ -416,6 +469,68 @@ Outcome run_cellforge(const Case& c, const Settings& s) {
           const boolean::StageTimes& st = rep.seconds;
           const double stages[6] = {st.soup, st.intersect, st.split, st.classify, st.output, st.check};
           std::copy(stages, stages + 6, o.stages);
+        }
+        write_all(fd, &o, sizeof o);
+      },
+      s.timeout));
+}
+
+// A chain three ways: kRounded makes an operand of each step's rounded model;
+// kEveryStep keeps it exact (boolean::chain at every step, each result at hand);
+// kOnce composes the steps and evaluates the last (boolean::compose, one arrangement).
+enum class ChainWay { kRounded, kEveryStep, kOnce };
+
+Outcome run_chain(const Case& c, const Settings& s, ChainWay way) {
+  return outcome_of(in_child(
+      [&](int fd) {
+        Outcome o;
+        const Operands ops = c.make();
+        const boolean::Options options{.threads = s.threads};
+        std::vector<boolean::Operand> inputs;  // shared models, made before the clock
+        for (const Model& m : ops.models) inputs.push_back(boolean::Operand::of(m));
+        const long base = reset_peak();
+        const double t0 = now();
+        Result<boolean::BooleanResult> last = Error{ErrorCode::kInvalidInput, "no step"};
+        if (way == ChainWay::kRounded) {
+          Model so_far = ops.models[0];
+          for (std::size_t i = 0; i < ops.steps.size() && (i == 0 || last.ok()); ++i) {
+            const Model* pair[2] = {&so_far, &ops.models[i + 1]};
+            last = boolean::evaluate(pair, Expr::over(ops.steps[i], 2), options);
+            if (last.ok()) so_far = last->model;
+          }
+        } else if (way == ChainWay::kEveryStep) {
+          boolean::Operand so_far = inputs[0];
+          for (std::size_t i = 0; i < ops.steps.size() && (i == 0 || last.ok()); ++i) {
+            const boolean::Operand pair[2] = {so_far, inputs[i + 1]};
+            last = boolean::chain(pair, Expr::over(ops.steps[i], 2), options);
+            if (last.ok()) so_far = boolean::Operand::of(*last);
+          }
+        } else {
+          boolean::Operand so_far = inputs[0];
+          Result<std::shared_ptr<const boolean::ExactForm>> form = Error{ErrorCode::kInvalidInput, "no step"};
+          for (std::size_t i = 0; i < ops.steps.size(); ++i) {
+            const boolean::Operand pair[2] = {so_far, inputs[i + 1]};
+            form = boolean::compose(pair, Expr::over(ops.steps[i], 2));
+            if (!form.ok()) break;
+            so_far = boolean::Operand::of(*form);
+          }
+          if (form.ok()) last = boolean::evaluate(**form, options);
+          else last = form.error();
+        }
+        o.seconds = now() - t0;
+        o.runs = 1;
+        if (!last.ok()) {
+          o.status = Outcome::kError;
+          o.say(last.error().message);
+        } else {
+          o.peak_mb = peak_mb_since(base);
+          const Model& m = last->model;
+          o.out_vertices = m.num_vertices();
+          o.out_edges = m.num_edges();
+          o.out_faces = m.num_faces();
+          o.valid = validate(m).empty() ? 1 : 0;
+          o.volume = m.num_faces() ? shape::mass_properties(m).volume : 0;
+          o.rounding_crossings = last->report.rounding_self_intersections;
         }
         write_all(fd, &o, sizeof o);
       },
@@ -703,6 +818,7 @@ Settings parse(int argc, char** argv) {
     else if (a == "--runs") s.runs = std::stoi(next());
     else if (a == "--threads") s.threads = std::stoi(next());
     else if (a == "--keep-lower-dim") s.keep_lower_dim = true;
+    else if (a == "--chains") s.chains = true;
     else if (a == "--timeout") s.timeout = std::stod(next());
     else if (a == "--peer-timeout") s.peer_timeout = std::stod(next());
     else if (a == "--peers") {
@@ -714,7 +830,7 @@ Settings parse(int argc, char** argv) {
       std::fprintf(stderr,
                    "usage: bench_boolean [--max-fn N (512; 2048 for the full set)] [--menger4] [--case SUBSTR]\n"
                    "                     [--runs N] [--threads N] [--timeout S] [--peers coref,nef,manifold|none]\n"
-                   "                     [--peer-timeout S (60)] [--keep-lower-dim]\n");
+                   "                     [--peer-timeout S (60)] [--keep-lower-dim] [--chains]\n");
       std::exit(a == "--help" ? 0 : 2);
     }
   }
@@ -733,6 +849,34 @@ int main(int argc, char** argv) {
 #else
   std::printf("peers: not built (configure with -DCELLFORGE_PEERS=ON)\n");
 #endif
+  if (s.chains) {
+    std::printf("\nchains (regularized; threads = %d; one run each; Nef: the same chain as left folds)\n\n", s.threads);
+    std::printf("| chain | steps | rounded between steps | exact, every step | exact, evaluated once | rounded / once | CGAL Nef | Nef / once | V | F | valid | volume |\n");
+    std::printf("|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|:-:|--:|\n");
+    for (const Case& c : chain_cases()) {
+      if (!s.only.empty() && c.name.find(s.only) == std::string::npos) continue;
+      std::fprintf(stderr, "%s ...\n", c.name.c_str());
+      const Outcome rounded = run_chain(c, s, ChainWay::kRounded);
+      const Outcome every = run_chain(c, s, ChainWay::kEveryStep);
+      const Outcome once = run_chain(c, s, ChainWay::kOnce);
+      std::string nef = "not built";
+#ifdef CELLFORGE_PEERS
+      nef = s.nef ? vs_cellforge(run_cgal(c, s, true), once, s) : "not run";
+#endif
+      auto t = [](const Outcome& o) { return o.status == Outcome::kOk ? seconds_text(o.seconds) : std::string(status_text(o.status)); };
+      const std::string ratio = rounded.status == Outcome::kOk && once.status == Outcome::kOk
+                                    ? fixed(rounded.seconds / once.seconds, 2) + "×" : "—";
+      const std::size_t split = nef.find(" (");
+      std::printf("| %s | %zu | %s | %s | %s | %s | %s | %s | %s | %s | %s | %.6g |\n", c.name.c_str(), c.make().steps.size(),
+                  t(rounded).c_str(), t(every).c_str(), t(once).c_str(), ratio.c_str(),
+                  nef.substr(0, split).c_str(),
+                  split == std::string::npos ? "—" : nef.substr(split + 2, nef.size() - split - 3).c_str(),
+                  count_text(once.out_vertices).c_str(), count_text(once.out_faces).c_str(),
+                  once.valid == 1 && every.valid == 1 && rounded.valid == 1 ? "yes" : "**NO**", once.volume);
+      if (once.status != Outcome::kOk) std::printf("\n%s: %s\n", c.name.c_str(), once.message);
+    }
+    return 0;
+  }
   std::vector<Row> rows;
   std::map<std::string, std::map<std::string, bool>> timed_out;  // series -> peer -> timed out
   for (const Case& c : all_cases(s.max_fn, s.menger4)) {

@@ -133,8 +133,7 @@ constexpr std::string_view kMagic = "cellforge exact form 1\n";
 
 }  // namespace
 
-Result<BooleanResult> chain(std::span<const Operand> operands, const Expr& expr,
-                            const Options& options) {
+Result<std::shared_ptr<const ExactForm>> compose(std::span<const Operand> operands, const Expr& expr) {
   auto form = std::make_shared<ExactForm>();
   std::unordered_map<const Model*, int> index;  // an input shared by operands, once
   auto input = [&](const std::shared_ptr<const Model>& m) {
@@ -166,8 +165,15 @@ Result<BooleanResult> chain(std::span<const Operand> operands, const Expr& expr,
                  "boolean: the chain's expression would nest " + std::to_string(depth) +
                      " levels; an exact form holds at most " + std::to_string(kMaxExactDepth) +
                      " (make an operand of the rounded model, Operand::of(result.model))"};
-  auto r = evaluate(*form, options);
-  if (r) r->exact = std::move(form);
+  return std::shared_ptr<const ExactForm>(std::move(form));
+}
+
+Result<BooleanResult> chain(std::span<const Operand> operands, const Expr& expr,
+                            const Options& options) {
+  auto form = compose(operands, expr);
+  if (!form) return form.error();
+  auto r = evaluate(**form, options);
+  if (r) r->exact = std::move(*form);
   return r;
 }
 

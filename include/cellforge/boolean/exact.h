@@ -57,6 +57,15 @@ inline constexpr int kMaxExactDepth = 2000;
 Result<BooleanResult> chain(std::span<const Operand> operands, const Expr& expr,
                             const Options& options = {});
 
+// A step of a chain without evaluating it: the exact form that chain() evaluates
+// (the same errors). A program that needs only the chain's last result composes the
+// steps and evaluates once, one arrangement of all inputs:
+//
+//   auto f1 = boolean::compose({Operand::of(a), Operand::of(b)}, Expr::over(Op::kDifference, 2));
+//   auto f2 = boolean::compose({Operand::of(*f1), Operand::of(c)}, Expr::over(Op::kUnion, 2));
+//   auto r = boolean::evaluate(**f2);  // (a - b) u c, as chain() gives it at its last step
+Result<std::shared_ptr<const ExactForm>> compose(std::span<const Operand> operands, const Expr& expr);
+
 // The exact form as text: a header, the expression as an s-expression
 // ("(difference (union 0 1) 2)"), and each input as native JSON with its byte length.
 std::string exact_to_string(const ExactForm& form);
