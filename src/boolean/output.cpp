@@ -1035,7 +1035,16 @@ Result<BooleanResult> build_result(Arrangement& a, Selection selection, const Ex
   auto add_point = [&](std::uint32_t v) {
     if (index[v] != kInvalidIndex) return;
     index[v] = static_cast<std::uint32_t>(in.positions.size());
-    in.positions.push_back(a.approx3(v));
+    // The approximation, but a coordinate known from how the point was made (on an
+    // axis-perpendicular plane, on a segment along which it is constant) exactly:
+    // the quotient of filtered coordinates can miss it by a unit in the last place,
+    // and a chain that rounds between steps would then carry a plate's top face as
+    // slivers at 5 and 5.000000000000001.
+    const Vec3 x = a.approx3(v);
+    double c[3] = {x.x, x.y, x.z};
+    for (int axis = 0; axis < 3; ++axis)
+      if (double known = 0; a.known_coordinate(v, axis, known)) c[axis] = known;
+    in.positions.push_back({c[0], c[1], c[2]});
     point_of.push_back(v);
   };
   for (const OutPoly& p : polys)
