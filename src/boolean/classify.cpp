@@ -453,20 +453,22 @@ RepPoint rep_of(const Arrangement& a, std::uint32_t ci, const Piece& p) {
 
 // Whether the point r (strictly inside a piece) is inside input triangle t of r's
 // cluster; the piece never straddles t's edges.
-bool covers(const Arrangement& a, std::uint32_t t, const RepPoint& r) {
+// The piece's point in filtered doubles and the sign of its W are computed once for
+// all the triangles it is tested against (`xf`, `ws`); the slower stages only for a
+// side the filter leaves open.
+bool covers(const Arrangement& a, std::uint32_t t, const RepPoint& r, const H3<Fp>& xf, int ws) {
   const Cluster& c = a.clusters[r.cluster];
   const int k = c.k, i = (k + 1) % 3, j = (k + 2) % 3;
   const Tri& tri = a.tris[t];
   const int o = orient2d_projected(a.pos[tri.v[0]], a.pos[tri.v[1]], a.pos[tri.v[2]], k);
-  const int ws = decide([&]<class T>() { return a.rep3<T>(r).c[3]; });
   for (int e = 0; e < 3; ++e) {
     const Vec3 s = a.pos[tri.v[e]], q = a.pos[tri.v[(e + 1) % 3]];
-    const int side = ws * decide([&]<class T>() {
-                       const H3<T> x = a.rep3<T>(r);
-                       return (T(q[i]) - T(s[i])) * (x.c[j] - T(s[j]) * x.c[3]) -
-                              (T(q[j]) - T(s[j])) * (x.c[i] - T(s[i]) * x.c[3]);
-                     });
-    if (side * o <= 0) return false;
+    auto side_poly = [&]<class T>(const H3<T>& x) {
+      return (T(q[i]) - T(s[i])) * (x.c[j] - T(s[j]) * x.c[3]) - (T(q[j]) - T(s[j])) * (x.c[i] - T(s[i]) * x.c[3]);
+    };
+    int side = sign_of(side_poly(xf));
+    if (side == kUncertain) side = decide([&]<class T>() { return side_poly(a.rep3<T>(r)); });
+    if (ws * side * o <= 0) return false;
   }
   return true;
 }
@@ -691,8 +693,10 @@ Selection classify_and_select(const Arrangement& a, const Expr& expr, const Opti
       candidates.resize(c.tris.size());
       std::iota(candidates.begin(), candidates.end(), 0u);
     }
+    const H3<Fp> xf = a.rep3<Fp>(r);
+    const int ws = decide([&]<class T>() { return a.rep3<T>(r).c[3]; });
     for (std::uint32_t t : candidates) {
-      if (!covers(a, c.tris[t], r)) continue;
+      if (!covers(a, c.tris[t], r, xf, ws)) continue;
       on.push_back(a.tris[c.tris[t]].operand);
       if (source == kInvalidIndex || source_sign < 0) {
         const int sign = a.tri_sign(c, c.tris[t]);
