@@ -567,6 +567,56 @@ std::vector<std::uint32_t> shared_rays(const Arrangement& a, const std::vector<s
     if (i + 2 < sides.size() && sides[i + 2].edge == x.edge && sides[i + 2].part == x.part) continue;
     groups.unite_to_smaller(x.job, y.job);
   }
+  // Pieces of one cluster on either side of an axis line (the k-d split's, or one
+  // through a touching point) have equal verdicts where nothing lies along that line:
+  // every surface that meets the cluster's plane there is one of its segments (its
+  // triangles' edges, the constraints), and no segment has both ends on the line.
+  if (a.wires.empty()) {
+    struct AxisSide {
+      std::uint32_t cluster, line;
+      std::uint64_t part;
+      std::uint32_t job;
+      auto operator<=>(const AxisSide&) const = default;
+    };
+    std::vector<AxisSide> axis_sides;
+    std::vector<std::int8_t> free;  // by line of the current cluster: -1 unknown
+    for (std::uint32_t k = 0; k < jobs.size(); ++k) {
+      const std::uint32_t ci = jobs[k][0];
+      const Cluster& c = a.clusters[ci];
+      if (k == 0 || jobs[k - 1][0] != ci) free.assign(c.lines.size(), -1);
+      const Piece& piece = c.pieces[jobs[k][1]];
+      for (std::size_t e = 0; e < piece.pts.size(); ++e) {
+        const std::uint32_t li = piece.lines[e];
+        const Line& l = c.lines[li];
+        if (l.kind != LineKind::kAxisU && l.kind != LineKind::kAxisV) continue;
+        if (free[li] < 0) {
+          const int axis = l.kind == LineKind::kAxisU ? (c.k + 1) % 3 : (c.k + 2) % 3;
+          const double m = l.c;
+          bool on_line = false;
+          for (std::uint32_t t : c.tris)
+            for (int v = 0; v < 3 && !on_line; ++v)
+              on_line = a.pos[a.tris[t].v[v]][axis] == m && a.pos[a.tris[t].v[(v + 1) % 3]][axis] == m;
+          const auto near = [&](std::uint32_t p) {
+            double err = 0;
+            const double x = a.approx3(p, &err)[axis];
+            return std::abs(x - m) <= err + std::abs(m) * 4 * kUnit;
+          };
+          for (std::size_t q = 0; q < c.constraints.size() && !on_line; ++q) {
+            const Constraint& s = c.constraints[q];
+            on_line = near(s.p) && near(s.q) && a.coordinate_is(s.p, axis, m) && a.coordinate_is(s.q, axis, m);
+          }
+          free[li] = on_line ? 0 : 1;
+        }
+        if (free[li] == 0) continue;
+        axis_sides.push_back({ci, li, ordered(piece.pts[e], piece.pts[(e + 1) % piece.pts.size()]), k});
+      }
+    }
+    std::sort(axis_sides.begin(), axis_sides.end());
+    for (std::size_t i = 0; i + 1 < axis_sides.size(); ++i) {
+      const AxisSide &x = axis_sides[i], &y = axis_sides[i + 1];
+      if (x.cluster == y.cluster && x.line == y.line && x.part == y.part) groups.unite_to_smaller(x.job, y.job);
+    }
+  }
   std::vector<std::uint32_t> root(jobs.size());
   for (std::uint32_t k = 0; k < jobs.size(); ++k) root[k] = groups.find(k);
   return root;
@@ -706,8 +756,8 @@ Selection classify_and_select(const Arrangement& a, const Expr& expr, const Opti
         }
       }
     }
-    // Outside every triangle of the cluster: no face.
-    return source == kInvalidIndex ? std::nullopt : std::optional<RepPoint>(r);
+    // Outside every triangle of the cluster: no face. Inside, in a group: its ray decides.
+    return source == kInvalidIndex || ray_of[k] != k ? std::nullopt : std::optional<RepPoint>(r);
   });
   for (std::size_t k = 0; k < jobs.size(); ++k) {
     if (ray_of[k] == k) continue;
