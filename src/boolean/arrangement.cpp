@@ -1129,6 +1129,13 @@ void Arrangement::split_cluster(std::uint32_t ci) {
   // One line per other plane (the halves of a planar quad are two clusters, one plane).
   std::unordered_map<std::uint32_t, std::uint32_t> traces;  // other plane -> line
   for (const Constraint& k2 : c.constraints) {
+    // An edge of the other triangle lying in this plane (a wall resting on a plate):
+    // the line through its two input vertices, of lower degree than the trace, and
+    // the one the edge's own cluster and a coplanar face with that edge use.
+    if (k2.p < pos.size() && k2.q < pos.size()) {
+      if (k2.p != k2.q) segments.push_back({through_line(k2.p, k2.q), k2.p, k2.q});
+      continue;
+    }
     auto [it, fresh] = traces.try_emplace(plane_of[k2.other_cluster], 0);
     if (fresh) {
       Line l = Line::make(LineKind::kTrace, k2.other_tri);
@@ -1137,6 +1144,18 @@ void Arrangement::split_cluster(std::uint32_t ci) {
     }
     if (k2.p != k2.q && !equal3(k2.p, k2.q)) segments.push_back({it->second, k2.p, k2.q});
   }
+  // The same segment twice cuts nothing the second time (a triangle's edge and the
+  // edge of a wall resting on it, a face's tiles sharing an edge).
+  for (Segment& sg : segments)
+    if (sg.p > sg.q) std::swap(sg.p, sg.q);
+  std::sort(segments.begin(), segments.end(), [](const Segment& x, const Segment& y) {
+    return std::tie(x.line, x.p, x.q) < std::tie(y.line, y.p, y.q);
+  });
+  segments.erase(std::unique(segments.begin(), segments.end(),
+                             [](const Segment& x, const Segment& y) {
+                               return x.line == y.line && x.p == y.p && x.q == y.q;
+                             }),
+                 segments.end());
   piece_box(c, c.pieces[0]);
 
   std::vector<Piece> made;
@@ -1229,7 +1248,16 @@ void Arrangement::split_cluster(std::uint32_t ci) {
   }
   // A touching point becomes a vertex where the lines u = p_u and v = p_v through it
   // cross (it lies on both exactly, as a double); they cut only the pieces it is in.
+  // A corner of one of the cluster's triangles is a vertex already, where the
+  // triangle's two edges through it cross (a cylinder's wall resting on a plate by
+  // its bottom ring, the cap in the plate's cluster: every ring vertex touches).
+  std::vector<std::uint32_t> corners;
+  if (!c.touch_points.empty() && c.tris.size() > 1) {
+    for (std::uint32_t t : c.tris) corners.insert(corners.end(), tris[t].v.begin(), tris[t].v.end());
+    std::sort(corners.begin(), corners.end());
+  }
   for (std::uint32_t v : c.touch_points) {
+    if (std::binary_search(corners.begin(), corners.end(), v)) continue;
     const Vec3 p = pos[v];
     for (LineKind kind : {LineKind::kAxisU, LineKind::kAxisV}) {
       const std::uint32_t l = add_line(c, Line::make(kind, 0, 0, kind == LineKind::kAxisU ? p[i] : p[j]));

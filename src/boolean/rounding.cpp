@@ -240,32 +240,72 @@ bool nudge_rounding(MeshInput& in, const std::vector<char>& inexact,
           }
     bool changed = false;
     retile.clear();
+    std::vector<std::uint32_t> scratch;
     for (std::uint32_t v : suspects) {
       std::vector<std::uint32_t>& fs = faces_at[v];
       std::sort(fs.begin(), fs.end());
       fs.erase(std::unique(fs.begin(), fs.end()), fs.end());
-      // Crossings of the faces at v, triangulated with v where it is now.
-      auto local = [&] {
-        std::vector<std::pair<std::uint32_t, Tri3>> near;  // face, triangle
+      // Crossings of the faces at v, triangulated with v where it is: of their tiles
+      // with the indexed triangles near them and with each other. A move of two
+      // units at most keeps every tile of a face inside the face's grown box, so
+      // while the tiling stays as it is the pairs to test are found once; a place
+      // where the tiling changes is counted afresh.
+      using Tiling = std::vector<std::pair<std::uint32_t, Tri3>>;  // face, triangle
+      const auto tiling = [&] {
+        Tiling t;
         for (std::uint32_t f : fs)
-          for (const Tri3& t : tile_face(in, in.faces[f])) near.push_back({f, t});
-        std::size_t n = 0;
-        std::vector<std::uint32_t> scratch;
-        for (std::size_t a = 0; a < near.size(); ++a) {
-          const Box ba = grown(box_of(in, near[a].second));
-          index.near(ba, scratch, [&](std::uint32_t j) {
-            if (std::binary_search(fs.begin(), fs.end(), face[j]) || share_vertex(near[a].second, tris[j])) return;
-            n += meet(in, near[a].second, tris[j]);
-          });
-          for (std::size_t b = a + 1; b < near.size(); ++b)
-            if (near[a].first != near[b].first && !share_vertex(near[a].second, near[b].second))
-              n += meet(in, near[a].second, near[b].second);
-        }
-        return n;
+          for (const Tri3& x : tile_face(in, in.faces[f])) t.push_back({f, x});
+        return t;
       };
+      const auto crosses = [&](const Tri3& x, const Tri3& y) {
+        return box_of(in, x).overlaps(box_of(in, y)) && meet(in, x, y);
+      };
+      const auto pairs_of = [&](const Tiling& t) {
+        std::vector<std::pair<Tri3, Tri3>> out;
+        for (std::size_t a = 0; a < t.size(); ++a) {
+          index.near(grown(box_of(in, t[a].second)), scratch, [&](std::uint32_t j) {
+            if (std::binary_search(fs.begin(), fs.end(), face[j]) || share_vertex(t[a].second, tris[j])) return;
+            out.push_back({t[a].second, tris[j]});
+          });
+          for (std::size_t b = a + 1; b < t.size(); ++b)
+            if (t[a].first != t[b].first && !share_vertex(t[a].second, t[b].second))
+              out.push_back({t[a].second, t[b].second});
+        }
+        return out;
+      };
+      const Tiling first = tiling();
+      const std::vector<std::pair<Tri3, Tri3>> pairs = pairs_of(first);
+      // The pairs that cross with v at its best place so far (while that place has
+      // the first tiling): a place where as many of them still cross is no better,
+      // whatever the others do.
+      std::vector<std::size_t> crossing;
+      for (std::size_t k = 0; k < pairs.size(); ++k)
+        if (crosses(pairs[k].first, pairs[k].second)) crossing.push_back(k);
+      bool crossing_known = true;
       const Vec3 start = in.positions[v];
       Vec3 best = start;
-      std::size_t best_count = local();
+      std::size_t best_count = crossing.size();
+      // The crossings with v where it is now when fewer than best_count, else best_count.
+      auto fewer = [&] {
+        if (const Tiling t = tiling(); t != first) {
+          std::size_t n = 0;
+          for (const auto& [x, y] : pairs_of(t)) n += crosses(x, y);
+          if (n < best_count) crossing_known = false;
+          return std::min(n, best_count);
+        }
+        if (crossing_known) {
+          std::size_t n = 0;
+          for (std::size_t k : crossing) n += crosses(pairs[k].first, pairs[k].second);
+          if (n == best_count) return best_count;
+        }
+        std::vector<std::size_t> now;
+        for (std::size_t k = 0; k < pairs.size() && now.size() < best_count; ++k)
+          if (crosses(pairs[k].first, pairs[k].second)) now.push_back(k);
+        if (now.size() >= best_count) return best_count;
+        crossing = std::move(now);
+        crossing_known = true;
+        return crossing.size();
+      };
       const bool keep[3] = {exact(v, 0), exact(v, 1), exact(v, 2)};
       // One unit in the last place first, then two.
       for (int r = 1; r <= 2 && best_count > 0; ++r)
@@ -280,7 +320,7 @@ bool nudge_rounding(MeshInput& in, const std::vector<char>& inexact,
               return x;
             };
             in.positions[v] = {step(start.x, dx), step(start.y, dy), step(start.z, dz)};
-            const std::size_t n = local();
+            const std::size_t n = fewer();
             if (n < best_count) {
               best_count = n;
               best = in.positions[v];

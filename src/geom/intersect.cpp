@@ -107,13 +107,27 @@ bool triangles_meet(const Vec3 a[3], const Vec3 b[3]) {
   const PlaneSide plane_b(b[0], b[1], b[2]);
   for (int i = 0; i < 3; ++i) sa[i] = plane_b(a[i]);
   if (same_strict_side(sa)) return false;
-  if (sb[0] == 0 && sb[1] == 0 && sb[2] == 0) {
+  const bool b_on_a = sb[0] == 0 && sb[1] == 0 && sb[2] == 0;
+  const bool a_on_b = sa[0] == 0 && sa[1] == 0 && sa[2] == 0;
+  if (b_on_a && a_on_b) {
     const Vec3 n = projection_normal(a);
     if (n == Vec3{}) return false;
     const Projection proj(n);
     const Vec2 pa[3] = {proj(a[0]), proj(a[1]), proj(a[2])};
     const Vec2 pb[3] = {proj(b[0]), proj(b[1]), proj(b[2])};
     return triangles_meet(pa, pb);
+  }
+  // Every corner of one on the other's "plane" while the other's are not all on the
+  // first's: the first is a triangle, the other is degenerate (three corners on a
+  // line, so every point is on its plane): a segment or a point, meeting the
+  // triangle where one of its edges does.
+  if (b_on_a || a_on_b) {
+    const Vec3* seg = a_on_b ? b : a;
+    const Vec3* tri = a_on_b ? a : b;
+    const int* s = a_on_b ? sb : sa;
+    for (int i = 0; i < 3; ++i)
+      if (segment_meets_triangle(seg[i], seg[(i + 1) % 3], tri, s[i], s[(i + 1) % 3])) return true;
+    return false;
   }
   const bool strict = sa[0] * sa[1] * sa[2] != 0 && sb[0] * sb[1] * sb[2] != 0;
   if (strict) return !straddling_triangles_apart(a, b, sa, sb);

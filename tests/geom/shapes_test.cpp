@@ -147,6 +147,19 @@ TEST(Intersect, TrianglesInSpace) {
   EXPECT_FALSE(triangles_meet(t, above));
   EXPECT_FALSE(triangles_meet(t, coplanar_apart));
   EXPECT_TRUE(triangles_meet(t, coplanar_inside));
+  // Degenerate triangles (three corners on a line) are the segments they cover: every
+  // point is on their "plane", which must not make them meet what they miss.
+  const Vec3 needle_through[3] = {{1, 1, -1}, {1, 1, 1}, {1, 1, 0.5}};
+  const Vec3 needle_beside[3] = {{5, 5, -1}, {5, 5, 1}, {5, 5, 0.5}};
+  const Vec3 needle_above[3] = {{1, 1, 1}, {1, 1, 2}, {1, 1, 3}};
+  const Vec3 needle_on_edge[3] = {{2, -1, 0}, {2, 0, 0}, {2, -2, 0}};  // in t's plane, touching
+  EXPECT_TRUE(triangles_meet(t, needle_through));
+  EXPECT_TRUE(triangles_meet(needle_through, t));
+  EXPECT_FALSE(triangles_meet(t, needle_beside));
+  EXPECT_FALSE(triangles_meet(needle_beside, t));
+  EXPECT_FALSE(triangles_meet(t, needle_above));
+  EXPECT_FALSE(triangles_meet(needle_above, t));
+  EXPECT_TRUE(triangles_meet(t, needle_on_edge));
   EXPECT_TRUE(segment_meets_triangle({1, 1, 5}, {1, 1, 0}, t));
   EXPECT_FALSE(segment_meets_triangle({3, 3, 5}, {3, 3, -5}, t));  // passes beside it
 }

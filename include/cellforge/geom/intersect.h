@@ -36,9 +36,10 @@ bool segment_meets_triangle(Vec3 p, Vec3 q, const Vec3 t[3]);
 // Devillers' test); false when the triangles meet, touching included.
 bool straddling_triangles_apart(const Vec3 a[3], const Vec3 b[3], const int sa[3], const int sb[3]);
 
-// The closed triangles a and b in space share a point. Degenerate triangles (three
-// collinear points) that lie in one plane with the other are reported as not meeting:
-// callers report degeneracy on its own.
+// The closed triangles a and b in space share a point. A degenerate triangle (three
+// collinear points) is the segment or point it covers, against a triangle that is not;
+// two degenerate triangles, or a degenerate one in the other's plane, are reported
+// as not meeting when their rounded normal is zero: callers report degeneracy on its own.
 bool triangles_meet(const Vec3 a[3], const Vec3 b[3]);
 
 }  // namespace cellforge::inline geom
