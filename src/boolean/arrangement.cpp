@@ -1029,6 +1029,7 @@ void Arrangement::split_wires() {
 }
 
 void Arrangement::split() {
+  open_edges.assign(tris.size(), 0);
   for (std::uint32_t ci = 0; ci < clusters.size(); ++ci)
     if (clusters[ci].touched) split_cluster(ci);
 }
@@ -1120,8 +1121,45 @@ void Arrangement::split_cluster(std::uint32_t ci) {
       p.lines.push_back(b);
     }
     c.pieces.push_back(std::move(p));
+    // The diagonals of a planar face's tiling, where both tiles at the diagonal are in
+    // this cluster, separate nothing: the face covers both sides. Only the faces'
+    // boundaries and the other cuts are segments (a plate's face with many holes
+    // tiles into long thin triangles whose diagonals would cut the cluster into
+    // slivers).
+    struct TileEdge {
+      std::uint64_t edge;
+      std::uint32_t face, t;
+      int e;
+    };
+    std::vector<TileEdge> tile_edges;
+    for (std::uint32_t t : c.tris)
+      if (faces[tris[t].input_face].planar)
+        for (int e = 0; e < 3; ++e)
+          tile_edges.push_back({ordered(tris[t].v[e], tris[t].v[(e + 1) % 3]), tris[t].input_face, t, e});
+    std::sort(tile_edges.begin(), tile_edges.end(), [](const TileEdge& x, const TileEdge& y) {
+      return std::tie(x.face, x.edge, x.t) < std::tie(y.face, y.edge, y.t);
+    });
+    std::vector<std::uint64_t> loop_edges;  // of the face being looked at
+    std::uint32_t loop_face = kInvalidIndex;
+    for (std::size_t k = 0; k + 1 < tile_edges.size(); ++k) {
+      const TileEdge &x = tile_edges[k], &y = tile_edges[k + 1];
+      if (x.face != y.face || x.edge != y.edge || x.t == y.t) continue;
+      if (k + 2 < tile_edges.size() && tile_edges[k + 2].face == x.face && tile_edges[k + 2].edge == x.edge) continue;
+      if (k > 0 && tile_edges[k - 1].face == x.face && tile_edges[k - 1].edge == x.edge) continue;
+      if (loop_face != x.face) {
+        loop_face = x.face;
+        loop_edges.clear();
+        for (const auto& loop : faces[x.face].loops)
+          for (std::size_t i = 0; i < loop.size(); ++i) loop_edges.push_back(ordered(loop[i], loop[(i + 1) % loop.size()]));
+        std::sort(loop_edges.begin(), loop_edges.end());
+      }
+      if (std::binary_search(loop_edges.begin(), loop_edges.end(), x.edge)) continue;  // a slit
+      open_edges[x.t] |= static_cast<std::uint8_t>(1u << x.e);
+      open_edges[y.t] |= static_cast<std::uint8_t>(1u << y.e);
+    }
     for (std::uint32_t t : c.tris)
       for (int e = 0; e < 3; ++e) {
+        if (open_edges[t] & (1u << e)) continue;
         const std::uint32_t a = tris[t].v[e], b = tris[t].v[(e + 1) % 3];
         segments.push_back({through_line(a, b), a, b});
       }
@@ -1251,10 +1289,19 @@ void Arrangement::split_cluster(std::uint32_t ci) {
   // A corner of one of the cluster's triangles is a vertex already, where the
   // triangle's two edges through it cross (a cylinder's wall resting on a plate by
   // its bottom ring, the cap in the plate's cluster: every ring vertex touches).
+  // (Segments of two lines end there, so the second's cut meets the first's line at it.)
   std::vector<std::uint32_t> corners;
   if (!c.touch_points.empty() && c.tris.size() > 1) {
-    for (std::uint32_t t : c.tris) corners.insert(corners.end(), tris[t].v.begin(), tris[t].v.end());
-    std::sort(corners.begin(), corners.end());
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> ends;  // point, line
+    for (const Segment& sg : segments) {
+      ends.push_back({sg.p, sg.line});
+      ends.push_back({sg.q, sg.line});
+    }
+    std::sort(ends.begin(), ends.end());
+    for (std::size_t k = 0; k + 1 < ends.size(); ++k)
+      if (ends[k].first == ends[k + 1].first && ends[k].second != ends[k + 1].second &&
+          (corners.empty() || corners.back() != ends[k].first))
+        corners.push_back(ends[k].first);
   }
   for (std::uint32_t v : c.touch_points) {
     if (std::binary_search(corners.begin(), corners.end(), v)) continue;

@@ -156,6 +156,11 @@ class Arrangement {
   // tile's plane (sides_of); kInvalidIndex elsewhere. Set by intersect().
   std::vector<std::uint32_t> quad_other;
   std::vector<std::int8_t> quad_side;
+  // By triangle: bit e set when its edge e (v[e] -> v[e + 1]) is a diagonal of its
+  // planar face with the face's other tile at that edge in the same cluster. The split
+  // makes no segment of it (pieces run across it), and covers() counts a point on it
+  // as inside. Set by split().
+  std::vector<std::uint8_t> open_edges;
   std::vector<SoupFace> faces;
   std::vector<WireSeg> wires;        // the operands' wire edges and isolated points
   std::vector<WireSeg> wire_pieces;  // after split_wires: points (p == q) stay

@@ -452,7 +452,8 @@ RepPoint rep_of(const Arrangement& a, std::uint32_t ci, const Piece& p) {
 }
 
 // Whether the point r (strictly inside a piece) is inside input triangle t of r's
-// cluster; the piece never straddles t's edges.
+// cluster; the piece never straddles t's edges but its face's diagonals inside the
+// cluster (Arrangement::open_edges), where r may lie: on one, it is inside.
 // The piece's point in filtered doubles and the sign of its W are computed once for
 // all the triangles it is tested against (`xf`, `ws`); the slower stages only for a
 // side the filter leaves open.
@@ -468,7 +469,7 @@ bool covers(const Arrangement& a, std::uint32_t t, const RepPoint& r, const H3<F
     };
     int side = sign_of(side_poly(xf));
     if (side == kUncertain) side = decide([&]<class T>() { return side_poly(a.rep3<T>(r)); });
-    if (ws * side * o <= 0) return false;
+    if (ws * side * o < 0 || (side == 0 && !(a.open_edges[t] & (1u << e)))) return false;
   }
   return true;
 }
