@@ -99,7 +99,46 @@ bool straddling_triangles_apart(const Vec3 a[3], const Vec3 b[3], const int sa[3
   return orient3d(p1, p2, q1, q2) > 0 || orient3d(p1, p3, q3, q1) > 0;
 }
 
+namespace {
+
+// Triangle a lies in the plane x_k = c exactly and b has no corner on the far side of
+// it (every corner with x_k >= c, or every one <= c): then they meet only where b's
+// corners on the plane (none, one, an edge) meet a, decided in the plane with axis k
+// dropped, which keeps incidences. Returns -1 when that does not apply.
+int meet_on_axis_plane(const Vec3 a[3], const Vec3 b[3]) {
+  for (int k = 0; k < 3; ++k) {
+    const double c = a[0][k];
+    if (a[1][k] != c || a[2][k] != c) continue;
+    int above = 0, below = 0, on = 0;
+    Vec3 at[3];
+    for (int i = 0; i < 3; ++i) {
+      if (b[i][k] > c) ++above;
+      else if (b[i][k] < c) ++below;
+      else at[on++] = b[i];
+    }
+    if (above > 0 && below > 0) return -1;  // b crosses the plane
+    if (on == 3) return -1;                 // coplanar: the general test
+    const int i = (k + 1) % 3, j = (k + 2) % 3;
+    const auto flat = [&](Vec3 p) { return Vec2{p[i], p[j]}; };
+    const Vec2 t[3] = {flat(a[0]), flat(a[1]), flat(a[2])};
+    if (orient2d(t[0], t[1], t[2]) == 0) return -1;  // a degenerate
+    if (on == 0) return 0;
+    if (on == 1) return point_in_triangle(t, flat(at[0])) ? 1 : 0;
+    const Vec2 p = flat(at[0]), q = flat(at[1]);
+    for (int e = 0; e < 3; ++e)
+      if (segments_meet(p, q, t[e], t[(e + 1) % 3])) return 1;
+    return point_in_triangle(t, p) ? 1 : 0;
+  }
+  return -1;
+}
+
+}  // namespace
+
 bool triangles_meet(const Vec3 a[3], const Vec3 b[3]) {
+  // Faces in an axis plane (a box, a plate, a cap) against what rests on them: no
+  // orientation in space needed.
+  if (const int m = meet_on_axis_plane(a, b); m >= 0) return m == 1;
+  if (const int m = meet_on_axis_plane(b, a); m >= 0) return m == 1;
   int sb[3], sa[3];
   const PlaneSide plane_a(a[0], a[1], a[2]);
   for (int i = 0; i < 3; ++i) sb[i] = plane_a(b[i]);

@@ -164,6 +164,39 @@ TEST(Intersect, TrianglesInSpace) {
   EXPECT_FALSE(segment_meets_triangle({3, 3, 5}, {3, 3, -5}, t));  // passes beside it
 }
 
+// A triangle in an axis plane (the quick test in the plane) against any other, on a
+// small grid where corners land on the plane and on the other's edges: the same
+// answer as the six edge-against-triangle tests, in both argument orders.
+TEST(Intersect, TrianglesOnAnAxisPlaneAgreeWithTheEdgeTests) {
+  std::mt19937_64 rng(20261204);
+  std::uniform_int_distribution<int> grid(0, 4), axis(0, 2);
+  int tested = 0, meeting = 0;
+  for (int n = 0; n < 200000; ++n) {
+    Vec3 a[3], b[3];
+    const int k = axis(rng);
+    for (int i = 0; i < 3; ++i) {
+      double c[3] = {double(grid(rng)), double(grid(rng)), double(grid(rng))};
+      c[k] = 2;
+      a[i] = {c[0], c[1], c[2]};
+      b[i] = {double(grid(rng)), double(grid(rng)), double(grid(rng))};
+    }
+    if (collinear3d(a[0], a[1], a[2]) || collinear3d(b[0], b[1], b[2])) continue;
+    if (b[0][k] == 2 && b[1][k] == 2 && b[2][k] == 2) continue;  // coplanar: tested above
+    ++tested;
+    bool edges_meet = false;
+    for (int i = 0; i < 3; ++i) {
+      const int j = (i + 1) % 3;
+      edges_meet = edges_meet || segment_meets_triangle(a[i], a[j], b) || segment_meets_triangle(b[i], b[j], a);
+    }
+    meeting += edges_meet;
+    ASSERT_EQ(triangles_meet(a, b), edges_meet) << "pair " << n;
+    ASSERT_EQ(triangles_meet(b, a), edges_meet) << "pair " << n;
+  }
+  EXPECT_GT(tested, 100000);
+  EXPECT_GT(meeting, tested / 10);
+  EXPECT_LT(meeting, tested - tested / 10);
+}
+
 // Triangles that straddle each other's planes: the two-orientation test against the
 // six edge-against-triangle tests, over seeded random pairs on a small grid (where
 // traces touch exactly: an edge through an edge, a trace ending on the other's) and
