@@ -496,14 +496,26 @@ struct EdgeUses {
 
 EdgeUses edge_uses(const Arrangement& a) {
   EdgeUses u;
-  u.halves.reserve(a.tris.size() * 3);
+  std::vector<HalfEdge> made;
+  made.reserve(a.tris.size() * 3);
   for (std::uint32_t t = 0; t < a.tris.size(); ++t)
     for (int e = 0; e < 3; ++e) {
       const std::uint32_t p = a.tris[t].v[e], q = a.tris[t].v[(e + 1) % 3];
-      u.halves.push_back({ordered(p, q), t, p < q});
+      made.push_back({ordered(p, q), t, p < q});
     }
-  std::sort(u.halves.begin(), u.halves.end(),
-            [](const HalfEdge& x, const HalfEdge& y) { return x.key < y.key || (x.key == y.key && x.tri < y.tri); });
+  // By key, then triangle: two stable counting passes over the vertex ids (the larger
+  // end, then the smaller); they were made in triangle order.
+  const std::size_t nv = a.pos.size();
+  auto pass = [nv](const std::vector<HalfEdge>& from, std::vector<HalfEdge>& to, int shift) {
+    std::vector<std::uint32_t> start(nv + 1, 0);
+    for (const HalfEdge& h : from) ++start[((h.key >> shift) & 0xffffffffu) + 1];
+    for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
+    to.resize(from.size());
+    for (const HalfEdge& h : from) to[start[(h.key >> shift) & 0xffffffffu]++] = h;
+  };
+  std::vector<HalfEdge> by_max;
+  pass(made, by_max, 0);
+  pass(by_max, u.halves, 32);
   u.on_other_edge.assign(a.pos.size(), 0);
   for (auto [key, v] : a.edge_points)
     if (v < u.on_other_edge.size()) u.on_other_edge[v] = 1;  // implicit ones (wires) have keys
