@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstring>
 #include <numeric>
+#include <span>
 
 #include "boolean/parallel.h"
 #include "boolean/stages.h"
@@ -122,20 +123,34 @@ std::vector<FaceId> face_list(const Model& m) {
 }
 
 // The triangles of each face that `wanted` accepts (none for the others), in the
-// order given, computed on threads.
+// order given, computed on threads: face i's are tiles[begin[i]] .. tiles[begin[i + 1]].
+struct FaceTiles {
+  std::vector<std::array<VertexId, 3>> tiles;
+  std::vector<std::uint32_t> begin;
+  std::span<const std::array<VertexId, 3>> operator[](std::size_t i) const {
+    return {tiles.data() + begin[i], tiles.data() + begin[i + 1]};
+  }
+};
 template <class Wanted>
-std::vector<std::vector<std::array<VertexId, 3>>> triangulate_faces(const Model& m,
-                                                                    const std::vector<FaceId>& faces,
-                                                                    int threads, Wanted wanted) {
-  using Tiles = std::vector<std::vector<std::array<VertexId, 3>>>;
-  std::vector<Tiles> parts = parallel_ranges<Tiles>(faces.size(), threads, [&](std::size_t lo, std::size_t hi, Tiles& out) {
-    for (std::size_t i = lo; i < hi; ++i)
-      out.push_back(wanted(faces[i]) ? io::triangulate_face(m, faces[i]) : std::vector<std::array<VertexId, 3>>{});
-  });
-  Tiles all;
-  all.reserve(faces.size());
-  for (Tiles& p : parts)
-    for (auto& t : p) all.push_back(std::move(t));
+FaceTiles triangulate_faces(const Model& m, const std::vector<FaceId>& faces, int threads, Wanted wanted) {
+  std::vector<FaceTiles> parts =
+      parallel_ranges<FaceTiles>(faces.size(), threads, [&](std::size_t lo, std::size_t hi, FaceTiles& out) {
+        for (std::size_t i = lo; i < hi; ++i) {
+          out.begin.push_back(static_cast<std::uint32_t>(out.tiles.size()));
+          if (wanted(faces[i])) io::triangulate_face(m, faces[i], out.tiles);
+        }
+      });
+  FaceTiles all;
+  std::size_t n = 0;
+  for (const FaceTiles& p : parts) n += p.tiles.size();
+  all.tiles.reserve(n);
+  all.begin.reserve(faces.size() + 1);
+  for (const FaceTiles& p : parts) {
+    const auto base = static_cast<std::uint32_t>(all.tiles.size());
+    for (std::uint32_t b : p.begin) all.begin.push_back(base + b);
+    all.tiles.insert(all.tiles.end(), p.tiles.begin(), p.tiles.end());
+  }
+  all.begin.push_back(static_cast<std::uint32_t>(all.tiles.size()));
   return all;
 }
 
@@ -242,16 +257,14 @@ Result<Arrangement> make_soup(std::span<const Model* const> operands, int thread
     };
     const std::size_t before = tris.size();
     const std::vector<FaceId> face_ids = face_list(m);
-    const std::vector<std::vector<std::array<VertexId, 3>>> tiled =
+    const FaceTiles tiled =
         triangulate_faces(m, face_ids, threads, [&](FaceId f) {
           return !(m.front_volume(f).is_valid() && m.back_volume(f).is_valid());
         });
-    std::size_t tiles_here = 0;
-    for (const auto& t : tiled) tiles_here += t.size();
-    tris.reserve(tris.size() + tiles_here);
+    tris.reserve(tris.size() + tiled.tiles.size());
     for (std::size_t fi = 0; fi < face_ids.size(); ++fi) {
       const FaceId f = face_ids[fi];
-      const auto& triangles = tiled[fi];
+      const auto triangles = tiled[fi];
       const bool front = m.front_volume(f).is_valid(), back = m.back_volume(f).is_valid();
       if (front && back) continue;  // a face between two of its cells: inside it
       SoupFace sf;

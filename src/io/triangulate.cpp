@@ -505,7 +505,7 @@ std::vector<Tri> triangulate_polygon(const std::vector<std::vector<Vec3>>& loops
   return clipper.clip(outer);
 }
 
-std::vector<std::array<VertexId, 3>> triangulate_face(const Model& m, FaceId f) {
+void triangulate_face(const Model& m, FaceId f, std::vector<std::array<VertexId, 3>>& out) {
   // One loop of three or four corners, most faces of a mesh, without the general
   // path's copies.
   LoopId only;
@@ -528,10 +528,16 @@ std::vector<std::array<VertexId, 3>> triangulate_face(const Model& m, FaceId f) 
       p[n] = m.position(v[n]);
       ++n;
     }
-    if (n == 3) return {{v[0], v[1], v[2]}};
+    if (n == 3) {
+      out.push_back({v[0], v[1], v[2]});
+      return;
+    }
     if (n == 4 && only == m.outer_loop(f)) {
-      const auto t = quad_tiles(p, Projection(newell_normal(p)));
-      if (t) return {{v[(*t)[0][0]], v[(*t)[0][1]], v[(*t)[0][2]]}, {v[(*t)[1][0]], v[(*t)[1][1]], v[(*t)[1][2]]}};
+      if (const auto t = quad_tiles(p, Projection(newell_normal(p)))) {
+        out.push_back({v[(*t)[0][0]], v[(*t)[0][1]], v[(*t)[0][2]]});
+        out.push_back({v[(*t)[1][0]], v[(*t)[1][1]], v[(*t)[1][2]]});
+        return;
+      }
     }
   }
   std::vector<VertexId> ids;
@@ -542,9 +548,13 @@ std::vector<std::array<VertexId, 3>> triangulate_face(const Model& m, FaceId f) 
     ids.insert(ids.end(), vs.begin(), vs.end());
     loops.push_back(m.loop_points(l));
   }
-  std::vector<std::array<VertexId, 3>> out;
   for (const Tri& t : triangulate_polygon(loops, m.face_normal(f)))
     out.push_back({ids[t[0]], ids[t[1]], ids[t[2]]});
+}
+
+std::vector<std::array<VertexId, 3>> triangulate_face(const Model& m, FaceId f) {
+  std::vector<std::array<VertexId, 3>> out;
+  triangulate_face(m, f, out);
   return out;
 }
 

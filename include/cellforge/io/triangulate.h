@@ -18,6 +18,8 @@ namespace cellforge::io {
 // a point loop ignores it. A face whose polygon is degenerate (all vertices on a
 // line) yields zero-area triangles rather than none, so that edges still match.
 std::vector<std::array<VertexId, 3>> triangulate_face(const Model& m, FaceId f);
+// The same, appended to out (no allocation for a triangle or a quad).
+void triangulate_face(const Model& m, FaceId f, std::vector<std::array<VertexId, 3>>& out);
 
 // The same for a polygon given as loops of points (loops[0] outer, counterclockwise
 // about `normal`, the rest inner loops): triangles as indices into the
