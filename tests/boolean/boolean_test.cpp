@@ -287,6 +287,36 @@ TEST(Boolean, CylinderHoleExactlyThroughABox) {
   EXPECT_EQ(i.faces, 2u + n);
 }
 
+// Cylinders standing on a slab, their bottom caps on its top face: the caps join the
+// slab's cluster and the walls' bottom edges lie in its plane (cut along the lines
+// through their vertices; the walls' corners there are vertices already). The union
+// is the slab with the cylinders on it: its top face has a hole under each.
+TEST(Boolean, CylindersStandingOnASlab) {
+  const int n = 20, k = 4;
+  const Model slab = box_model({0, 0, 0}, {10, 10, 1});
+  std::vector<Model> cyl;
+  for (int i = 0; i < k; ++i) cyl.push_back(cylinder_model(1, 2, n, {2.5 + 5.0 * (i % 2), 2.5 + 5.0 * (i / 2), 1}));
+  std::vector<const Model*> ops{&slab};
+  for (const Model& c : cyl) ops.push_back(&c);
+  const BoolCase u = run(Op::kUnion, ops);
+  EXPECT_NEAR(u.volume, 100 + k * 2 * polygon_area(n, 1), 1e-12);
+  EXPECT_EQ(u.faces, 6u + k * (n + 1));  // the slab's six, each cylinder's walls and top
+  EXPECT_EQ(u.edges, 12u + k * 3 * n);
+  EXPECT_EQ(u.vertices, 8u + k * 2 * n);
+  // Standing on the slab's bottom plane instead, through it: the caps are coplanar with
+  // the slab's bottom face and the walls rest on that plane.
+  std::vector<Model> half;
+  for (int i = 0; i < k; ++i) half.push_back(cylinder_model(1, 2, n, {2.5 + 5.0 * (i % 2), 2.5 + 5.0 * (i / 2), 0}));
+  std::vector<const Model*> ops2{&slab};
+  for (const Model& c : half) ops2.push_back(&c);
+  const BoolCase u2 = run(Op::kUnion, ops2);
+  EXPECT_NEAR(u2.volume, 100 + k * polygon_area(n, 1), 1e-12);
+  const BoolCase d2 = run(Op::kDifference, ops2);
+  EXPECT_NEAR(d2.volume, 100 - k * polygon_area(n, 1), 1e-12);
+  EXPECT_EQ(d2.faces, 6u + k * n);  // through holes: top and bottom with k holes, the walls
+  EXPECT_EQ(d2.vertices, 8u + k * 2 * n);
+}
+
 TEST(Boolean, SphereMinusOffsetSphere) {
   const Model a = sphere_model(10, 24);
   const Model b = sphere_model(10, 24, {5, 3, 2});
