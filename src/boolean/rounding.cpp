@@ -1,13 +1,14 @@
 // Rounding with a check (stages.h): the result's implicit points rounded to doubles,
 // then, where two faces' triangles have come to cross, the rounded vertices of the
 // crossing triangles moved to a neighbouring double (one unit in the last place in
-// any coordinate, else two) where that removes crossings.
+// any coordinate, else two; four, then eight, when a round could not do better) where
+// that removes crossings.
 //
 // Rounding to nearest moves a point by half a unit; near-degenerate arrangements (a
 // face corner a hair off the line of its neighbours, two faces meeting at a very
-// small angle) turn over by less. Every candidate is a double within 2.5 units of the
-// exact point, so the result still rounds the exact one; only the choice among the
-// doubles around it changes. Faces are triangulated as io::triangulate_face does it
+// small angle) turn over by less. Every candidate is a double within 8.5 units of the
+// exact point (2.5 unless a round found no better place within two), so the result
+// still rounds the exact one; only the choice among the doubles around it changes. Faces are triangulated as io::triangulate_face does it
 // (the exporters' triangles), the test is exact (geom::triangles_meet), and the
 // rounding check after building (boolean.cpp) counts what remains.
 #include <algorithm>
@@ -68,11 +69,11 @@ bool meet(const MeshInput& in, const Tri3& x, const Tri3& y) {
   return triangles_meet(a, b);
 }
 
-// Boxes grown by a few units in the last place, so that the tree built before a
-// vertex moves still finds what the moved triangles meet.
+// Boxes grown by 16 units in the last place (twice the farthest move), so that the
+// tree built before a vertex moves still finds what the moved triangles meet.
 Box grown(Box b) {
   const auto margin = [](double lo, double hi) {
-    return 8 * std::ldexp(1.0, std::ilogb(std::max({std::abs(lo), std::abs(hi), 1e-300})) - 52);
+    return 16 * std::ldexp(1.0, std::ilogb(std::max({std::abs(lo), std::abs(hi), 1e-300})) - 52);
   };
   const Vec3 m{margin(b.lo.x, b.hi.x), margin(b.lo.y, b.hi.y), margin(b.lo.z, b.hi.z)};
   b.lo = b.lo - m;
@@ -142,6 +143,7 @@ TriangleBoxes::TriangleBoxes(const std::vector<std::array<Vec3, 3>>& tris) {
 bool nudge_rounding(MeshInput& in, const std::vector<char>& inexact,
                     const std::function<bool(std::uint32_t, int)>& exact, int threads) {
   constexpr int kRounds = 4;
+  int reach = 2;  // units in the last place a vertex may move
   // Only a triangle of a face with a rounded corner can have come to cross another
   // (the faces with all their corners exact meet as the exact arrangement does), and
   // only triangles near such a face can be what it crosses: the faces far from every
@@ -246,7 +248,7 @@ bool nudge_rounding(MeshInput& in, const std::vector<char>& inexact,
       std::sort(fs.begin(), fs.end());
       fs.erase(std::unique(fs.begin(), fs.end()), fs.end());
       // Crossings of the faces at v, triangulated with v where it is: of their tiles
-      // with the indexed triangles near them and with each other. A move of two
+      // with the indexed triangles near them and with each other. A move of `reach`
       // units at most keeps every tile of a face inside the face's grown box, so
       // while the tiling stays as it is the pairs to test are found once; a place
       // where the tiling changes is counted afresh.
@@ -307,8 +309,9 @@ bool nudge_rounding(MeshInput& in, const std::vector<char>& inexact,
         return crossing.size();
       };
       const bool keep[3] = {exact(v, 0), exact(v, 1), exact(v, 2)};
-      // One unit in the last place first, then two.
-      for (int r = 1; r <= 2 && best_count > 0; ++r)
+      // One unit in the last place first, then two; after a round that left crossings
+      // no such move reduced, up to four, then eight (slivers crossing a few units deep).
+      for (int r = 1; r <= reach && best_count > 0; ++r)
       for (int dx = -r; dx <= r && best_count > 0; ++dx)
         for (int dy = -r; dy <= r && best_count > 0; ++dy)
           for (int dz = -r; dz <= r && best_count > 0; ++dz) {
@@ -332,7 +335,11 @@ bool nudge_rounding(MeshInput& in, const std::vector<char>& inexact,
         retile.insert(retile.end(), fs.begin(), fs.end());
       }
     }
-    if (!changed) return false;
+    if (!changed) {
+      if (reach >= 8) return false;
+      reach *= 2;  // the same suspects again, reaching further
+      continue;
+    }
     std::sort(retile.begin(), retile.end());
     retile.erase(std::unique(retile.begin(), retile.end()), retile.end());
   }
