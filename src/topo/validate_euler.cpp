@@ -22,8 +22,10 @@
 // non-manifold vertices inside it; components beyond that are counted but their
 // right side is not compared (they are listed in EulerFigures::unchecked).
 #include <algorithm>
+#include <cstdint>
 #include <numeric>
 #include <string>
+#include <vector>
 
 #include "cellforge/geom/union_find.h"
 #include "topo/operators_common.h"
@@ -92,6 +94,8 @@ Analysis analyse(const Model& m) {
     long v = 0, e = 0, f = 0, r = 0;
     bool closed = true, manifold = true;
     bool volume_front = false, volume_back = false;
+    bool same_way = false;      // an edge whose two uses run the same way
+    bool orientable = true;     // decided only for closed manifold shells with same_way
   };
   std::vector<Piece> piece(pieces);
   std::vector<std::vector<std::uint32_t>> pieces_at(nv);
@@ -116,6 +120,10 @@ Analysis analyse(const Model& m) {
     ++piece[p].e;
     if (n > 2) piece[p].manifold = false;
     if (n != 2 && n != 0) piece[p].closed = false;
+    if (n == 2) {
+      const EdgeUseId u = m.first_use(e);
+      if (m.is_reversed(u) == m.is_reversed(m.radial_next(u))) piece[p].same_way = true;
+    }
     touch(m.start_of(e), p);
     touch(m.end_of(e), p);
   }
@@ -148,6 +156,41 @@ Analysis analyse(const Model& m) {
         if (s2 == shell && f2 != fan) piece[shell].manifold = false;
       }
       seen.emplace_back(shell, fan);
+    }
+  }
+
+  // A closed surface whose faces cannot all be turned to agree along every edge is not
+  // orientable (a projective plane, a Klein bottle: read from a mesh file, say): its
+  // v - e + f is 2 - k for k >= 1 cross-caps, and it bounds nothing.
+  {
+    std::vector<std::int8_t> flip(m.face_slots(), -1);
+    std::vector<FaceId> stack;
+    std::vector<EdgeUseId> radial;
+    for (FaceId f : m.faces()) {
+      Piece& q = piece[shell_piece[f.value]];
+      if (!q.closed || !q.manifold || !q.same_way || flip[f.value] >= 0) continue;
+      flip[f.value] = 0;
+      stack.assign(1, f);
+      while (!stack.empty()) {
+        const FaceId g = stack.back();
+        stack.pop_back();
+        for (LoopId l : m.loops_of(g))
+          for (EdgeUseId u : m.uses_of(l)) {
+            ops::radial_uses(m, m.edge_of(u), radial);
+            for (EdgeUseId w : radial) {
+              if (w == u) continue;
+              const FaceId h = m.face_of(w);
+              const std::int8_t need =
+                  static_cast<std::int8_t>(flip[g.value] ^ (m.is_reversed(u) == m.is_reversed(w) ? 1 : 0));
+              if (flip[h.value] < 0) {
+                flip[h.value] = need;
+                stack.push_back(h);
+              } else if (flip[h.value] != need) {
+                q.orientable = false;
+              }
+            }
+          }
+      }
     }
   }
 
@@ -238,6 +281,13 @@ Analysis analyse(const Model& m) {
     if (p < shells) {
       const long chi = q.v - q.e + q.f - q.r;
       if (!q.manifold) {
+        t.summable = false;
+      } else if (q.closed && !q.orientable) {
+        if (q.volume_front || q.volume_back)
+          a.problems.push_back(piece_name[p] + ", a closed surface that is not orientable, bounds a volume");
+        else if (chi > 1)
+          a.problems.push_back(piece_name[p] + ", a closed surface that is not orientable, has v - e + f - r = " +
+                               std::to_string(chi) + ", above 1");
         t.summable = false;
       } else if (q.closed) {
         if (chi > 2 || (chi % 2) != 0) {

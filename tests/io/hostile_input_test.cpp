@@ -10,6 +10,7 @@
 #include <fstream>
 
 #include "cellforge/io/mesh_io.h"
+#include "cellforge/topo/validate.h"
 #include "io_test_util.h"
 
 namespace cellforge {
@@ -73,6 +74,28 @@ TEST(HostileInput, JsonDuplicateKeyIsAnErrorNamingItAndWhere) {
   EXPECT_NE(error_of(skipped, io::Format::kJson).find("line 1:17: duplicate key 'a'"),
             std::string::npos)
       << error_of(skipped, io::Format::kJson);
+}
+
+// A cube whose corners the file gives three times over (welded) comes out as a closed
+// surface that cannot be oriented (v - e + f = 1, a projective plane's): it is valid,
+// bounds nothing, and every writer writes it (the OFF fuzzer's find of 2026-12-04).
+TEST(HostileInput, AClosedSurfaceThatCannotBeOrientedIsReadAndWritten) {
+  const std::string text =
+      "OFF\n8 6 12\n0 0 0\n1 0 0\n0 1 5\n1 0 0\n0 0 1\n1 0 0\n0 1 1\n1 1 0\n"
+      "4 0 2 4 1\n4 4 5 7 6\n4 0 1 2 4\n4 2 6 7 3\n4 0 4 6 2\n4 0 3 7 5\n";
+  io::ReadOptions o;
+  o.import.repair_orientation = true;
+  Model m;
+  ASSERT_TRUE(io::read_model(m, bytes_of(text), io::Format::kOff, o).ok());
+  EXPECT_EQ(m.num_volumes(), 0u);
+  EXPECT_EQ(static_cast<long>(m.num_vertices()) - static_cast<long>(m.num_edges()) +
+                static_cast<long>(m.num_faces()),
+            1);
+  EXPECT_TRUE(validate(m).empty());
+  for (io::Format f : {io::Format::kStl, io::Format::kObj, io::Format::kOff, io::Format::kJson}) {
+    auto bytes = io::write_model(m, f);
+    EXPECT_TRUE(bytes.ok()) << (bytes.ok() ? "" : bytes.error().message);
+  }
 }
 
 TEST(HostileInput, BlankFilesAreEmptyInEveryTextFormat) {
