@@ -1062,6 +1062,44 @@ void Arrangement::piece_box(const Cluster& c, Piece& p) const {
   }
 }
 
+// The diagonals of a planar face's tiling, where both tiles at the diagonal are in
+// cluster c, separate nothing: the face covers both sides. Only the faces' boundaries
+// and the other cuts are segments (a plate's face with many holes tiles into long thin
+// triangles whose diagonals would cut the cluster into slivers).
+void Arrangement::mark_open_edges(const Cluster& c) {
+  struct TileEdge {
+    std::uint64_t edge;
+    std::uint32_t face, t;
+    int e;
+  };
+  std::vector<TileEdge> tile_edges;
+  for (std::uint32_t t : c.tris)
+    if (faces[tris[t].input_face].planar)
+      for (int e = 0; e < 3; ++e)
+        tile_edges.push_back({ordered(tris[t].v[e], tris[t].v[(e + 1) % 3]), tris[t].input_face, t, e});
+  std::sort(tile_edges.begin(), tile_edges.end(), [](const TileEdge& x, const TileEdge& y) {
+    return std::tie(x.face, x.edge, x.t) < std::tie(y.face, y.edge, y.t);
+  });
+  std::vector<std::uint64_t> loop_edges;  // of the face being looked at
+  std::uint32_t loop_face = kInvalidIndex;
+  for (std::size_t k = 0; k + 1 < tile_edges.size(); ++k) {
+    const TileEdge &x = tile_edges[k], &y = tile_edges[k + 1];
+    if (x.face != y.face || x.edge != y.edge || x.t == y.t) continue;
+    if (k + 2 < tile_edges.size() && tile_edges[k + 2].face == x.face && tile_edges[k + 2].edge == x.edge) continue;
+    if (k > 0 && tile_edges[k - 1].face == x.face && tile_edges[k - 1].edge == x.edge) continue;
+    if (loop_face != x.face) {
+      loop_face = x.face;
+      loop_edges.clear();
+      for (const auto& loop : faces[x.face].loops)
+        for (std::size_t i = 0; i < loop.size(); ++i) loop_edges.push_back(ordered(loop[i], loop[(i + 1) % loop.size()]));
+      std::sort(loop_edges.begin(), loop_edges.end());
+    }
+    if (std::binary_search(loop_edges.begin(), loop_edges.end(), x.edge)) continue;  // a slit
+    open_edges[x.t] |= static_cast<std::uint8_t>(1u << x.e);
+    open_edges[y.t] |= static_cast<std::uint8_t>(1u << y.e);
+  }
+}
+
 void Arrangement::split_cluster(std::uint32_t ci) {
   Cluster& c = clusters[ci];
   const int k = c.k, i = (k + 1) % 3, j = (k + 2) % 3;
@@ -1080,6 +1118,7 @@ void Arrangement::split_cluster(std::uint32_t ci) {
 
   struct Segment {
     std::uint32_t line, p, q;
+    auto operator<=>(const Segment&) const = default;
   };
   std::vector<Segment> segments;
   if (c.tris.size() == 1) {
@@ -1121,42 +1160,7 @@ void Arrangement::split_cluster(std::uint32_t ci) {
       p.lines.push_back(b);
     }
     c.pieces.push_back(std::move(p));
-    // The diagonals of a planar face's tiling, where both tiles at the diagonal are in
-    // this cluster, separate nothing: the face covers both sides. Only the faces'
-    // boundaries and the other cuts are segments (a plate's face with many holes
-    // tiles into long thin triangles whose diagonals would cut the cluster into
-    // slivers).
-    struct TileEdge {
-      std::uint64_t edge;
-      std::uint32_t face, t;
-      int e;
-    };
-    std::vector<TileEdge> tile_edges;
-    for (std::uint32_t t : c.tris)
-      if (faces[tris[t].input_face].planar)
-        for (int e = 0; e < 3; ++e)
-          tile_edges.push_back({ordered(tris[t].v[e], tris[t].v[(e + 1) % 3]), tris[t].input_face, t, e});
-    std::sort(tile_edges.begin(), tile_edges.end(), [](const TileEdge& x, const TileEdge& y) {
-      return std::tie(x.face, x.edge, x.t) < std::tie(y.face, y.edge, y.t);
-    });
-    std::vector<std::uint64_t> loop_edges;  // of the face being looked at
-    std::uint32_t loop_face = kInvalidIndex;
-    for (std::size_t k = 0; k + 1 < tile_edges.size(); ++k) {
-      const TileEdge &x = tile_edges[k], &y = tile_edges[k + 1];
-      if (x.face != y.face || x.edge != y.edge || x.t == y.t) continue;
-      if (k + 2 < tile_edges.size() && tile_edges[k + 2].face == x.face && tile_edges[k + 2].edge == x.edge) continue;
-      if (k > 0 && tile_edges[k - 1].face == x.face && tile_edges[k - 1].edge == x.edge) continue;
-      if (loop_face != x.face) {
-        loop_face = x.face;
-        loop_edges.clear();
-        for (const auto& loop : faces[x.face].loops)
-          for (std::size_t i = 0; i < loop.size(); ++i) loop_edges.push_back(ordered(loop[i], loop[(i + 1) % loop.size()]));
-        std::sort(loop_edges.begin(), loop_edges.end());
-      }
-      if (std::binary_search(loop_edges.begin(), loop_edges.end(), x.edge)) continue;  // a slit
-      open_edges[x.t] |= static_cast<std::uint8_t>(1u << x.e);
-      open_edges[y.t] |= static_cast<std::uint8_t>(1u << y.e);
-    }
+    mark_open_edges(c);
     for (std::uint32_t t : c.tris)
       for (int e = 0; e < 3; ++e) {
         if (open_edges[t] & (1u << e)) continue;
@@ -1186,14 +1190,8 @@ void Arrangement::split_cluster(std::uint32_t ci) {
   // edge of a wall resting on it, a face's tiles sharing an edge).
   for (Segment& sg : segments)
     if (sg.p > sg.q) std::swap(sg.p, sg.q);
-  std::sort(segments.begin(), segments.end(), [](const Segment& x, const Segment& y) {
-    return std::tie(x.line, x.p, x.q) < std::tie(y.line, y.p, y.q);
-  });
-  segments.erase(std::unique(segments.begin(), segments.end(),
-                             [](const Segment& x, const Segment& y) {
-                               return x.line == y.line && x.p == y.p && x.q == y.q;
-                             }),
-                 segments.end());
+  std::sort(segments.begin(), segments.end());
+  segments.erase(std::unique(segments.begin(), segments.end()), segments.end());
   piece_box(c, c.pieces[0]);
 
   std::vector<Piece> made;

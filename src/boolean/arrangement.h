@@ -267,6 +267,7 @@ class Arrangement {
   // orient3d of y's corners against x's plane, into o (the plane set up once).
   void sides_of(const Tri& x, const Tri& y, int o[3]) const;
   void split_cluster(std::uint32_t ci);
+  void mark_open_edges(const Cluster& c);  // sets open_edges for c's triangles
   bool split_piece(Cluster& c, std::uint32_t ci, std::size_t pi, std::uint32_t li,
                    std::uint32_t s0, std::uint32_t s1, std::vector<Piece>& out,
                    std::unordered_map<std::uint64_t, std::uint32_t>& crossings);

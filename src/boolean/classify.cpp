@@ -522,6 +522,68 @@ EdgeUses edge_uses(const Arrangement& a) {
   return u;
 }
 
+// Whether a segment of a cluster (a triangle's edge, a constraint) has both ends on
+// the axis line u = m or v = m (d = 0, 1), exactly. Made once per cluster: the values
+// m of the triangle edges along an axis line, and the constraints whose two ends may
+// share a coordinate, with the interval where it may be (sorted by its start), so
+// that a line looks only at the constraints around it.
+struct AxisLineSegments {
+  struct Near {
+    double lo, hi;
+    std::uint32_t q;
+  };
+  bool made = false;
+  std::array<std::vector<double>, 2> edge_values;
+  std::array<std::vector<Near>, 2> near;
+  std::array<double, 2> widest{0, 0};
+
+  void clear() { made = false; }
+  void make(const Arrangement& a, const Cluster& c) {
+    made = true;
+    for (int d = 0; d < 2; ++d) {
+      const int axis = (c.k + 1 + d) % 3;
+      edge_values[d].clear();
+      near[d].clear();
+      widest[d] = 0;
+      for (std::uint32_t t : c.tris)
+        for (int v = 0; v < 3; ++v) {
+          const double x = a.pos[a.tris[t].v[v]][axis];
+          if (x == a.pos[a.tris[t].v[(v + 1) % 3]][axis]) edge_values[d].push_back(x);
+        }
+      std::sort(edge_values[d].begin(), edge_values[d].end());
+      // Where the point's coordinate may be: its approximation, its error bound, and
+      // the relative slack of the exact test's own filter.
+      const auto interval = [&](std::uint32_t p) {
+        double err = 0;
+        const double x = a.approx3(p, &err)[axis];
+        const double r = (err + (std::abs(x) + err) * 4 * kUnit) * 1.01;
+        return std::array<double, 2>{x - r, x + r};
+      };
+      for (std::uint32_t q = 0; q < c.constraints.size(); ++q) {
+        const auto ip = interval(c.constraints[q].p), iq = interval(c.constraints[q].q);
+        const double lo = std::max(ip[0], iq[0]), hi = std::min(ip[1], iq[1]);
+        if (lo > hi) continue;
+        near[d].push_back({lo, hi, q});
+        widest[d] = std::max(widest[d], hi - lo);
+      }
+      std::sort(near[d].begin(), near[d].end(),
+                [](const Near& x, const Near& y) { return x.lo < y.lo || (x.lo == y.lo && x.q < y.q); });
+    }
+  }
+  bool on(const Arrangement& a, const Cluster& c, int d, double m) const {
+    if (std::binary_search(edge_values[d].begin(), edge_values[d].end(), m)) return true;
+    const int axis = (c.k + 1 + d) % 3;
+    auto it = std::lower_bound(near[d].begin(), near[d].end(), m - widest[d],
+                               [](const Near& x, double v) { return x.lo < v; });
+    for (; it != near[d].end() && it->lo <= m; ++it) {
+      if (it->hi < m) continue;
+      const Constraint& s = c.constraints[it->q];
+      if (a.coordinate_is(s.p, axis, m) && a.coordinate_is(s.q, axis, m)) return true;
+    }
+    return false;
+  }
+};
+
 std::vector<std::uint32_t> shared_rays(const Arrangement& a, const std::vector<std::array<std::uint32_t, 2>>& jobs,
                                        const EdgeUses& uses) {
   std::vector<std::uint32_t> keys_with_vertex;
@@ -593,80 +655,22 @@ std::vector<std::uint32_t> shared_rays(const Arrangement& a, const std::vector<s
     };
     std::vector<AxisSide> axis_sides;
     std::vector<std::int8_t> free;  // by line of the current cluster: -1 unknown
-    // Of the current cluster, by axis of (u, v), found at its first axis line: the
-    // doubles m with a triangle edge on u = m (or v = m), sorted; and the constraints
-    // whose two ends may have one coordinate, with the interval where it may be
-    // (sorted by its start), so that each line looks only at those around it.
-    struct Near {
-      double lo, hi;
-      std::uint32_t q;
-    };
-    std::array<std::vector<double>, 2> edge_values;
-    std::array<std::vector<Near>, 2> near_cons;
-    std::array<double, 2> widest{0, 0};
-    bool found = false;
+    AxisLineSegments along;  // of the current cluster, made at its first axis line
     for (std::uint32_t k = 0; k < jobs.size(); ++k) {
       const std::uint32_t ci = jobs[k][0];
       const Cluster& c = a.clusters[ci];
       if (k == 0 || jobs[k - 1][0] != ci) {
         free.assign(c.lines.size(), -1);
-        found = false;
+        along.clear();
       }
       const Piece& piece = c.pieces[jobs[k][1]];
       for (std::size_t e = 0; e < piece.pts.size(); ++e) {
         const std::uint32_t li = piece.lines[e];
         const Line& l = c.lines[li];
         if (l.kind != LineKind::kAxisU && l.kind != LineKind::kAxisV) continue;
-        if (!found) {
-          found = true;
-          for (int d = 0; d < 2; ++d) {
-            const int axis = (c.k + 1 + d) % 3;
-            edge_values[d].clear();
-            near_cons[d].clear();
-            widest[d] = 0;
-            for (std::uint32_t t : c.tris)
-              for (int v = 0; v < 3; ++v) {
-                const double x = a.pos[a.tris[t].v[v]][axis];
-                if (x == a.pos[a.tris[t].v[(v + 1) % 3]][axis]) edge_values[d].push_back(x);
-              }
-            std::sort(edge_values[d].begin(), edge_values[d].end());
-            // Wider than the test below accepts (its |m| is within the interval).
-            const auto interval = [&](std::uint32_t p) {
-              double err = 0;
-              const double x = a.approx3(p, &err)[axis];
-              const double r = (err + (std::abs(x) + err) * 4 * kUnit) * 1.01;
-              return std::array<double, 2>{x - r, x + r};
-            };
-            for (std::uint32_t q = 0; q < c.constraints.size(); ++q) {
-              const auto ip = interval(c.constraints[q].p), iq = interval(c.constraints[q].q);
-              const double lo = std::max(ip[0], iq[0]), hi = std::min(ip[1], iq[1]);
-              if (lo > hi) continue;
-              near_cons[d].push_back({lo, hi, q});
-              widest[d] = std::max(widest[d], hi - lo);
-            }
-            std::sort(near_cons[d].begin(), near_cons[d].end(),
-                      [](const Near& x, const Near& y) { return x.lo < y.lo || (x.lo == y.lo && x.q < y.q); });
-          }
-        }
         if (free[li] < 0) {
-          const int d = l.kind == LineKind::kAxisU ? 0 : 1;
-          const int axis = (c.k + 1 + d) % 3;
-          const double m = l.c;
-          bool on_line = std::binary_search(edge_values[d].begin(), edge_values[d].end(), m);
-          const auto near = [&](std::uint32_t p) {
-            double err = 0;
-            const double x = a.approx3(p, &err)[axis];
-            return std::abs(x - m) <= err + std::abs(m) * 4 * kUnit;
-          };
-          const auto& list = near_cons[d];
-          auto it = std::lower_bound(list.begin(), list.end(), m - widest[d],
-                                     [](const Near& x, double v) { return x.lo < v; });
-          for (; it != list.end() && it->lo <= m && !on_line; ++it) {
-            if (it->hi < m) continue;
-            const Constraint& s = c.constraints[it->q];
-            on_line = near(s.p) && near(s.q) && a.coordinate_is(s.p, axis, m) && a.coordinate_is(s.q, axis, m);
-          }
-          free[li] = on_line ? 0 : 1;
+          if (!along.made) along.make(a, c);
+          free[li] = along.on(a, c, l.kind == LineKind::kAxisU ? 0 : 1, l.c) ? 0 : 1;
         }
         if (free[li] == 0) continue;
         axis_sides.push_back({ci, li, ordered(piece.pts[e], piece.pts[(e + 1) % piece.pts.size()]), k});

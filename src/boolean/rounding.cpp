@@ -8,9 +8,10 @@
 // face corner a hair off the line of its neighbours, two faces meeting at a very
 // small angle) turn over by less. Every candidate is a double within 8.5 units of the
 // exact point (2.5 unless a round found no better place within two), so the result
-// still rounds the exact one; only the choice among the doubles around it changes. Faces are triangulated as io::triangulate_face does it
-// (the exporters' triangles), the test is exact (geom::triangles_meet), and the
-// rounding check after building (boolean.cpp) counts what remains.
+// still rounds the exact one; only the choice among the doubles around it changes.
+// Faces are triangulated as io::triangulate_face does it (the exporters' triangles),
+// the test is exact (geom::triangles_meet), and the rounding check after building
+// (boolean.cpp) counts what remains.
 #include <algorithm>
 #include <cmath>
 #include <numeric>
