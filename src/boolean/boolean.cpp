@@ -261,7 +261,10 @@ Result<Arrangement> make_soup(std::span<const Model* const> operands, int thread
         triangulate_faces(m, face_ids, threads, [&](FaceId f) {
           return !(m.front_volume(f).is_valid() && m.back_volume(f).is_valid());
         });
-    tris.reserve(tris.size() + tiled.tiles.size());
+    // Room for this operand's tiles, growing geometrically: an exact reserve per
+    // operand copies the whole soup once per operand (a plate and 1,000 cylinders).
+    if (tris.capacity() < tris.size() + tiled.tiles.size())
+      tris.reserve(std::max(tris.size() + tiled.tiles.size(), 2 * tris.capacity()));
     for (std::size_t fi = 0; fi < face_ids.size(); ++fi) {
       const FaceId f = face_ids[fi];
       const auto triangles = tiled[fi];
