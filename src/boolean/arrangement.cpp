@@ -468,16 +468,23 @@ void Arrangement::line_union(std::uint32_t a, std::uint32_t b) {
 
 Arrangement::Arrangement(std::vector<Vec3> positions, std::vector<Tri> triangles,
                          std::vector<SoupFace> soup_faces, std::uint32_t n_operands,
-                         std::vector<WireSeg> wire_list)
+                         std::vector<WireSeg> wire_list, std::vector<char> embedded_operands,
+                         std::vector<std::array<std::uint32_t, 2>> joins)
     : pos(std::move(positions)),
       tris(std::move(triangles)),
       faces(std::move(soup_faces)),
       wires(std::move(wire_list)),
-      operands(n_operands) {
+      operands(n_operands),
+      embedded(std::move(embedded_operands)),
+      plane_joins(std::move(joins)) {
+  embedded.resize(operands, 0);
   tri_boxes.resize(tris.size());
-  for (std::size_t t = 0; t < tris.size(); ++t)
+  std::vector<std::uint32_t> groups(tris.size(), Bvh::kNoGroup);  // an embedded operand's
+  for (std::size_t t = 0; t < tris.size(); ++t) {
     for (std::uint32_t v : tris[t].v) tri_boxes[t].add(pos[v]);
-  bvh = Bvh(tri_boxes);
+    if (embedded[tris[t].operand]) groups[t] = tris[t].operand;
+  }
+  bvh = Bvh(tri_boxes, std::move(groups));
   wire_boxes.resize(wires.size());
   for (std::size_t w = 0; w < wires.size(); ++w) {
     wire_boxes[w].add(pos[wires[w].p]);
@@ -771,9 +778,12 @@ void Arrangement::intersect(int threads) {
   std::vector<std::array<std::uint32_t, 2>> touching;  // triangle, vertex on its plane
   UnionFind coplanar(tris.size());
   UnionFind same_plane(tris.size());
+  // Tiles of a planar face lie in one plane (those of a strictly convex face are never
+  // tested as pairs, nor any two of an embedded operand's triangles).
   for (const SoupFace& f : faces)
-    if (f.convex)
+    if (f.convex || (f.planar && embedded[f.operand]))
       for (std::uint32_t t : f.tris) same_plane.unite(f.tris[0], t);
+  for (auto [x, y] : plane_joins) same_plane.unite(x, y);
   // The candidate pairs in pieces of the tree, tested on threads, their events
   // applied in the tree's order (the same at any thread count).
   const std::vector<Bvh::Piece> pieces = bvh.pair_pieces(kPairPieces);

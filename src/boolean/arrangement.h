@@ -131,10 +131,24 @@ struct RepPoint {
   std::array<std::uint32_t, 3> p;
 };
 
+// Whether the tiles (one operand's triangles, whose first is soup triangle `first`)
+// certainly form one closed surface embedded in space, decided by exact predicates:
+// closed and oriented, star-shaped from a point that every tile's plane has on one
+// side, covering the directions from it once. Spheres, cylinders, cubes and every
+// convex part pass. Then two of its tiles meet only in the corners and edges they
+// share and no pair of them need be tested; `joins` gets the pairs of tiles from
+// different faces that share an edge and lie in one plane.
+bool embedded_surface(const std::vector<Vec3>& pos, std::span<const Tri> tiles, std::uint32_t first,
+                      std::vector<std::array<std::uint32_t, 2>>& joins);
+
 class Arrangement {
  public:
+  // embedded: by operand, whether its own triangles are known to meet only in the
+  // corners and edges they share (boolean.cpp's embedded_surface), so that no pair of
+  // them is tested; plane_joins: pairs of those triangles that lie in one plane.
   Arrangement(std::vector<Vec3> positions, std::vector<Tri> tris, std::vector<SoupFace> faces,
-              std::uint32_t operands, std::vector<WireSeg> wires = {});
+              std::uint32_t operands, std::vector<WireSeg> wires = {}, std::vector<char> embedded = {},
+              std::vector<std::array<std::uint32_t, 2>> plane_joins = {});
 
   // Stage 1: candidate pairs, exact tests, clusters and their constraints.
   // Stage 1 on `threads` threads (0: all); the same result at any count.
@@ -170,6 +184,8 @@ class Arrangement {
   // plane with it, computed in the projection along axis k: {s, t, k}.
   std::vector<std::array<std::uint32_t, 3>> meets;
   std::uint32_t operands = 0;
+  std::vector<char> embedded;  // by operand (constructor)
+  std::vector<std::array<std::uint32_t, 2>> plane_joins;
   std::vector<Box> tri_boxes;
   Bvh bvh;
   std::vector<std::uint32_t> cluster_of;  // by triangle

@@ -4,6 +4,7 @@
 #include "cellforge/boolean/boolean.h"
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <chrono>
 #include <cmath>
@@ -227,6 +228,98 @@ bool strictly_convex(const std::vector<Vec3>& pos, const std::vector<std::uint32
   return changes == 2;
 }
 
+// ---------------------------------------------------------------- embedded operands
+
+struct DirectedEdge {
+  std::uint64_t key;   // start << bits | end
+  std::uint32_t tile;  // the tile it belongs to
+};
+
+// Sorts by key, `bits` the keys' significant bits (least significant digit first, 11
+// bits a pass).
+void radix_sort(std::vector<DirectedEdge>& v, int bits) {
+  std::vector<DirectedEdge> tmp(v.size());
+  for (int shift = 0; shift < bits; shift += 11) {
+    std::array<std::size_t, 2049> count{};
+    for (const DirectedEdge& e : v) ++count[((e.key >> shift) & 2047) + 1];
+    for (std::size_t i = 1; i < count.size(); ++i) count[i] += count[i - 1];
+    for (const DirectedEdge& e : v) tmp[count[(e.key >> shift) & 2047]++] = e;
+    v.swap(tmp);
+  }
+}
+
+}  // namespace
+
+// arrangement.h; the certificate's argument:
+//  1. every directed edge is used once and its reverse once: a closed oriented surface;
+//  2. a point o is strictly on one side of every tile's plane, the same side for all:
+//     seen from o, every tile turns the same way, so the surface's projection onto a
+//     sphere around o covers every direction the same number of times (its degree);
+//  3. the ray from o through a point inside tile 0's cone lies in no other tile's
+//     closed cone: the degree is 1.
+// Covering the sphere once, the projection is one to one, so two tiles meet only in
+// the corners and edges they share: the surface is embedded (and star-shaped from o).
+// Spheres, cylinders, cubes, every convex part and many others pass; the pairs of
+// their own tiles then need no test. Where it holds, `joins` gets the pairs of tiles
+// sharing an edge that lie in one plane (what those tests would have found).
+bool embedded_surface(const std::vector<Vec3>& pos, std::span<const Tri> tiles, std::uint32_t first,
+                      std::vector<std::array<std::uint32_t, 2>>& joins) {
+  const std::size_t n = tiles.size();
+  if (n < 4) return false;
+  std::uint32_t max_id = 0;
+  for (const Tri& t : tiles) max_id = std::max({max_id, t.v[0], t.v[1], t.v[2]});
+  const int bits = std::bit_width(max_id);
+  std::vector<DirectedEdge> edges, reversed;
+  edges.reserve(3 * n);
+  reversed.reserve(3 * n);
+  for (std::size_t i = 0; i < n; ++i)
+    for (int e = 0; e < 3; ++e) {
+      const std::uint64_t p = tiles[i].v[e], q = tiles[i].v[(e + 1) % 3];
+      edges.push_back({p << bits | q, static_cast<std::uint32_t>(i)});
+      reversed.push_back({q << bits | p, static_cast<std::uint32_t>(i)});
+    }
+  radix_sort(edges, 2 * bits);
+  radix_sort(reversed, 2 * bits);
+  for (std::size_t i = 0; i < edges.size(); ++i)
+    if (edges[i].key != reversed[i].key || (i > 0 && edges[i].key == edges[i - 1].key)) return false;
+
+  Vec3 o{0, 0, 0};
+  for (const Tri& t : tiles)
+    for (std::uint32_t v : t.v) o = o + pos[v];
+  o = o * (1.0 / static_cast<double>(3 * n));
+  const Tri& t0 = tiles[0];
+  const int side = orient3d(o, pos[t0.v[0]], pos[t0.v[1]], pos[t0.v[2]]);
+  if (side == 0) return false;
+  const Vec3 through = (pos[t0.v[0]] + pos[t0.v[1]] + pos[t0.v[2]]) * (1.0 / 3.0);
+  for (int e = 0; e < 3; ++e)
+    if (orient3d(o, pos[t0.v[e]], pos[t0.v[(e + 1) % 3]], through) != side) return false;
+  for (std::size_t i = 1; i < n; ++i) {
+    const Tri& t = tiles[i];
+    if (orient3d(o, pos[t.v[0]], pos[t.v[1]], pos[t.v[2]]) != side) return false;
+    bool outside = false;
+    for (int e = 0; e < 3 && !outside; ++e)
+      outside = orient3d(o, pos[t.v[e]], pos[t.v[(e + 1) % 3]], through) == -side;
+    if (!outside) return false;
+  }
+
+  // Tiles sharing an edge (edges[i] and reversed[i] hold one edge's two tiles) that
+  // lie in one plane, from different faces (a planar face's tiles are joined whole).
+  for (std::size_t i = 0; i < edges.size(); ++i) {
+    const Tri& a = tiles[edges[i].tile];
+    const Tri& b = tiles[reversed[i].tile];
+    if ((edges[i].key >> bits) > (edges[i].key & ((std::uint64_t{1} << bits) - 1))) continue;  // once
+    if (a.input_face == b.input_face) continue;
+    std::uint32_t w = b.v[0];
+    for (std::uint32_t v : b.v)
+      if (v != a.v[0] && v != a.v[1] && v != a.v[2]) w = v;
+    if (orient3d(pos[a.v[0]], pos[a.v[1]], pos[a.v[2]], pos[w]) == 0)
+      joins.push_back({first + edges[i].tile, first + reversed[i].tile});
+  }
+  return true;
+}
+
+namespace {
+
 // The operands' faces that bound a cell on one side, as outward triangles, and their
 // sheets (faces with no cell on either side) as they are.
 Result<Arrangement> make_soup(std::span<const Model* const> operands, int threads) {
@@ -241,6 +334,8 @@ Result<Arrangement> make_soup(std::span<const Model* const> operands, int thread
   std::size_t face_count = 0;
   for (const Model* m : operands) face_count += m->num_faces();
   faces.reserve(face_count);
+  std::vector<std::uint32_t> operand_begin;          // its first triangle, by operand
+  std::vector<char> closed_only;                     // no sheet, wire or point, by operand
   std::vector<std::uint32_t> scratch;                // a loop being read
   std::vector<std::array<std::uint32_t, 3>> tiles;  // a face's triangles
   for (std::uint32_t k = 0; k < operands.size(); ++k) {
@@ -256,6 +351,8 @@ Result<Arrangement> make_soup(std::span<const Model* const> operands, int thread
       return id;
     };
     const std::size_t before = tris.size();
+    operand_begin.push_back(static_cast<std::uint32_t>(before));
+    bool sheets = false;
     const std::vector<FaceId> face_ids = face_list(m);
     const FaceTiles tiled =
         triangulate_faces(m, face_ids, threads, [&](FaceId f) {
@@ -275,6 +372,7 @@ Result<Arrangement> make_soup(std::span<const Model* const> operands, int thread
       sf.face = f.value;
       sf.flipped = front;
       sf.sheet = !front && !back;
+      sheets |= sf.sheet;
       // Each vector allocated once at its size (scratch reused across faces): the
       // soup of a big mesh is mostly allocation otherwise.
       for (LoopId l = m.outer_loop(f); l.is_valid(); l = m.next_loop(l)) {
@@ -315,7 +413,9 @@ Result<Arrangement> make_soup(std::span<const Model* const> operands, int thread
     if (tris.size() == before && wires.size() == wires_before)
       return Error{ErrorCode::kInvalidInput,
                    "boolean: operand " + std::to_string(k) + " is empty (no face, edge or point)"};
+    closed_only.push_back(!sheets && wires.size() == wires_before);
   }
+  operand_begin.push_back(static_cast<std::uint32_t>(tris.size()));
   parallel_ranges<char>(faces.size(), threads, [&](std::size_t lo, std::size_t hi, char&) {
     for (std::size_t i = lo; i < hi; ++i) {
       SoupFace& f = faces[i];
@@ -336,8 +436,27 @@ Result<Arrangement> make_soup(std::span<const Model* const> operands, int thread
                  strictly_convex(pos, f.loops[0], t0);
     }
   });
+  // The operands whose own tiles need not be tested against each other.
+  struct Embedded {
+    bool yes = false;
+    std::vector<std::array<std::uint32_t, 2>> joins;
+  };
+  const std::vector<Embedded> embedded =
+      parallel_jobs<Embedded>(operands.size(), threads, [&](std::size_t k, Embedded& out) {
+        if (!closed_only[k]) return;
+        const std::span<const Tri> own(tris.data() + operand_begin[k], operand_begin[k + 1] - operand_begin[k]);
+        out.yes = embedded_surface(pos, own, operand_begin[k], out.joins);
+        if (!out.yes) out.joins.clear();
+      });
+  std::vector<char> embedded_operands(operands.size(), 0);
+  std::vector<std::array<std::uint32_t, 2>> plane_joins;
+  for (std::size_t k = 0; k < embedded.size(); ++k) {
+    embedded_operands[k] = embedded[k].yes;
+    plane_joins.insert(plane_joins.end(), embedded[k].joins.begin(), embedded[k].joins.end());
+  }
   return Arrangement(std::move(pos), std::move(tris), std::move(faces),
-                     static_cast<std::uint32_t>(operands.size()), std::move(wires));
+                     static_cast<std::uint32_t>(operands.size()), std::move(wires),
+                     std::move(embedded_operands), std::move(plane_joins));
 }
 
 // ---------------------------------------------------------------- the rounding check

@@ -5,6 +5,10 @@
 // balanced whatever the boxes (equal boxes included), so a query descends O(log n)
 // levels. Used by boolean/ (the arrangement's candidate pairs) and io/ (self-
 // intersections, nesting of shells).
+//
+// Boxes may be put in groups whose members need not be paired with each other (the
+// triangles of a surface known to be embedded): pairs() skips a pair of boxes of one
+// group, and whole subtrees, or pairs of subtrees, that hold one group alone.
 #pragma once
 #include <algorithm>
 #include <array>
@@ -35,7 +39,13 @@ struct Box {
 class Bvh {
  public:
   Bvh() = default;
-  explicit Bvh(std::vector<Box> boxes) : boxes_(std::move(boxes)) {
+  // A box in no group: paired with every box it meets.
+  static constexpr std::uint32_t kNoGroup = 0xffffffffu;
+
+  explicit Bvh(std::vector<Box> boxes) : Bvh(std::move(boxes), {}) {}
+  // groups[i] is box i's group or kNoGroup; empty: no groups.
+  Bvh(std::vector<Box> boxes, std::vector<std::uint32_t> groups)
+      : boxes_(std::move(boxes)), groups_(std::move(groups)) {
     order_.resize(boxes_.size());
     std::iota(order_.begin(), order_.end(), 0u);
     std::vector<Vec3> twice_centre(boxes_.size());  // lo + hi: the split keys
@@ -44,7 +54,7 @@ class Bvh {
     if (!boxes_.empty()) build(0, static_cast<std::uint32_t>(order_.size()), twice_centre);
   }
 
-  // Calls f(i, j) once for every pair i < j of overlapping boxes.
+  // Calls f(i, j) once for every pair i < j of overlapping boxes not in one group.
   template <class F>
   void pairs(F&& f) const {
     if (!nodes_.empty()) self(0, f);
@@ -68,6 +78,10 @@ class Bvh {
         const Node& na = nodes_[p.a];
         const Node& nb = nodes_[p.b];
         if (p.self) {
+          if (one_group(na, na)) {  // no pair below
+            grew = true;
+            continue;
+          }
           if (na.leaf) {
             next.push_back(p);
             continue;
@@ -75,7 +89,7 @@ class Bvh {
           next.push_back({na.left, na.left, true});
           next.push_back({na.right, na.right, true});
           next.push_back({na.left, na.right, false});
-        } else if (!na.box.overlaps(nb.box)) {
+        } else if (!na.box.overlaps(nb.box) || one_group(na, nb)) {
           // no pair below
         } else if (na.leaf && nb.leaf) {
           next.push_back(p);
@@ -122,11 +136,20 @@ class Bvh {
   }
 
  private:
+  // A node's group: the one all its boxes are in, else kMixed (kNoGroup when all
+  // are in none).
+  static constexpr std::uint32_t kMixed = 0xfffffffeu;
   struct Node {
     Box box;
     std::uint32_t begin = 0, end = 0, left = 0, right = 0;
+    std::uint32_t group = kNoGroup;
     bool leaf = true;
   };
+  std::uint32_t group_of(std::uint32_t box) const { return groups_.empty() ? kNoGroup : groups_[box]; }
+  // Whether no pair below nodes a and b (a == b: below a) is to be reported.
+  static bool one_group(const Node& a, const Node& b) {
+    return a.group == b.group && a.group != kNoGroup && a.group != kMixed;
+  }
 
   std::uint32_t build(std::uint32_t begin, std::uint32_t end, const std::vector<Vec3>& twice_centre) {
     const auto id = static_cast<std::uint32_t>(nodes_.size());
@@ -135,8 +158,13 @@ class Bvh {
     nodes_[id].end = end;
     if (end - begin <= 4) {
       Box box;
-      for (std::uint32_t k = begin; k < end; ++k) box.add(boxes_[order_[k]]);
+      std::uint32_t group = group_of(order_[begin]);
+      for (std::uint32_t k = begin; k < end; ++k) {
+        box.add(boxes_[order_[k]]);
+        if (group_of(order_[k]) != group) group = kMixed;
+      }
       nodes_[id].box = box;
+      nodes_[id].group = group;
       return id;
     }
     // Split at the median centre along the axis the centres spread most on (twice the
@@ -153,6 +181,7 @@ class Bvh {
     Box box = nodes_[left].box;
     box.add(nodes_[right].box);
     nodes_[id].box = box;
+    nodes_[id].group = nodes_[left].group == nodes_[right].group ? nodes_[left].group : kMixed;
     nodes_[id].leaf = false;
     nodes_[id].left = left;
     nodes_[id].right = right;
@@ -162,6 +191,7 @@ class Bvh {
   template <class F>
   void self(std::uint32_t a, F& f) const {
     const Node& n = nodes_[a];
+    if (one_group(n, n)) return;
     if (n.leaf) {
       for (std::uint32_t i = n.begin; i < n.end; ++i)
         for (std::uint32_t j = i + 1; j < n.end; ++j) emit(order_[i], order_[j], f);
@@ -175,7 +205,7 @@ class Bvh {
   void cross(std::uint32_t a, std::uint32_t b, F& f) const {
     const Node& na = nodes_[a];
     const Node& nb = nodes_[b];
-    if (!na.box.overlaps(nb.box)) return;
+    if (!na.box.overlaps(nb.box) || one_group(na, nb)) return;
     if (na.leaf && nb.leaf) {
       for (std::uint32_t i = na.begin; i < na.end; ++i)
         for (std::uint32_t j = nb.begin; j < nb.end; ++j) emit(order_[i], order_[j], f);
@@ -194,10 +224,12 @@ class Bvh {
   }
   template <class F>
   void emit(std::uint32_t i, std::uint32_t j, F& f) const {
+    if (!groups_.empty() && groups_[i] == groups_[j] && groups_[i] != kNoGroup) return;
     if (boxes_[i].overlaps(boxes_[j])) f(std::min(i, j), std::max(i, j));
   }
 
   std::vector<Box> boxes_;
+  std::vector<std::uint32_t> groups_;
   std::vector<std::uint32_t> order_;
   std::vector<Node> nodes_;
 };

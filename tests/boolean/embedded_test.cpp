@@ -1,0 +1,174 @@
+// The certificate that lets the Boolean skip the pairs of one operand's own triangles
+// (boolean::embedded_surface, arrangement.h): granted to closed star-shaped surfaces,
+// refused to everything that could meet itself, and the Booleans it speeds up give
+// the results of the full pair test.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <numbers>
+#include <vector>
+
+#include "boolean/arrangement.h"
+#include "boolean/boolean_test_util.h"
+#include "cellforge/boolean/boolean.h"
+#include "cellforge/io/triangulate.h"
+#include "cellforge/shape/primitives.h"
+#include "cellforge/topo/builder.h"
+
+namespace cellforge::boolean {
+namespace {
+
+struct Tiles {
+  std::vector<Vec3> pos;
+  std::vector<Tri> tris;
+};
+
+// A model's faces as triangles (each face's index as its input face).
+Tiles tiles_of(const Model& m) {
+  Tiles t;
+  std::vector<std::uint32_t> id(m.vertex_slots(), 0xffffffffu);
+  for (VertexId v : m.vertices()) {
+    id[v.value] = static_cast<std::uint32_t>(t.pos.size());
+    t.pos.push_back(m.position(v));
+  }
+  std::uint32_t face = 0;
+  for (FaceId f : m.faces()) {
+    for (const auto& tri : io::triangulate_face(m, f)) {
+      Tri x{{id[tri[0].value], id[tri[1].value], id[tri[2].value]}, 0, f.value, face};
+      if (m.front_volume(f).is_valid()) std::swap(x.v[1], x.v[2]);  // outward
+      t.tris.push_back(x);
+    }
+    ++face;
+  }
+  return t;
+}
+
+bool embedded(const Tiles& t) {
+  std::vector<std::array<std::uint32_t, 2>> joins;
+  return embedded_surface(t.pos, t.tris, 0, joins);
+}
+
+Tiles from(std::vector<Vec3> pos, std::vector<std::array<std::uint32_t, 3>> tris) {
+  Tiles t{std::move(pos), {}};
+  for (std::uint32_t i = 0; i < tris.size(); ++i) t.tris.push_back({tris[i], 0, i, i});
+  return t;
+}
+
+TEST(EmbeddedSurface, PrimitivesAreCertified) {
+  Model cube, sphere, cylinder, cone;
+  ASSERT_TRUE(shape::make_cube(cube, {.size = {1, 2, 3}}).ok());
+  ASSERT_TRUE(shape::make_sphere(sphere, {.r = 10, .faceting = {.fn = 64}}).ok());
+  ASSERT_TRUE(shape::make_cylinder(cylinder, {.h = 5, .r1 = 2, .r2 = 2, .faceting = {.fn = 30}}).ok());
+  ASSERT_TRUE(shape::make_cylinder(cone, {.h = 5, .r1 = 2, .r2 = 0, .faceting = {.fn = 7}}).ok());
+  for (const Model* m : {&cube, &sphere, &cylinder, &cone}) EXPECT_TRUE(embedded(tiles_of(*m)));
+}
+
+TEST(EmbeddedSurface, CoplanarNeighboursFromDifferentFacesAreJoined) {
+  // A unit cube whose top is two faces (two triangles): one join, the top's diagonal.
+  const std::vector<Vec3> p{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
+                            {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+  Tiles t = from(p, {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7}, {0, 1, 5}, {0, 5, 4},
+                     {1, 2, 6}, {1, 6, 5}, {2, 3, 7}, {2, 7, 6}, {3, 0, 4}, {3, 4, 7}});
+  for (int side = 0; side < 6; ++side) t.tris[2 * side + 1].input_face = t.tris[2 * side].input_face;
+  t.tris[3].input_face = 99;  // the top's second triangle: a face of its own
+  std::vector<std::array<std::uint32_t, 2>> joins;
+  ASSERT_TRUE(embedded_surface(t.pos, t.tris, 100, joins));
+  ASSERT_EQ(joins.size(), 1u);
+  EXPECT_EQ(std::min(joins[0][0], joins[0][1]), 102u);
+  EXPECT_EQ(std::max(joins[0][0], joins[0][1]), 103u);
+}
+
+TEST(EmbeddedSurface, WhatCouldMeetItselfIsRefused) {
+  // A torus: closed and embedded, but no point sees every face from inside.
+  Model torus;
+  ASSERT_TRUE(shape::make_torus(torus, {.major_radius = 5, .minor_radius = 1, .faceting = {.fn = 12}}).ok());
+  EXPECT_FALSE(embedded(tiles_of(torus)));
+
+  // A bipyramid over a band that winds twice around the axis: closed, oriented, every
+  // tile facing away from the centre, yet it covers every direction twice.
+  std::vector<Vec3> pos{{0, 0, 1}, {0, 0, -1}};
+  std::vector<std::array<std::uint32_t, 3>> tris;
+  const int m = 5;
+  for (int k = 0; k < 2 * m; ++k) {
+    const double a = 2 * std::numbers::pi * 2 * k / (2 * m), r = k < m ? 1.0 : 1.5;
+    pos.push_back({r * std::cos(a), r * std::sin(a), 0});
+  }
+  for (std::uint32_t k = 0; k < 2 * m; ++k) {
+    const std::uint32_t a = 2 + k, b = 2 + (k + 1) % (2 * m);
+    tris.push_back({0, a, b});
+    tris.push_back({1, b, a});
+  }
+  EXPECT_FALSE(embedded(from(pos, tris)));
+
+  // An octahedron, certified; with one corner pushed through the opposite face, not.
+  std::vector<Vec3> oct{{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  const std::vector<std::array<std::uint32_t, 3>> faces{{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4},
+                                                        {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
+  EXPECT_TRUE(embedded(from(oct, faces)));
+  oct[4] = {0, 0, -1.5};
+  EXPECT_FALSE(embedded(from(oct, faces)));
+
+  // Open (one triangle gone), a triangle turned round, a repeated triangle.
+  oct[4] = {0, 0, 1};
+  auto open = faces;
+  open.pop_back();
+  EXPECT_FALSE(embedded(from(oct, open)));
+  auto turned = faces;
+  std::swap(turned[3][0], turned[3][1]);
+  EXPECT_FALSE(embedded(from(oct, turned)));
+  auto doubled = faces;
+  doubled.push_back(faces[0]);
+  EXPECT_FALSE(embedded(from(oct, doubled)));
+}
+
+// The Boolean of certified operands tests no pair of one operand's triangles, and
+// gives the result it gives when the same operands are not certified (each one a
+// model with a far-away tetrahedron of its own beside it: two shells).
+Model with_far_tetrahedron(const Model& m, double at) {
+  MeshInput in;
+  std::vector<std::uint32_t> id(m.vertex_slots());
+  for (VertexId v : m.vertices()) {
+    id[v.value] = static_cast<std::uint32_t>(in.positions.size());
+    in.positions.push_back(m.position(v));
+  }
+  for (FaceId f : m.faces()) {
+    MeshFace mf{.loops = {}, .front = m.front_volume(f).is_valid() ? 0 : -1,
+                .back = m.back_volume(f).is_valid() ? 0 : -1};
+    for (LoopId l = m.outer_loop(f); l.is_valid(); l = m.next_loop(l)) {
+      auto& loop = mf.loops.emplace_back();
+      for (VertexId v : m.loop_vertices(l)) loop.push_back(id[v.value]);
+    }
+    in.faces.push_back(std::move(mf));
+  }
+  const auto n = static_cast<std::uint32_t>(in.positions.size());
+  for (Vec3 p : {Vec3{at, at, at}, Vec3{at + 1, at, at}, Vec3{at, at + 1, at}, Vec3{at, at, at + 1}})
+    in.positions.push_back(p);
+  for (std::array<std::uint32_t, 3> t : {std::array<std::uint32_t, 3>{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}})
+    in.faces.push_back({.loops = {{n + t[0], n + t[1], n + t[2]}}, .back = 1});
+  in.volumes = 2;
+  return testing::build(in);
+}
+
+TEST(EmbeddedSurface, BooleansWithAndWithoutTheCertificateAgree) {
+  const Model a = testing::sphere_model(10, 24);
+  const Model b = testing::cylinder_model(4, 30, 17, {0.5, 0.25, -15});
+  const Model a2 = with_far_tetrahedron(a, 100), b2 = with_far_tetrahedron(b, 200);
+  const double tetra = 1.0 / 6.0;
+  for (Op op : {Op::kUnion, Op::kIntersection, Op::kDifference}) {
+    const testing::BoolCase fast = testing::run(op, {&a, &b}, false);
+    const testing::BoolCase slow = testing::run(op, {&a2, &b2}, false);
+    EXPECT_LT(fast.result.report.candidate_pairs * 5, slow.result.report.candidate_pairs) << to_string(op);
+    // The tetrahedra add themselves to the union (both) and the difference (a's).
+    const int extra = op == Op::kUnion ? 2 : (op == Op::kDifference ? 1 : 0);
+    EXPECT_NEAR(slow.volume - fast.volume, extra * tetra, 1e-9) << to_string(op);
+    EXPECT_EQ(fast.faces + 4u * extra, slow.faces) << to_string(op);
+    EXPECT_EQ(fast.vertices + 4u * extra, slow.vertices) << to_string(op);
+    EXPECT_EQ(fast.edges + 6u * extra, slow.edges) << to_string(op);
+    EXPECT_EQ(fast.result.report.rounding_self_intersections, slow.result.report.rounding_self_intersections);
+  }
+}
+
+}  // namespace
+}  // namespace cellforge::boolean

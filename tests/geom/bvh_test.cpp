@@ -1,0 +1,81 @@
+// The bounding-volume hierarchy (geom/bvh.h): its pairs against every pair of boxes
+// tested directly, with and without groups, whole and in pieces for threads.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <random>
+#include <vector>
+
+#include "cellforge/geom/bvh.h"
+
+namespace cellforge {
+namespace {
+
+struct Case {
+  std::vector<Box> boxes;
+  std::vector<std::uint32_t> groups;
+};
+
+// n boxes on a coarse grid (so that many touch exactly), each in one of `groups`
+// groups or, one in four, in none.
+Case random_case(std::mt19937_64& rng, std::size_t n, std::uint32_t groups) {
+  std::uniform_int_distribution<int> at(0, 40), size(0, 6), group(0, static_cast<int>(groups));
+  Case c;
+  for (std::size_t i = 0; i < n; ++i) {
+    Box b;
+    const Vec3 lo{double(at(rng)), double(at(rng)), double(at(rng))};
+    b.add(lo);
+    b.add(lo + Vec3{double(size(rng)), double(size(rng)), double(size(rng))});
+    c.boxes.push_back(b);
+    const int g = group(rng);
+    c.groups.push_back(g == static_cast<int>(groups) || rng() % 4 == 0 ? Bvh::kNoGroup : static_cast<std::uint32_t>(g));
+  }
+  return c;
+}
+
+std::vector<std::array<std::uint32_t, 2>> brute_force(const Case& c, bool use_groups) {
+  std::vector<std::array<std::uint32_t, 2>> out;
+  for (std::uint32_t i = 0; i < c.boxes.size(); ++i)
+    for (std::uint32_t j = i + 1; j < c.boxes.size(); ++j) {
+      if (use_groups && c.groups[i] == c.groups[j] && c.groups[i] != Bvh::kNoGroup) continue;
+      if (c.boxes[i].overlaps(c.boxes[j])) out.push_back({i, j});
+    }
+  return out;
+}
+
+TEST(Bvh, PairsAreExactlyTheOverlappingPairsOutsideOneGroup) {
+  std::mt19937_64 rng(20261205);
+  for (int trial = 0; trial < 200; ++trial) {
+    const std::size_t n = 1 + rng() % 300;
+    const Case c = random_case(rng, n, 1 + static_cast<std::uint32_t>(rng() % 4));
+    for (bool use_groups : {false, true}) {
+      const Bvh tree = use_groups ? Bvh(c.boxes, c.groups) : Bvh(c.boxes);
+      std::vector<std::array<std::uint32_t, 2>> whole, in_pieces;
+      tree.pairs([&](std::uint32_t i, std::uint32_t j) {
+        ASSERT_LT(i, j);
+        whole.push_back({i, j});
+      });
+      for (const Bvh::Piece& p : tree.pair_pieces(16))
+        tree.pairs(p, [&](std::uint32_t i, std::uint32_t j) { in_pieces.push_back({i, j}); });
+      EXPECT_EQ(in_pieces, whole) << "the pieces in order are the whole traversal";
+      std::sort(whole.begin(), whole.end());
+      EXPECT_TRUE(std::adjacent_find(whole.begin(), whole.end()) == whole.end()) << "each pair once";
+      EXPECT_EQ(whole, brute_force(c, use_groups)) << "trial " << trial << ", " << n << " boxes";
+    }
+  }
+}
+
+TEST(Bvh, OneGroupAloneHasNoPairs) {
+  std::mt19937_64 rng(7);
+  Case c = random_case(rng, 500, 1);
+  std::fill(c.groups.begin(), c.groups.end(), 3u);
+  std::size_t count = 0;
+  Bvh(c.boxes, c.groups).pairs([&](std::uint32_t, std::uint32_t) { ++count; });
+  EXPECT_EQ(count, 0u);
+  EXPECT_GT(brute_force(c, false).size(), 0u);
+}
+
+}  // namespace
+}  // namespace cellforge
