@@ -467,24 +467,25 @@ void Arrangement::line_union(std::uint32_t a, std::uint32_t b) {
 // ---------------------------------------------------------------- construction
 
 Arrangement::Arrangement(std::vector<Vec3> positions, std::vector<Tri> triangles,
-                         std::vector<SoupFace> soup_faces, std::uint32_t n_operands,
+                         std::vector<SoupFace> soup_faces, LoopTable loops, std::uint32_t n_operands,
                          std::vector<WireSeg> wire_list, std::vector<char> embedded_operands,
                          std::vector<std::array<std::uint32_t, 2>> joins)
     : pos(std::move(positions)),
       tris(std::move(triangles)),
       faces(std::move(soup_faces)),
+      loop_table(std::move(loops)),
       wires(std::move(wire_list)),
       operands(n_operands),
       embedded(std::move(embedded_operands)),
       plane_joins(std::move(joins)) {
   embedded.resize(operands, 0);
-  tri_boxes.resize(tris.size());
+  std::vector<Box> boxes(tris.size());
   std::vector<std::uint32_t> groups(tris.size(), Bvh::kNoGroup);  // an embedded operand's
   for (std::size_t t = 0; t < tris.size(); ++t) {
-    for (std::uint32_t v : tris[t].v) tri_boxes[t].add(pos[v]);
+    for (std::uint32_t v : tris[t].v) boxes[t].add(pos[v]);
     if (embedded[tris[t].operand]) groups[t] = tris[t].operand;
   }
-  bvh = Bvh(tri_boxes, std::move(groups));
+  bvh = Bvh(std::move(boxes), std::move(groups));
   wire_boxes.resize(wires.size());
   for (std::size_t w = 0; w < wires.size(); ++w) {
     wire_boxes[w].add(pos[wires[w].p]);
@@ -1050,15 +1051,12 @@ void Arrangement::release_pieces(bool keep_tree) {
     std::vector<Constraint>().swap(c.constraints);
     std::vector<std::uint32_t>().swap(c.touch_points);
   }
-  for (SoupFace& f : faces) {
-    std::vector<std::vector<std::uint32_t>>().swap(f.loops);
-    std::vector<std::uint32_t>().swap(f.tris);
-  }
+  loop_table.clear();
+  for (SoupFace& f : faces) f.loop_count = 0;
   lpi_ids_ = {};
   std::vector<std::uint32_t>().swap(quad_other);
   std::vector<std::int8_t>().swap(quad_side);
   if (keep_tree) return;
-  std::vector<Box>().swap(tri_boxes);
   bvh = Bvh();
 }
 
@@ -1100,7 +1098,7 @@ void Arrangement::mark_open_edges(const Cluster& c) {
     if (loop_face != x.face) {
       loop_face = x.face;
       loop_edges.clear();
-      for (const auto& loop : faces[x.face].loops)
+      for (const auto loop : loops_of(faces[x.face]))
         for (std::size_t i = 0; i < loop.size(); ++i) loop_edges.push_back(ordered(loop[i], loop[(i + 1) % loop.size()]));
       std::sort(loop_edges.begin(), loop_edges.end());
     }

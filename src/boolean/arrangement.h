@@ -21,6 +21,7 @@
 // result is built.
 #pragma once
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <shared_mutex>
@@ -42,12 +43,101 @@ struct Tri {
   std::uint32_t input_face = 0;  // index into Soup::faces
 };
 
-// An operand face as it was: its loops of input vertices, and whether the Boolean
-// sees it reversed (a face with its cell in front).
+// A face's tiles: the consecutive soup triangles first, first + 1, ... (a face's
+// tiles are made together), iterated and indexed as a list of triangle ids.
+class TileRange {
+ public:
+  class iterator {
+   public:
+    using value_type = std::uint32_t;
+    using difference_type = std::ptrdiff_t;
+    iterator() = default;
+    explicit iterator(std::uint32_t i) : i_(i) {}
+    std::uint32_t operator*() const { return i_; }
+    iterator& operator++() {
+      ++i_;
+      return *this;
+    }
+    iterator operator++(int) { return iterator(i_++); }
+    bool operator==(const iterator&) const = default;
+
+   private:
+    std::uint32_t i_ = 0;
+  };
+  // The next tile, which must be triangle first + size().
+  void push_back(std::uint32_t t) {
+    if (count_ == 0) first_ = t;
+    ++count_;
+  }
+  std::uint32_t operator[](std::size_t k) const { return first_ + static_cast<std::uint32_t>(k); }
+  std::size_t size() const { return count_; }
+  bool empty() const { return count_ == 0; }
+  iterator begin() const { return iterator(first_); }
+  iterator end() const { return iterator(first_ + count_); }
+
+ private:
+  std::uint32_t first_ = 0, count_ = 0;
+};
+
+// The operand faces' loops of input vertices, all in one table: loop i is
+// points[begin[i]] .. points[begin[i + 1]).
+class LoopTable {
+ public:
+  std::uint32_t add(std::span<const std::uint32_t> loop) {
+    points_.insert(points_.end(), loop.begin(), loop.end());
+    begin_.push_back(static_cast<std::uint32_t>(points_.size()));
+    return static_cast<std::uint32_t>(begin_.size() - 2);
+  }
+  std::span<const std::uint32_t> operator[](std::uint32_t i) const {
+    return {points_.data() + begin_[i], begin_[i + 1] - begin_[i]};
+  }
+  void clear() {
+    std::vector<std::uint32_t>().swap(points_);
+    begin_.assign(1, 0);
+  }
+
+ private:
+  std::vector<std::uint32_t> points_;
+  std::vector<std::uint32_t> begin_{0};
+};
+
+// A face's loops: `count` consecutive loops of a LoopTable from `first`.
+struct FaceLoops {
+  const LoopTable* table = nullptr;
+  std::uint32_t first = 0, count = 0;
+  class iterator {
+   public:
+    using value_type = std::span<const std::uint32_t>;
+    using difference_type = std::ptrdiff_t;
+    iterator() = default;
+    iterator(const LoopTable* t, std::uint32_t i) : t_(t), i_(i) {}
+    std::span<const std::uint32_t> operator*() const { return (*t_)[i_]; }
+    iterator& operator++() {
+      ++i_;
+      return *this;
+    }
+    iterator operator++(int) { return iterator(t_, i_++); }
+    bool operator==(const iterator& o) const { return i_ == o.i_; }
+
+   private:
+    const LoopTable* t_ = nullptr;
+    std::uint32_t i_ = 0;
+  };
+  std::span<const std::uint32_t> operator[](std::size_t k) const {
+    return (*table)[first + static_cast<std::uint32_t>(k)];
+  }
+  std::size_t size() const { return count; }
+  bool empty() const { return count == 0; }
+  iterator begin() const { return {table, first}; }
+  iterator end() const { return {table, first + count}; }
+};
+
+// An operand face as it was: its loops of input vertices (Arrangement::loops_of), and
+// whether the Boolean sees it reversed (a face with its cell in front).
 struct SoupFace {
   std::uint32_t operand = 0, face = 0;
-  std::vector<std::vector<std::uint32_t>> loops;
-  std::vector<std::uint32_t> tris;
+  std::uint32_t first_loop = 0, loop_count = 0;  // in Arrangement::loop_table
+  TileRange tris;
   bool flipped = false;  // the model's face points into its cell: reversed here
   bool sheet = false;    // a face with no cell on either side: it bounds nothing, and
                          // its points are the operand's (non-regularized operations)
@@ -147,8 +237,8 @@ class Arrangement {
   // corners and edges they share (boolean.cpp's embedded_surface), so that no pair of
   // them is tested; plane_joins: pairs of those triangles that lie in one plane.
   Arrangement(std::vector<Vec3> positions, std::vector<Tri> tris, std::vector<SoupFace> faces,
-              std::uint32_t operands, std::vector<WireSeg> wires = {}, std::vector<char> embedded = {},
-              std::vector<std::array<std::uint32_t, 2>> plane_joins = {});
+              LoopTable loops, std::uint32_t operands, std::vector<WireSeg> wires = {},
+              std::vector<char> embedded = {}, std::vector<std::array<std::uint32_t, 2>> plane_joins = {});
 
   // Stage 1: candidate pairs, exact tests, clusters and their constraints.
   // Stage 1 on `threads` threads (0: all); the same result at any count.
@@ -176,6 +266,8 @@ class Arrangement {
   // as inside. Set by split().
   std::vector<std::uint8_t> open_edges;
   std::vector<SoupFace> faces;
+  LoopTable loop_table;  // the faces' loops
+  FaceLoops loops_of(const SoupFace& f) const { return {&loop_table, f.first_loop, f.loop_count}; }
   std::vector<WireSeg> wires;        // the operands' wire edges and isolated points
   std::vector<WireSeg> wire_pieces;  // after split_wires: points (p == q) stay
   std::vector<Box> wire_boxes;
@@ -186,8 +278,7 @@ class Arrangement {
   std::uint32_t operands = 0;
   std::vector<char> embedded;  // by operand (constructor)
   std::vector<std::array<std::uint32_t, 2>> plane_joins;
-  std::vector<Box> tri_boxes;
-  Bvh bvh;
+  Bvh bvh;  // over the triangles' boxes (bvh.box(t))
   std::vector<std::uint32_t> cluster_of;  // by triangle
   // By cluster: the first cluster found to lie in the same plane (coplanar triangles
   // that were tested as a pair, such as the two halves of a planar quad). Points are

@@ -156,7 +156,7 @@ FaceTiles triangulate_faces(const Model& m, const std::vector<FaceId>& faces, in
 }
 
 // Whether every edge of every loop is an edge of one of the triangles.
-bool covers_loops(const std::vector<std::vector<std::uint32_t>>& loops,
+bool covers_loops(const FaceLoops& loops,
                   const std::vector<std::array<std::uint32_t, 3>>& tiles) {
   if (loops.size() == 1 && loops[0].size() == 3 && tiles.size() == 1) return true;
   const auto has_edge = [&](std::uint32_t p, std::uint32_t q) {
@@ -190,7 +190,7 @@ bool covers_loops(const std::vector<std::vector<std::uint32_t>>& loops,
 
 // Each loop as a fan from its first vertex (holes turn the other way, so they count
 // negatively).
-std::vector<std::array<std::uint32_t, 3>> fan_tiles(const std::vector<std::vector<std::uint32_t>>& loops) {
+std::vector<std::array<std::uint32_t, 3>> fan_tiles(const FaceLoops& loops) {
   std::vector<std::array<std::uint32_t, 3>> out;
   for (const auto& loop : loops)
     for (std::size_t i = 1; i + 1 < loop.size(); ++i) out.push_back({loop[0], loop[i], loop[i + 1]});
@@ -201,7 +201,7 @@ std::vector<std::array<std::uint32_t, 3>> fan_tiles(const std::vector<std::vecto
 // once, in the projection where its first tile t0 has area: the direction of its edges
 // then turns through one revolution, so their component along the projection's
 // second axis changes sign exactly twice (k revolutions: 2k times).
-bool strictly_convex(const std::vector<Vec3>& pos, const std::vector<std::uint32_t>& loop, const Tri& t0) {
+bool strictly_convex(const std::vector<Vec3>& pos, std::span<const std::uint32_t> loop, const Tri& t0) {
   int k = 0;
   while (k < 3 && orient2d_projected(pos[t0.v[0]], pos[t0.v[1]], pos[t0.v[2]], k) == 0) ++k;
   if (k == 3) return false;
@@ -331,6 +331,7 @@ Result<Arrangement> make_soup(std::span<const Model* const> operands, int thread
   std::vector<Tri> tris;
   std::vector<SoupFace> faces;
   std::vector<WireSeg> wires;
+  LoopTable loops;  // the faces' loops
   std::size_t face_count = 0;
   for (const Model* m : operands) face_count += m->num_faces();
   faces.reserve(face_count);
@@ -380,7 +381,8 @@ Result<Arrangement> make_soup(std::span<const Model* const> operands, int thread
         scratch.clear();
         for (EdgeUseId u : m.uses_of(l)) scratch.push_back(vid(m.use_start(u)));
         if (front) std::reverse(scratch.begin(), scratch.end());
-        sf.loops.emplace_back(scratch.begin(), scratch.end());
+        const std::uint32_t li = loops.add(scratch);
+        if (sf.loop_count++ == 0) sf.first_loop = li;
       }
       const auto sfi = static_cast<std::uint32_t>(faces.size());
       tiles.clear();
@@ -394,8 +396,8 @@ Result<Arrangement> make_soup(std::span<const Model* const> operands, int thread
       // its boundary. Then each loop is tiled as a fan instead: the fans' triangles,
       // signed, have the face's winding number everywhere, which is all the
       // classification reads, and they take every edge of every loop.
-      if (!covers_loops(sf.loops, tiles)) tiles = fan_tiles(sf.loops);
-      sf.tris.reserve(tiles.size());
+      const FaceLoops face_loops{&loops, sf.first_loop, sf.loop_count};
+      if (!covers_loops(face_loops, tiles)) tiles = fan_tiles(face_loops);
       for (const auto& t : tiles) {
         const Tri tri{t, k, f.value, sfi};
         if (collinear3d(pos[tri.v[0]], pos[tri.v[1]], pos[tri.v[2]])) continue;
@@ -420,20 +422,21 @@ Result<Arrangement> make_soup(std::span<const Model* const> operands, int thread
     for (std::size_t i = lo; i < hi; ++i) {
       SoupFace& f = faces[i];
       if (f.tris.empty()) continue;
-      if (f.loops.size() == 1 && f.loops[0].size() == 4) {
-        const auto& q = f.loops[0];
+      const FaceLoops f_loops{&loops, f.first_loop, f.loop_count};
+      if (f_loops.size() == 1 && f_loops[0].size() == 4) {
+        const auto q = f_loops[0];
         std::copy(q.begin(), q.end(), f.quad.begin());
         f.fold = static_cast<std::int8_t>(orient3d(pos[q[0]], pos[q[1]], pos[q[2]], pos[q[3]]));
         f.planar = f.fold == 0;
         continue;
       }
       const Tri& t0 = tris[f.tris[0]];
-      for (const auto& loop : f.loops)
+      for (const auto loop : f_loops)
         for (std::uint32_t v : loop)
           if (f.planar && v != t0.v[0] && v != t0.v[1] && v != t0.v[2])
             f.planar = orient3d(pos[t0.v[0]], pos[t0.v[1]], pos[t0.v[2]], pos[v]) == 0;
-      f.convex = f.planar && f.loops.size() == 1 && f.tris.size() + 2 == f.loops[0].size() &&
-                 strictly_convex(pos, f.loops[0], t0);
+      f.convex = f.planar && f_loops.size() == 1 && f.tris.size() + 2 == f_loops[0].size() &&
+                 strictly_convex(pos, f_loops[0], t0);
     }
   });
   // The operands whose own tiles need not be tested against each other.
@@ -454,7 +457,7 @@ Result<Arrangement> make_soup(std::span<const Model* const> operands, int thread
     embedded_operands[k] = embedded[k].yes;
     plane_joins.insert(plane_joins.end(), embedded[k].joins.begin(), embedded[k].joins.end());
   }
-  return Arrangement(std::move(pos), std::move(tris), std::move(faces),
+  return Arrangement(std::move(pos), std::move(tris), std::move(faces), std::move(loops),
                      static_cast<std::uint32_t>(operands.size()), std::move(wires),
                      std::move(embedded_operands), std::move(plane_joins));
 }

@@ -137,7 +137,7 @@ class RayCaster {
     };
     a_.bvh.query(accept, [&](std::uint32_t t) {
       if (!ref) {
-        const Box& b = a_.tri_boxes[t];
+        const Box& b = a_.bvh.box(t);
         bool near = true;
         for (int d = 0; d < 3; ++d) near &= b.lo[d] <= x[d] + e[d] && b.hi[d] >= x[d] - e[d];
         if (near && on_triangle(start, ws, t)) {
@@ -777,7 +777,7 @@ Selection classify_and_select(const Arrangement& a, const Expr& expr, const Opti
     if (!c.touched || c.tris.size() <= 8) continue;
     std::vector<Box> boxes;
     boxes.reserve(c.tris.size());
-    for (std::uint32_t t : c.tris) boxes.push_back(a.tri_boxes[t]);
+    for (std::uint32_t t : c.tris) boxes.push_back(a.bvh.box(t));
     cluster_tree[ci] = std::make_unique<Bvh>(std::move(boxes));
   }
   std::vector<Verdict> pieces = classify(jobs.size(), [&](std::size_t k, std::uint32_t& source,
@@ -926,7 +926,7 @@ Selection classify_and_select(const Arrangement& a, const Expr& expr, const Opti
     // Not when something touches a diagonal inside it (the face must take the point).
     if (whole && f.tris.size() > 1) {
       std::vector<std::uint64_t> rim;
-      for (const auto& loop : f.loops)
+      for (const auto loop : a.loops_of(f))
         for (std::size_t k = 0; k < loop.size(); ++k) {
           const std::uint32_t p = loop[k], q = loop[(k + 1) % loop.size()];
           rim.push_back((static_cast<std::uint64_t>(std::min(p, q)) << 32) | std::max(p, q));
@@ -946,7 +946,8 @@ Selection classify_and_select(const Arrangement& a, const Expr& expr, const Opti
       poly.normal_sign = keep;
       set_verdict(poly, f.tris[0]);
       if (f.planar) poly.cluster = a.cluster_of[f.tris[0]];
-      for (std::vector<std::uint32_t> loop : f.loops) {
+      for (const auto l : a.loops_of(f)) {
+        std::vector<std::uint32_t> loop(l.begin(), l.end());
         if (keep < 0) std::reverse(loop.begin(), loop.end());
         poly.keys.push_back(edge_keys(loop));
         poly.loops.push_back(std::move(loop));

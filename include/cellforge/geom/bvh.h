@@ -50,9 +50,11 @@ class Bvh {
     std::iota(order_.begin(), order_.end(), 0u);
     std::vector<Vec3> twice_centre(boxes_.size());  // lo + hi: the split keys
     for (std::size_t i = 0; i < boxes_.size(); ++i) twice_centre[i] = boxes_[i].lo + boxes_[i].hi;
-    nodes_.reserve(boxes_.size() / 2 + 1);
+    nodes_.reserve(boxes_.size() + 1);  // leaves of 2 to 4 boxes: fewer nodes than boxes
     if (!boxes_.empty()) build(0, static_cast<std::uint32_t>(order_.size()), twice_centre);
   }
+
+  const Box& box(std::uint32_t i) const { return boxes_[i]; }
 
   // Calls f(i, j) once for every pair i < j of overlapping boxes not in one group.
   template <class F>
