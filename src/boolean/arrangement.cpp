@@ -808,6 +808,7 @@ void Arrangement::intersect(int threads) {
   // Clusters: components of the coplanar-overlap relation, numbered by their
   // smallest triangle.
   cluster_of.assign(tris.size(), kInvalidIndex);
+  clusters.reserve(tris.size());  // address space only: pages are touched as used
   for (std::uint32_t t = 0; t < tris.size(); ++t) {
     const std::uint32_t r = coplanar.find(t);
     if (cluster_of[r] == kInvalidIndex) {
@@ -1047,9 +1048,9 @@ void Arrangement::split() {
 
 void Arrangement::release_pieces(bool keep_tree) {
   for (Cluster& c : clusters) {
-    std::vector<Piece>().swap(c.pieces);
-    std::vector<Constraint>().swap(c.constraints);
-    std::vector<std::uint32_t>().swap(c.touch_points);
+    c.pieces.release();
+    c.constraints.release();
+    c.touch_points.release();
   }
   loop_table.clear();
   for (SoupFace& f : faces) f.loop_count = 0;

@@ -202,15 +202,62 @@ struct Constraint {
   std::uint32_t p, q;  // where the other triangle meets this plane
 };
 
+// A list that takes one pointer while empty, as most of a cluster's lists stay: a
+// cluster per input triangle, and only those near another surface are cut.
+template <class T>
+class LazyVec {
+ public:
+  std::size_t size() const { return v_ ? v_->size() : 0; }
+  bool empty() const { return !v_ || v_->empty(); }
+  const T* begin() const { return v_ ? v_->data() : nullptr; }
+  const T* end() const { return v_ ? v_->data() + v_->size() : nullptr; }
+  T* begin() { return v_ ? v_->data() : nullptr; }
+  T* end() { return v_ ? v_->data() + v_->size() : nullptr; }
+  const T* data() const { return begin(); }
+  const T& operator[](std::size_t i) const { return (*v_)[i]; }
+  T& operator[](std::size_t i) { return (*v_)[i]; }
+  const T& back() const { return v_->back(); }
+  T& back() { return v_->back(); }
+  void push_back(T x) { made().push_back(std::move(x)); }
+  void release() { v_.reset(); }
+
+ private:
+  std::vector<T>& made() {
+    if (!v_) v_ = std::make_unique<std::vector<T>>();
+    return *v_;
+  }
+  std::unique_ptr<std::vector<T>> v_;
+};
+
+// A cluster's triangles: one, the common case, held in place.
+class ClusterTris {
+ public:
+  void push_back(std::uint32_t t) {
+    if (n_ == 1) many_ = std::make_unique<std::vector<std::uint32_t>>(1, one_);
+    if (n_ == 0) one_ = t;
+    if (many_) many_->push_back(t);
+    ++n_;
+  }
+  const std::uint32_t* begin() const { return n_ <= 1 ? &one_ : many_->data(); }
+  const std::uint32_t* end() const { return begin() + n_; }
+  std::size_t size() const { return n_; }
+  bool empty() const { return n_ == 0; }
+  std::uint32_t operator[](std::size_t i) const { return begin()[i]; }
+
+ private:
+  std::uint32_t one_ = 0, n_ = 0;
+  std::unique_ptr<std::vector<std::uint32_t>> many_;
+};
+
 struct Cluster {
-  std::vector<std::uint32_t> tris;
+  ClusterTris tris;
   std::uint32_t ref = 0;      // reference triangle (its plane)
   int k = 2;                  // dominant axis of the reference normal
   int nk_sign = 1;            // sign of the reference normal's component k
-  std::vector<Constraint> constraints;
-  std::vector<std::uint32_t> touch_points;  // input vertices touching it inside
-  std::vector<Line> lines;
-  std::vector<Piece> pieces;
+  LazyVec<Constraint> constraints;
+  LazyVec<std::uint32_t> touch_points;  // input vertices touching it inside
+  LazyVec<Line> lines;
+  LazyVec<Piece> pieces;
   bool touched = false;  // cut by anything, or several triangles
 };
 
