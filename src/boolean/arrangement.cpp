@@ -469,7 +469,7 @@ void Arrangement::line_union(std::uint32_t a, std::uint32_t b) {
 Arrangement::Arrangement(std::vector<Vec3> positions, std::vector<Tri> triangles,
                          std::vector<SoupFace> soup_faces, LoopTable loops, std::uint32_t n_operands,
                          std::vector<WireSeg> wire_list, std::vector<char> embedded_operands,
-                         std::vector<std::array<std::uint32_t, 2>> joins)
+                         std::vector<std::array<std::uint32_t, 2>> joins, std::vector<HalfEdge> half_edges)
     : pos(std::move(positions)),
       tris(std::move(triangles)),
       faces(std::move(soup_faces)),
@@ -477,8 +477,10 @@ Arrangement::Arrangement(std::vector<Vec3> positions, std::vector<Tri> triangles
       wires(std::move(wire_list)),
       operands(n_operands),
       embedded(std::move(embedded_operands)),
-      plane_joins(std::move(joins)) {
+      plane_joins(std::move(joins)),
+      halves(std::move(half_edges)) {
   embedded.resize(operands, 0);
+  if (halves.empty()) halves = sorted_half_edges(tris, pos.size());
   std::vector<Box> boxes(tris.size());
   std::vector<std::uint32_t> groups(tris.size(), Bvh::kNoGroup);  // an embedded operand's
   for (std::size_t t = 0; t < tris.size(); ++t) {
@@ -1053,6 +1055,7 @@ void Arrangement::release_pieces(bool keep_tree) {
     c.touch_points.release();
   }
   loop_table.clear();
+  std::vector<HalfEdge>().swap(halves);
   for (SoupFace& f : faces) f.loop_count = 0;
   lpi_ids_ = {};
   std::vector<std::uint32_t>().swap(quad_other);

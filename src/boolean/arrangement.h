@@ -268,15 +268,27 @@ struct RepPoint {
   std::array<std::uint32_t, 3> p;
 };
 
-// Whether the tiles (one operand's triangles, whose first is soup triangle `first`)
-// certainly form one closed surface embedded in space, decided by exact predicates:
-// closed and oriented, star-shaped from a point that every tile's plane has on one
-// side, covering the directions from it once. Spheres, cylinders, cubes and every
-// convex part pass. Then two of its tiles meet only in the corners and edges they
-// share and no pair of them need be tested; `joins` gets the pairs of tiles from
-// different faces that share an edge and lie in one plane.
-bool embedded_surface(const std::vector<Vec3>& pos, std::span<const Tri> tiles, std::uint32_t first,
-                      std::vector<std::array<std::uint32_t, 2>>& joins);
+// A triangle's use of an edge.
+struct HalfEdge {
+  std::uint64_t key;  // ordered(p, q)
+  std::uint32_t tri;
+  bool forward;  // the triangle runs p -> q with p < q
+};
+// Every edge of every triangle, sorted by edge, then triangle (points below n_points).
+std::vector<HalfEdge> sorted_half_edges(std::span<const Tri> tris, std::size_t n_points);
+
+// Which operands' triangles certainly form one closed surface embedded in space,
+// decided by exact predicates: closed and oriented, star-shaped from a point that
+// every triangle's plane has on one side, covering the directions from it once.
+// Spheres, cylinders, cubes and every convex part pass. Then two of its triangles meet
+// only in the corners and edges they share, and no pair of them need be tested.
+// `candidates`: by operand, whether to try (its faces all bound one cell on one side:
+// no sheet, wire or point). `joins` gets the certified operands' pairs of triangles
+// from different faces that share an edge and lie in one plane. `halves`: the
+// triangles' sorted half-edges.
+std::vector<char> embedded_operands(const std::vector<Vec3>& pos, std::span<const Tri> tris,
+                                    std::span<const HalfEdge> halves, const std::vector<char>& candidates,
+                                    int threads, std::vector<std::array<std::uint32_t, 2>>& joins);
 
 class Arrangement {
  public:
@@ -285,7 +297,8 @@ class Arrangement {
   // them is tested; plane_joins: pairs of those triangles that lie in one plane.
   Arrangement(std::vector<Vec3> positions, std::vector<Tri> tris, std::vector<SoupFace> faces,
               LoopTable loops, std::uint32_t operands, std::vector<WireSeg> wires = {},
-              std::vector<char> embedded = {}, std::vector<std::array<std::uint32_t, 2>> plane_joins = {});
+              std::vector<char> embedded = {}, std::vector<std::array<std::uint32_t, 2>> plane_joins = {},
+              std::vector<HalfEdge> halves = {});
 
   // Stage 1: candidate pairs, exact tests, clusters and their constraints.
   // Stage 1 on `threads` threads (0: all); the same result at any count.
@@ -325,6 +338,7 @@ class Arrangement {
   std::uint32_t operands = 0;
   std::vector<char> embedded;  // by operand (constructor)
   std::vector<std::array<std::uint32_t, 2>> plane_joins;
+  std::vector<HalfEdge> halves;  // sorted_half_edges(tris) (the constructor makes them if not given)
   Bvh bvh;  // over the triangles' boxes (bvh.box(t))
   std::vector<std::uint32_t> cluster_of;  // by triangle
   // By cluster: the first cluster found to lie in the same plane (coplanar triangles

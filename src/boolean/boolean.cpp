@@ -230,92 +230,116 @@ bool strictly_convex(const std::vector<Vec3>& pos, std::span<const std::uint32_t
 
 // ---------------------------------------------------------------- embedded operands
 
-struct DirectedEdge {
-  std::uint64_t key;   // start << bits | end
-  std::uint32_t tile;  // the tile it belongs to
-};
-
-// Sorts by key, `bits` the keys' significant bits (least significant digit first, 11
-// bits a pass).
-void radix_sort(std::vector<DirectedEdge>& v, int bits) {
-  std::vector<DirectedEdge> tmp(v.size());
-  for (int shift = 0; shift < bits; shift += 11) {
-    std::array<std::size_t, 2049> count{};
-    for (const DirectedEdge& e : v) ++count[((e.key >> shift) & 2047) + 1];
-    for (std::size_t i = 1; i < count.size(); ++i) count[i] += count[i - 1];
-    for (const DirectedEdge& e : v) tmp[count[(e.key >> shift) & 2047]++] = e;
-    v.swap(tmp);
-  }
-}
-
 }  // namespace
 
-// arrangement.h; the certificate's argument:
-//  1. every directed edge is used once and its reverse once: a closed oriented surface;
-//  2. a point o is strictly on one side of every tile's plane, the same side for all:
-//     seen from o, every tile turns the same way, so the surface's projection onto a
-//     sphere around o covers every direction the same number of times (its degree);
-//  3. the ray from o through a point inside tile 0's cone lies in no other tile's
-//     closed cone: the degree is 1.
-// Covering the sphere once, the projection is one to one, so two tiles meet only in
-// the corners and edges they share: the surface is embedded (and star-shaped from o).
-// Spheres, cylinders, cubes, every convex part and many others pass; the pairs of
-// their own tiles then need no test. Where it holds, `joins` gets the pairs of tiles
-// sharing an edge that lie in one plane (what those tests would have found).
-bool embedded_surface(const std::vector<Vec3>& pos, std::span<const Tri> tiles, std::uint32_t first,
-                      std::vector<std::array<std::uint32_t, 2>>& joins) {
-  const std::size_t n = tiles.size();
-  if (n < 4) return false;
-  std::uint32_t max_id = 0;
-  for (const Tri& t : tiles) max_id = std::max({max_id, t.v[0], t.v[1], t.v[2]});
-  const int bits = std::bit_width(max_id);
-  std::vector<DirectedEdge> edges, reversed;
-  edges.reserve(3 * n);
-  reversed.reserve(3 * n);
-  for (std::size_t i = 0; i < n; ++i)
-    for (int e = 0; e < 3; ++e) {
-      const std::uint64_t p = tiles[i].v[e], q = tiles[i].v[(e + 1) % 3];
-      edges.push_back({p << bits | q, static_cast<std::uint32_t>(i)});
-      reversed.push_back({q << bits | p, static_cast<std::uint32_t>(i)});
+// arrangement.h. Counted by the smaller end, then sorted by the larger within each
+// vertex's few edges (stably: the triangles were placed in order).
+std::vector<HalfEdge> sorted_half_edges(std::span<const Tri> tris, std::size_t n_points) {
+  std::vector<std::uint32_t> start(n_points + 1, 0);
+  for (const Tri& t : tris)
+    for (int e = 0; e < 3; ++e) ++start[std::min(t.v[e], t.v[(e + 1) % 3]) + 1];
+  for (std::size_t v = 0; v < n_points; ++v) start[v + 1] += start[v];
+  std::vector<HalfEdge> out(3 * tris.size());
+  {
+    std::vector<std::uint32_t> at(start.begin(), start.end() - 1);
+    for (std::uint32_t i = 0; i < tris.size(); ++i)
+      for (int e = 0; e < 3; ++e) {
+        const std::uint32_t p = tris[i].v[e], q = tris[i].v[(e + 1) % 3];
+        const std::uint64_t key = (std::uint64_t{std::min(p, q)} << 32) | std::max(p, q);
+        out[at[std::min(p, q)]++] = {key, i, p < q};
+      }
+  }
+  const auto by_key = [](const HalfEdge& x, const HalfEdge& y) { return x.key < y.key; };
+  for (std::size_t v = 0; v < n_points; ++v) {
+    HalfEdge* b = out.data() + start[v];
+    HalfEdge* e = out.data() + start[v + 1];
+    if (e - b > 32) {
+      std::stable_sort(b, e, by_key);
+      continue;
     }
-  radix_sort(edges, 2 * bits);
-  radix_sort(reversed, 2 * bits);
-  for (std::size_t i = 0; i < edges.size(); ++i)
-    if (edges[i].key != reversed[i].key || (i > 0 && edges[i].key == edges[i - 1].key)) return false;
-
-  Vec3 o{0, 0, 0};
-  for (const Tri& t : tiles)
-    for (std::uint32_t v : t.v) o = o + pos[v];
-  o = o * (1.0 / static_cast<double>(3 * n));
-  const Tri& t0 = tiles[0];
-  const int side = orient3d(o, pos[t0.v[0]], pos[t0.v[1]], pos[t0.v[2]]);
-  if (side == 0) return false;
-  const Vec3 through = (pos[t0.v[0]] + pos[t0.v[1]] + pos[t0.v[2]]) * (1.0 / 3.0);
-  for (int e = 0; e < 3; ++e)
-    if (orient3d(o, pos[t0.v[e]], pos[t0.v[(e + 1) % 3]], through) != side) return false;
-  for (std::size_t i = 1; i < n; ++i) {
-    const Tri& t = tiles[i];
-    if (orient3d(o, pos[t.v[0]], pos[t.v[1]], pos[t.v[2]]) != side) return false;
-    bool outside = false;
-    for (int e = 0; e < 3 && !outside; ++e)
-      outside = orient3d(o, pos[t.v[e]], pos[t.v[(e + 1) % 3]], through) == -side;
-    if (!outside) return false;
+    for (HalfEdge* x = b + 1; x < e; ++x)  // insertion sort, stable
+      for (HalfEdge* y = x; y > b && by_key(*y, *(y - 1)); --y) std::swap(*y, *(y - 1));
   }
+  return out;
+}
 
-  // Tiles sharing an edge (edges[i] and reversed[i] hold one edge's two tiles) that
-  // lie in one plane, from different faces (a planar face's tiles are joined whole).
-  for (std::size_t i = 0; i < edges.size(); ++i) {
-    const Tri& a = tiles[edges[i].tile];
-    const Tri& b = tiles[reversed[i].tile];
-    if ((edges[i].key >> bits) > (edges[i].key & ((std::uint64_t{1} << bits) - 1))) continue;  // once
-    if (a.input_face == b.input_face) continue;
-    std::uint32_t w = b.v[0];
-    for (std::uint32_t v : b.v)
-      if (v != a.v[0] && v != a.v[1] && v != a.v[2]) w = v;
-    if (orient3d(pos[a.v[0]], pos[a.v[1]], pos[a.v[2]], pos[w]) == 0)
-      joins.push_back({first + edges[i].tile, first + reversed[i].tile});
-  }
-  return true;
+// arrangement.h. The argument, for one operand's triangles:
+//  1. every edge is used by two of them, once each way: a closed oriented surface;
+//  2. a point o is strictly on one side of every triangle's plane, the same side for
+//     all: seen from o, every triangle turns the same way, so the surface's projection
+//     onto a sphere around o covers every direction the same number of times (its
+//     degree);
+//  3. the ray from o through a point inside the first triangle's cone lies in no other
+//     triangle's closed cone: the degree is 1.
+// Covering the sphere once, the projection is one to one, so two triangles meet only
+// in the corners and edges they share: the surface is embedded (and star-shaped from o).
+std::vector<char> embedded_operands(const std::vector<Vec3>& pos, std::span<const Tri> tris,
+                                    std::span<const HalfEdge> halves, const std::vector<char>& candidates,
+                                    int threads, std::vector<std::array<std::uint32_t, 2>>& joins) {
+  const std::size_t operands = candidates.size();
+  std::vector<char> ok(candidates);
+  // 1, for all operands at once: in each edge's uses, an operand's are one each way.
+  auto each_edge = [&](auto&& f) {
+    for (std::size_t i = 0; i < halves.size();) {
+      std::size_t j = i + 1;
+      while (j < halves.size() && halves[j].key == halves[i].key) ++j;
+      f(halves.subspan(i, j - i));
+      i = j;
+    }
+  };
+  each_edge([&](std::span<const HalfEdge> uses) {
+    for (const HalfEdge& x : uses) {
+      const std::uint32_t k = tris[x.tri].operand;
+      if (!ok[k]) continue;
+      int forward = 0, backward = 0;
+      for (const HalfEdge& y : uses)
+        if (tris[y.tri].operand == k) (y.forward ? forward : backward) += 1;
+      if (forward != 1 || backward != 1) ok[k] = 0;
+    }
+  });
+  // 2 and 3, an operand at a time (its triangles are consecutive).
+  std::vector<std::uint32_t> begin(operands + 1, static_cast<std::uint32_t>(tris.size()));
+  for (std::size_t t = tris.size(); t-- > 0;) begin[tris[t].operand] = static_cast<std::uint32_t>(t);
+  for (std::size_t k = operands; k-- > 0;) begin[k] = std::min(begin[k], begin[k + 1]);
+  const std::vector<char> star = parallel_jobs<char>(operands, threads, [&](std::size_t k, char& out) {
+    const std::span<const Tri> own = tris.subspan(begin[k], begin[k + 1] - begin[k]);
+    if (!ok[k] || own.size() < 4) return;
+    Vec3 o{0, 0, 0};
+    for (const Tri& t : own)
+      for (std::uint32_t v : t.v) o = o + pos[v];
+    o = o * (1.0 / static_cast<double>(3 * own.size()));
+    const Tri& t0 = own[0];
+    const int side = orient3d(o, pos[t0.v[0]], pos[t0.v[1]], pos[t0.v[2]]);
+    if (side == 0) return;
+    const Vec3 through = (pos[t0.v[0]] + pos[t0.v[1]] + pos[t0.v[2]]) * (1.0 / 3.0);
+    for (int e = 0; e < 3; ++e)
+      if (orient3d(o, pos[t0.v[e]], pos[t0.v[(e + 1) % 3]], through) != side) return;
+    for (std::size_t i = 1; i < own.size(); ++i) {
+      const Tri& t = own[i];
+      if (orient3d(o, pos[t.v[0]], pos[t.v[1]], pos[t.v[2]]) != side) return;
+      bool outside = false;
+      for (int e = 0; e < 3 && !outside; ++e)
+        outside = orient3d(o, pos[t.v[e]], pos[t.v[(e + 1) % 3]], through) == -side;
+      if (!outside) return;
+    }
+    out = 1;
+  });
+  for (std::size_t k = 0; k < operands; ++k) ok[k] = ok[k] && star[k];
+  // The certified operands' neighbours in one plane, from different faces (a planar
+  // face's tiles are joined whole).
+  each_edge([&](std::span<const HalfEdge> uses) {
+    for (std::size_t i = 0; i < uses.size(); ++i)
+      for (std::size_t j = i + 1; j < uses.size(); ++j) {
+        const Tri& a = tris[uses[i].tri];
+        const Tri& b = tris[uses[j].tri];
+        if (a.operand != b.operand || !ok[a.operand] || a.input_face == b.input_face) continue;
+        std::uint32_t w = b.v[0];
+        for (std::uint32_t v : b.v)
+          if (v != a.v[0] && v != a.v[1] && v != a.v[2]) w = v;
+        if (orient3d(pos[a.v[0]], pos[a.v[1]], pos[a.v[2]], pos[w]) == 0) joins.push_back({uses[i].tri, uses[j].tri});
+      }
+  });
+  return ok;
 }
 
 namespace {
@@ -335,7 +359,6 @@ Result<Arrangement> make_soup(std::span<const Model* const> operands, int thread
   std::size_t face_count = 0;
   for (const Model* m : operands) face_count += m->num_faces();
   faces.reserve(face_count);
-  std::vector<std::uint32_t> operand_begin;          // its first triangle, by operand
   std::vector<char> closed_only;                     // no sheet, wire or point, by operand
   std::vector<std::uint32_t> scratch;                // a loop being read
   std::vector<std::array<std::uint32_t, 3>> tiles;  // a face's triangles
@@ -352,7 +375,6 @@ Result<Arrangement> make_soup(std::span<const Model* const> operands, int thread
       return id;
     };
     const std::size_t before = tris.size();
-    operand_begin.push_back(static_cast<std::uint32_t>(before));
     bool sheets = false;
     const std::vector<FaceId> face_ids = face_list(m);
     const FaceTiles tiled =
@@ -417,7 +439,6 @@ Result<Arrangement> make_soup(std::span<const Model* const> operands, int thread
                    "boolean: operand " + std::to_string(k) + " is empty (no face, edge or point)"};
     closed_only.push_back(!sheets && wires.size() == wires_before);
   }
-  operand_begin.push_back(static_cast<std::uint32_t>(tris.size()));
   parallel_ranges<char>(faces.size(), threads, [&](std::size_t lo, std::size_t hi, char&) {
     for (std::size_t i = lo; i < hi; ++i) {
       SoupFace& f = faces[i];
@@ -440,26 +461,12 @@ Result<Arrangement> make_soup(std::span<const Model* const> operands, int thread
     }
   });
   // The operands whose own tiles need not be tested against each other.
-  struct Embedded {
-    bool yes = false;
-    std::vector<std::array<std::uint32_t, 2>> joins;
-  };
-  const std::vector<Embedded> embedded =
-      parallel_jobs<Embedded>(operands.size(), threads, [&](std::size_t k, Embedded& out) {
-        if (!closed_only[k]) return;
-        const std::span<const Tri> own(tris.data() + operand_begin[k], operand_begin[k + 1] - operand_begin[k]);
-        out.yes = embedded_surface(pos, own, operand_begin[k], out.joins);
-        if (!out.yes) out.joins.clear();
-      });
-  std::vector<char> embedded_operands(operands.size(), 0);
+  std::vector<HalfEdge> halves = sorted_half_edges(tris, pos.size());
   std::vector<std::array<std::uint32_t, 2>> plane_joins;
-  for (std::size_t k = 0; k < embedded.size(); ++k) {
-    embedded_operands[k] = embedded[k].yes;
-    plane_joins.insert(plane_joins.end(), embedded[k].joins.begin(), embedded[k].joins.end());
-  }
+  std::vector<char> embedded = embedded_operands(pos, tris, halves, closed_only, threads, plane_joins);
   return Arrangement(std::move(pos), std::move(tris), std::move(faces), std::move(loops),
                      static_cast<std::uint32_t>(operands.size()), std::move(wires),
-                     std::move(embedded_operands), std::move(plane_joins));
+                     std::move(embedded), std::move(plane_joins), std::move(halves));
 }
 
 // ---------------------------------------------------------------- the rounding check

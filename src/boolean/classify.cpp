@@ -484,39 +484,13 @@ bool covers(const Arrangement& a, std::uint32_t t, const RepPoint& r, const H3<F
 // Every triangle edge of the arrangement, sorted by edge (then triangle), and the input
 // vertices found on another triangle's edge: what the patches of untouched triangles
 // and the groups of pieces that share a ray both ask of an edge.
-struct HalfEdge {
-  std::uint64_t key;  // ordered(p, q)
-  std::uint32_t tri;
-  bool forward;  // the triangle runs p -> q with p < q
-};
 struct EdgeUses {
-  std::vector<HalfEdge> halves;
+  const std::vector<HalfEdge>& halves;
   std::vector<char> on_other_edge;  // by input vertex
 };
 
 EdgeUses edge_uses(const Arrangement& a) {
-  EdgeUses u;
-  std::vector<HalfEdge> made;
-  made.reserve(a.tris.size() * 3);
-  for (std::uint32_t t = 0; t < a.tris.size(); ++t)
-    for (int e = 0; e < 3; ++e) {
-      const std::uint32_t p = a.tris[t].v[e], q = a.tris[t].v[(e + 1) % 3];
-      made.push_back({ordered(p, q), t, p < q});
-    }
-  // By key, then triangle: two stable counting passes over the vertex ids (the larger
-  // end, then the smaller); they were made in triangle order.
-  const std::size_t nv = a.pos.size();
-  auto pass = [nv](const std::vector<HalfEdge>& from, std::vector<HalfEdge>& to, int shift) {
-    std::vector<std::uint32_t> start(nv + 1, 0);
-    for (const HalfEdge& h : from) ++start[((h.key >> shift) & 0xffffffffu) + 1];
-    for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
-    to.resize(from.size());
-    for (const HalfEdge& h : from) to[start[(h.key >> shift) & 0xffffffffu]++] = h;
-  };
-  std::vector<HalfEdge> by_max;
-  pass(made, by_max, 0);
-  pass(by_max, u.halves, 32);
-  u.on_other_edge.assign(a.pos.size(), 0);
+  EdgeUses u{a.halves, std::vector<char>(a.pos.size(), 0)};
   for (auto [key, v] : a.edge_points)
     if (v < u.on_other_edge.size()) u.on_other_edge[v] = 1;  // implicit ones (wires) have keys
   return u;

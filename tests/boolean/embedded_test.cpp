@@ -4,6 +4,7 @@
 // the results of the full pair test.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -47,7 +48,7 @@ Tiles tiles_of(const Model& m) {
 
 bool embedded(const Tiles& t) {
   std::vector<std::array<std::uint32_t, 2>> joins;
-  return embedded_surface(t.pos, t.tris, 0, joins);
+  return embedded_operands(t.pos, t.tris, sorted_half_edges(t.tris, t.pos.size()), {1}, 1, joins)[0];
 }
 
 Tiles from(std::vector<Vec3> pos, std::vector<std::array<std::uint32_t, 3>> tris) {
@@ -74,10 +75,62 @@ TEST(EmbeddedSurface, CoplanarNeighboursFromDifferentFacesAreJoined) {
   for (int side = 0; side < 6; ++side) t.tris[2 * side + 1].input_face = t.tris[2 * side].input_face;
   t.tris[3].input_face = 99;  // the top's second triangle: a face of its own
   std::vector<std::array<std::uint32_t, 2>> joins;
-  ASSERT_TRUE(embedded_surface(t.pos, t.tris, 100, joins));
+  ASSERT_TRUE(embedded_operands(t.pos, t.tris, sorted_half_edges(t.tris, t.pos.size()), {1}, 1, joins)[0]);
   ASSERT_EQ(joins.size(), 1u);
-  EXPECT_EQ(std::min(joins[0][0], joins[0][1]), 102u);
-  EXPECT_EQ(std::max(joins[0][0], joins[0][1]), 103u);
+  EXPECT_EQ(std::min(joins[0][0], joins[0][1]), 2u);
+  EXPECT_EQ(std::max(joins[0][0], joins[0][1]), 3u);
+}
+
+// Several operands in one soup, sharing corners (two cubes sharing a face, so that
+// the face's edges have four uses), one of them no candidate and one a torus.
+TEST(EmbeddedSurface, EachOperandIsJudgedOnItsOwnTriangles) {
+  Model a, b, torus;
+  ASSERT_TRUE(shape::make_cube(a).ok());
+  ASSERT_TRUE(shape::make_cube(b, {.size = {1, 1, 1}}).ok());
+  ASSERT_TRUE(shape::make_torus(torus, {.major_radius = 5, .minor_radius = 1, .faceting = {.fn = 12}}).ok());
+  Tiles all;
+  std::vector<std::uint32_t> ids;
+  auto add = [&](const Model& m, Vec3 shift, std::uint32_t operand) {
+    Tiles t = tiles_of(m);
+    for (Tri x : t.tris) {
+      for (std::uint32_t& v : x.v) {
+        const Vec3 p = t.pos[v] + shift;
+        auto it = std::find(all.pos.begin(), all.pos.end(), p);
+        v = static_cast<std::uint32_t>(it - all.pos.begin());
+        if (it == all.pos.end()) all.pos.push_back(p);
+      }
+      x.operand = operand;
+      x.input_face += 1000 * operand;
+      all.tris.push_back(x);
+    }
+  };
+  add(a, {0, 0, 0}, 0);
+  add(b, {1, 0, 0}, 1);  // shares a's face x = 1
+  add(torus, {0, 0, 10}, 2);
+  add(b, {0, 5, 0}, 3);
+  std::vector<std::array<std::uint32_t, 2>> joins;
+  const std::vector<char> ok =
+      embedded_operands(all.pos, all.tris, sorted_half_edges(all.tris, all.pos.size()), {1, 1, 1, 0}, 2, joins);
+  EXPECT_EQ(ok, (std::vector<char>{1, 1, 0, 0}));
+  EXPECT_TRUE(joins.empty());  // a cube's faces' tiles are joined as faces, not here
+}
+
+TEST(EmbeddedSurface, HalfEdgesAreSortedByEdgeThenTriangle) {
+  const Model s = testing::sphere_model(3, 20);
+  const Tiles t = tiles_of(s);
+  const std::vector<HalfEdge> h = sorted_half_edges(t.tris, t.pos.size());
+  ASSERT_EQ(h.size(), 3 * t.tris.size());
+  for (std::size_t i = 1; i < h.size(); ++i)
+    EXPECT_TRUE(h[i - 1].key < h[i].key || (h[i - 1].key == h[i].key && h[i - 1].tri < h[i].tri)) << i;
+  for (const HalfEdge& x : h) {
+    const Tri& tri = t.tris[x.tri];
+    bool found = false;
+    for (int e = 0; e < 3; ++e) {
+      const std::uint32_t p = tri.v[e], q = tri.v[(e + 1) % 3];
+      found |= x.key == ((std::uint64_t{std::min(p, q)} << 32) | std::max(p, q)) && x.forward == (p < q);
+    }
+    EXPECT_TRUE(found);
+  }
 }
 
 TEST(EmbeddedSurface, WhatCouldMeetItselfIsRefused) {
