@@ -1364,6 +1364,7 @@ bool Arrangement::split_piece(Cluster& c, std::uint32_t ci, std::size_t pi, std:
     int side;
   };
   std::vector<Corner> seq;
+  seq.reserve(n + 2);
   std::uint32_t chord[2];
   int nc = 0;
   for (std::size_t q = 0; q < n; ++q) {
@@ -1396,6 +1397,10 @@ bool Arrangement::split_piece(Cluster& c, std::uint32_t ci, std::size_t pi, std:
     if (sides[q] == 0) c.lines[li].points.push_back(P.pts[q]);
   out.resize(2);
   const std::size_t m = seq.size();
+  for (Piece& o : out) {  // each side takes at most all corners
+    o.pts.reserve(m);
+    o.lines.reserve(m);
+  }
   for (std::size_t q = 0; q < m; ++q) {
     const Corner& k = seq[q];
     const Corner& next = seq[(q + 1) % m];
