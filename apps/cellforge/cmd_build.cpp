@@ -230,6 +230,7 @@ int run(const std::vector<std::string>& argv) {
               << ", \"booleans\": " << st.booleans
               << ", \"boolean_operands\": " << st.boolean_operands
               << ", \"cache_hits\": " << st.cache_hits << ", \"cache_misses\": " << st.cache_misses
+              << ", \"memo_hits\": " << st.memo_hits
               << ", \"seconds\": {\"evaluate\": " << num(eval_seconds)
               << ", \"build\": " << num(build_seconds) << ", \"leaves\": " << num(st.leaf_seconds)
               << ", \"boolean\": " << num(st.boolean_seconds)

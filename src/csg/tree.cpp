@@ -13,6 +13,8 @@
 #include <chrono>
 #include <cmath>
 #include <functional>
+#include <string>
+#include <unordered_map>
 
 #include "cache.h"
 #include "cellforge/boolean/boolean.h"
@@ -218,6 +220,8 @@ class Builder {
         auto expr = collect3(*c, shape::Transform::identity(), std::nullopt, leaves);
         if (expr) p.model = combine(*expr, leaves, c->pos, &p.colors);
         cache_.store(key, p.model, p.colors);
+        if (expr && expr->kind != boolean::Expr::Kind::kOperand)
+          subtree_memo_.emplace(content_key(geometry_core(*c)), p.model);
       }
       if (p.model.num_faces() == 0) continue;
       const shape::MassProperties mp = shape::mass_properties(p.model);
@@ -350,7 +354,7 @@ class Builder {
         break;
     }
     const auto start = Clock::now();
-    Model m = leaf3(n);
+    Model m = memo_leaf(n);
     stats_.leaf_seconds += seconds_since(start);
     ++stats_.leaves;
     if (m.num_faces() == 0) return std::nullopt;
@@ -487,15 +491,53 @@ class Builder {
     }
   }
 
-  // The children of n built into one model (a subtree of its own).
+  // The children of n built into one model (a subtree of its own); the same subtree
+  // met again in this build (GEB.scad's letters, built as a part and projected) is
+  // built once.
   Model build_children(const Node& n) {
-    std::vector<Leaf> leaves;
     Node group;
     group.kind = NodeKind::kGroup;
     group.children = n.children;
+    const std::string key = content_key(geometry_core(group));
+    if (auto it = subtree_memo_.find(key); it != subtree_memo_.end()) {
+      ++stats_.memo_hits;
+      return it->second;
+    }
+    std::vector<Leaf> leaves;
     auto expr = collect3(group, shape::Transform::identity(), std::nullopt, leaves);
     if (!expr) return Model();
-    return combine(*expr, leaves, n.pos, nullptr);
+    Model m = combine(*expr, leaves, n.pos, nullptr);
+    subtree_memo_.emplace(key, m);
+    return m;
+  }
+
+  // The node whose geometry n is: through colors and groups of one child, which
+  // change no point of it.
+  const Node& geometry_core(const Node& n) const {
+    const Node* c = &n;
+    for (;;) {
+      if (c->kind != NodeKind::kColor && c->kind != NodeKind::kGroup) return *c;
+      const auto kids = active_children(*c);
+      if (kids.size() != 1) return *c;
+      c = kids[0];
+    }
+  }
+
+  // A leaf that takes more than a primitive's work (an extrusion, a hull, an import),
+  // built once per build whatever the number of places it is used (in its own frame;
+  // each place moves a copy).
+  Model memo_leaf(const Node& n) {
+    const bool primitive =
+        n.kind == NodeKind::kCube || n.kind == NodeKind::kSphere || n.kind == NodeKind::kCylinder;
+    if (primitive) return leaf3(n);
+    const std::string key = content_key(n);
+    if (auto it = leaf_memo_.find(key); it != leaf_memo_.end()) {
+      ++stats_.memo_hits;
+      return it->second;
+    }
+    Model m = leaf3(n);
+    leaf_memo_.emplace(key, m);
+    return m;
   }
 
   Model resize(const Node& n) {
@@ -909,6 +951,9 @@ class Builder {
   const BuildOptions& options_;
   DiskCache cache_;
   BuildStats stats_;
+  // Within one build, by content key: leaves, and subtrees built whole (their
+  // geometry; colors are the caller's).
+  std::unordered_map<std::string, Model> leaf_memo_, subtree_memo_;
 };
 
 }  // namespace

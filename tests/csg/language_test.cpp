@@ -274,6 +274,34 @@ TEST(Build, CacheKeyFollowsImportedFiles) {
   EXPECT_NEAR(volume_after(3, 0), 8 + 3 + 9, 1e-12);
 }
 
+// Within one build, a leaf or a subtree met again is taken from the first time (with
+// no disk cache): the same extrusion in two places, and a Boolean built as a part and
+// then projected, give the volumes of building each one afresh.
+TEST(Build, RepeatedSubtreesAreBuiltOnce) {
+  const std::string script =
+      "module plug() intersection() { linear_extrude(4, center = true) square(2, center = true);\n"
+      "  rotate([90, 0, 0]) linear_extrude(4, center = true) circle(1, $fn = 16); }\n"
+      "color(\"red\") plug();\n"
+      "translate([10, 0, 0]) plug();\n"
+      "translate([0, 10, 0]) linear_extrude(1) projection() plug();\n";
+  auto e = run(script);
+  ASSERT_TRUE(e);
+  BuildOptions o;  // no cache folder: the disk cache is off
+  auto b = build(*e->root, o);
+  ASSERT_TRUE(b) << b.error().message;
+  // Leaves: the second plug's two extrusions are the first's (2 hits); the projected
+  // plug is the first plug's Boolean (1 hit, no Boolean). The parts are apart, so
+  // they are not united by a Boolean: two in all, one per plug part.
+  EXPECT_EQ(b->stats.memo_hits, 3u);
+  EXPECT_EQ(b->stats.booleans, 2u);
+  // A plug: the prism 2 x 2 x 4 (|x|, |y| <= 1) cut by a 16-gon cylinder of radius 1
+  // along y: the 16-gon prism of length 2. Its projection onto z = 0 is the square
+  // 2 x 2 (the 16-gon reaches x = +-1), extruded by 1.
+  const double gon16 = 0.5 * 16 * std::sin(2 * M_PI / 16);  // area of the unit 16-gon
+  const double plug = 2 * gon16;
+  EXPECT_NEAR(shape::mass_properties(b->model).volume, 2 * plug + 2 * 2 * 1, 1e-9);
+}
+
 TEST(Build, CacheRebuildsOnlyTheEditedPart) {
   const std::string dir = testing::TempDir() + "cf_cache_test";
   std::filesystem::remove_all(dir);

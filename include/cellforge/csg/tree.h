@@ -125,6 +125,8 @@ struct BuildStats {
   std::size_t booleans = 0;  // n-ary Boolean evaluations
   std::size_t boolean_operands = 0;
   std::size_t cache_hits = 0, cache_misses = 0;
+  // Leaves and whole subtrees met again within the build, taken from the first time.
+  std::size_t memo_hits = 0;
   double leaf_seconds = 0, boolean_seconds = 0;
 };
 
