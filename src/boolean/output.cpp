@@ -772,17 +772,45 @@ Result<BooleanResult> build_result(Arrangement& a, Selection selection, const Ex
     std::uint32_t poly;
     bool forward;
   };
-  auto edge_uses = [](const auto& ps) {  // OutPolys, or MeshFaces: anything with loops
-    std::vector<Use> uses;
-    for (std::uint32_t f = 0; f < ps.size(); ++f)
-      for (const auto& loop : ps[f].loops)
-        for (std::size_t i = 0; i < loop.size(); ++i) {
-          const std::uint32_t p = loop[i], q = loop[(i + 1) % loop.size()];
-          uses.push_back({ordered(p, q), f, p < q});
-        }
-    std::sort(uses.begin(), uses.end(), [](const Use& x, const Use& y) {
+  // Every edge use of the faces' loops (OutPolys, or MeshFaces: anything with loops),
+  // sorted by edge, then face: counted by the edge's smaller end, then each vertex's
+  // few edges sorted in place, stably (the faces were placed in order).
+  auto edge_uses = [](const auto& ps) {
+    std::uint32_t top = 0;
+    std::size_t n = 0;
+    for (const auto& f : ps)
+      for (const auto& loop : f.loops) {
+        n += loop.size();
+        for (std::uint32_t v : loop) top = std::max(top, v);
+      }
+    std::vector<std::uint32_t> start(std::size_t{top} + 2, 0);
+    auto each_use = [&](auto&& g) {
+      for (std::uint32_t f = 0; f < ps.size(); ++f)
+        for (const auto& loop : ps[f].loops)
+          for (std::size_t i = 0; i < loop.size(); ++i) g(f, loop[i], loop[(i + 1) % loop.size()]);
+    };
+    each_use([&](std::uint32_t, std::uint32_t p, std::uint32_t q) { ++start[std::min(p, q) + 1]; });
+    for (std::size_t v = 0; v + 1 < start.size(); ++v) start[v + 1] += start[v];
+    std::vector<Use> uses(n);
+    {
+      std::vector<std::uint32_t> at(start.begin(), start.end() - 1);
+      each_use([&](std::uint32_t f, std::uint32_t p, std::uint32_t q) {
+        uses[at[std::min(p, q)]++] = {ordered(p, q), f, p < q};
+      });
+    }
+    const auto before = [](const Use& x, const Use& y) {
       return x.key < y.key || (x.key == y.key && x.poly < y.poly);
-    });
+    };
+    for (std::size_t v = 0; v + 1 < start.size(); ++v) {
+      Use* b = uses.data() + start[v];
+      Use* e = uses.data() + start[v + 1];
+      if (e - b > 32) {
+        std::stable_sort(b, e, before);
+        continue;
+      }
+      for (Use* x = b + 1; x < e; ++x)
+        for (Use* y = x; y > b && before(*y, *(y - 1)); --y) std::swap(*y, *(y - 1));
+    }
     return uses;
   };
   {
