@@ -13,7 +13,6 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
-#include <numeric>
 #include <vector>
 
 #include "cellforge/geom/vec.h"
@@ -46,12 +45,15 @@ class Bvh {
   // groups[i] is box i's group or kNoGroup; empty: no groups.
   Bvh(std::vector<Box> boxes, std::vector<std::uint32_t> groups)
       : boxes_(std::move(boxes)), groups_(std::move(groups)) {
-    order_.resize(boxes_.size());
-    std::iota(order_.begin(), order_.end(), 0u);
-    std::vector<Vec3> twice_centre(boxes_.size());  // lo + hi: the split keys
-    for (std::size_t i = 0; i < boxes_.size(); ++i) twice_centre[i] = boxes_[i].lo + boxes_[i].hi;
+    // The split keys (twice the centres: lo + hi) travel with the box ids, so that the
+    // partitions read them in order rather than through the ids.
+    std::vector<Item> items(boxes_.size());
+    for (std::size_t i = 0; i < boxes_.size(); ++i)
+      items[i] = {boxes_[i].lo + boxes_[i].hi, static_cast<std::uint32_t>(i)};
     nodes_.reserve(boxes_.size() + 1);  // leaves of 2 to 4 boxes: fewer nodes than boxes
-    if (!boxes_.empty()) build(0, static_cast<std::uint32_t>(order_.size()), twice_centre);
+    if (!items.empty()) build(0, static_cast<std::uint32_t>(items.size()), items);
+    order_.resize(items.size());
+    for (std::size_t k = 0; k < items.size(); ++k) order_[k] = items[k].id;
   }
 
   const Box& box(std::uint32_t i) const { return boxes_[i]; }
@@ -153,17 +155,21 @@ class Bvh {
     return a.group == b.group && a.group != kNoGroup && a.group != kMixed;
   }
 
-  std::uint32_t build(std::uint32_t begin, std::uint32_t end, const std::vector<Vec3>& twice_centre) {
+  struct Item {
+    Vec3 twice_centre;
+    std::uint32_t id;
+  };
+  std::uint32_t build(std::uint32_t begin, std::uint32_t end, std::vector<Item>& items) {
     const auto id = static_cast<std::uint32_t>(nodes_.size());
     nodes_.push_back({});
     nodes_[id].begin = begin;
     nodes_[id].end = end;
     if (end - begin <= 4) {
       Box box;
-      std::uint32_t group = group_of(order_[begin]);
+      std::uint32_t group = group_of(items[begin].id);
       for (std::uint32_t k = begin; k < end; ++k) {
-        box.add(boxes_[order_[k]]);
-        if (group_of(order_[k]) != group) group = kMixed;
+        box.add(boxes_[items[k].id]);
+        if (group_of(items[k].id) != group) group = kMixed;
       }
       nodes_[id].box = box;
       nodes_[id].group = group;
@@ -172,14 +178,14 @@ class Bvh {
     // Split at the median centre along the axis the centres spread most on (twice the
     // centres: the same order, one addition less). A node's box is its children's.
     Box centres;
-    for (std::uint32_t k = begin; k < end; ++k) centres.add(twice_centre[order_[k]]);
+    for (std::uint32_t k = begin; k < end; ++k) centres.add(items[k].twice_centre);
     const Vec3 ext = centres.hi - centres.lo;
     const int axis = ext.x >= ext.y && ext.x >= ext.z ? 0 : (ext.y >= ext.z ? 1 : 2);
     const std::uint32_t mid = begin + (end - begin) / 2;
-    std::nth_element(order_.begin() + begin, order_.begin() + mid, order_.begin() + end,
-                     [&](std::uint32_t a, std::uint32_t b) { return twice_centre[a][axis] < twice_centre[b][axis]; });
-    const std::uint32_t left = build(begin, mid, twice_centre);
-    const std::uint32_t right = build(mid, end, twice_centre);
+    std::nth_element(items.begin() + begin, items.begin() + mid, items.begin() + end,
+                     [axis](const Item& a, const Item& b) { return a.twice_centre[axis] < b.twice_centre[axis]; });
+    const std::uint32_t left = build(begin, mid, items);
+    const std::uint32_t right = build(mid, end, items);
     Box box = nodes_[left].box;
     box.add(nodes_[right].box);
     nodes_[id].box = box;
