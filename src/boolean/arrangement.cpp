@@ -438,6 +438,13 @@ std::uint32_t Arrangement::edge_key(std::uint32_t p, std::uint32_t q) {
   return it->second;
 }
 
+bool Arrangement::is_triangle_edge(std::uint32_t p, std::uint32_t q) const {
+  const std::uint64_t key = ordered(p, q);
+  const auto it = std::lower_bound(halves.begin(), halves.end(), key,
+                                   [](const HalfEdge& h, std::uint64_t k) { return h.key < k; });
+  return it != halves.end() && it->key == key;
+}
+
 bool Arrangement::is_contact_edge(std::uint32_t p, std::uint32_t q) const {
   return std::binary_search(contact_edges.begin(), contact_edges.end(), ordered(p, q));
 }
@@ -645,11 +652,16 @@ struct Arrangement::PairEvents {
   std::vector<std::array<std::uint32_t, 2>> touching;  // triangle, vertex on its plane
   std::vector<std::array<std::uint32_t, 3>> crossing;  // i, j, which of them is cut
   std::vector<std::uint64_t> contact_edges;            // Arrangement::contact_edges
+  std::vector<std::uint32_t> near_other;               // triangles of pairs of two operands
   std::size_t tested = 0, hit = 0;
 };
 
 void Arrangement::test_pair(std::uint32_t i, std::uint32_t j, PairEvents& ev) const {
   ++ev.tested;
+  if (tris[i].operand != tris[j].operand) {
+    ev.near_other.push_back(i);
+    ev.near_other.push_back(j);
+  }
   auto record = [&](std::uint32_t p, std::uint32_t q, std::uint32_t v) { ev.edge_points.push_back({p, q, v}); };
   const Tri& a = tris[i];
   const Tri& b = tris[j];
@@ -804,6 +816,22 @@ void Arrangement::intersect(int threads) {
     crossing.insert(crossing.end(), e.crossing.begin(), e.crossing.end());
     contact_edges.insert(contact_edges.end(), e.contact_edges.begin(), e.contact_edges.end());
   }
+  near_other.assign(tris.size(), 0);
+  for (const PairEvents& e : events)
+    for (std::uint32_t t : e.near_other) near_other[t] = 1;
+  constexpr std::uint32_t kUnset = kInvalidIndex - 1;
+  alone_in.assign(pos.size(), kUnset);
+  for (std::uint32_t t = 0; t < tris.size(); ++t)
+    for (std::uint32_t v : tris[t].v) {
+      std::uint32_t& o = alone_in[v];
+      if (near_other[t] || (o != kUnset && o != tris[t].operand)) {
+        o = kInvalidIndex;
+      } else if (o == kUnset) {
+        o = tris[t].operand;
+      }
+    }
+  for (std::uint32_t& o : alone_in)
+    if (o == kUnset) o = kInvalidIndex;
   std::sort(contact_edges.begin(), contact_edges.end());
   contact_edges.erase(std::unique(contact_edges.begin(), contact_edges.end()), contact_edges.end());
 
@@ -1055,7 +1083,7 @@ void Arrangement::release_pieces(bool keep_tree) {
     c.touch_points.release();
   }
   loop_table.clear();
-  std::vector<HalfEdge>().swap(halves);
+  if (!keep_tree) std::vector<HalfEdge>().swap(halves);
   for (SoupFace& f : faces) f.loop_count = 0;
   lpi_ids_ = {};
   std::vector<std::uint32_t>().swap(quad_other);

@@ -310,7 +310,8 @@ class Arrangement {
   void split_wires();
   // Frees what only stages 1 to 4 read (the pieces, the constraints, the triangles'
   // boxes and tree, the input faces' loops), before the result is built; with
-  // keep_tree, the triangles' boxes and tree stay (for classify_sites).
+  // keep_tree, the triangles' boxes and tree and their half-edges stay (for
+  // classify_sites and only_operand_near).
   void release_pieces(bool keep_tree = false);
 
   // ---- data
@@ -357,6 +358,16 @@ class Arrangement {
   // not joined into one patch there (classify.cpp). Sorted, no repeats.
   std::vector<std::uint64_t> contact_edges;
   bool is_contact_edge(std::uint32_t p, std::uint32_t q) const;
+  // By triangle: whether a triangle of another operand came near it (their boxes met).
+  // Set by intersect().
+  std::vector<char> near_other;
+  // By input vertex: the operand of its triangles when none of them came near another
+  // operand's (nothing of another operand reaches the vertex, nor the triangles' edges
+  // at it), else kInvalidIndex (and for a vertex of no triangle). Set by intersect().
+  std::vector<std::uint32_t> alone_in;
+  // Whether pq is an edge of a triangle (a binary search of the half-edges, which
+  // release_pieces keeps only with keep_tree).
+  bool is_triangle_edge(std::uint32_t p, std::uint32_t q) const;
 
   // Global line keys: an input edge {p, q}, a pair of clusters {c1, c2} (the line
   // where their planes meet), or a fresh key for a bounding-box side. Keys of lines

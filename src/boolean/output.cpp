@@ -224,7 +224,19 @@ void split_at_vertices(const Arrangement& a, const std::vector<std::uint32_t>& c
   auto strictly_inside = [&](std::uint32_t x, std::uint32_t y, std::uint32_t v, int ax) {
     return v != x && v != y && a.compare3(x, v, ax) * a.compare3(v, y, ax) > 0 && a.collinear3(x, y, v);
   };
-  for (OutPoly& poly : polys)
+  // A face of an operand that cannot meet itself (boolean.cpp's certificate), none of
+  // whose tiles another operand's triangle came near: no corner of anything lies inside
+  // its edges (it would lie in a tile's box).
+  auto alone = [&](const OutPoly& poly) {
+    if (!a.wires.empty() || poly.tri >= a.tris.size()) return false;
+    const Tri& t = a.tris[poly.tri];
+    if (!a.embedded[t.operand]) return false;
+    for (std::uint32_t s : a.faces[t.input_face].tris)
+      if (a.near_other[s]) return false;
+    return true;
+  };
+  for (OutPoly& poly : polys) {
+    if (alone(poly)) continue;
     for (auto& loop : poly.loops) {
       std::vector<std::uint32_t> out;
       for (std::size_t i = 0; i < loop.size(); ++i) {
@@ -265,6 +277,7 @@ void split_at_vertices(const Arrangement& a, const std::vector<std::uint32_t>& c
       }
       loop = std::move(out);
     }
+  }
 }
 
 // The sites (indices into `sites`, with their verdicts) whose verdict differs from
@@ -329,6 +342,14 @@ constexpr std::uint32_t kAnyOperand = kInvalidIndex - 1;
 bool only_operand_near(const Arrangement& a, std::uint32_t x, std::uint32_t p, std::uint32_t q,
                        bool whole = false) {
   if (x == kInvalidIndex || !a.wires.empty()) return false;
+  // An input vertex, or a triangle's edge between two, of triangles that nothing of
+  // another operand came near (their boxes hold the site, and the pair tests saw every
+  // box of another operand's that met theirs): that operand's alone.
+  if (p < a.pos.size() && q < a.pos.size()) {
+    const std::uint32_t o = a.alone_in[p];
+    if (o != kInvalidIndex && a.alone_in[q] == o && (p == q || a.is_triangle_edge(p, q)))
+      return x == kAnyOperand || x == o;
+  }
   const Box box = site_box(a, p, q, whole);
   bool alone = true;
   a.bvh.query([&](const Box& b) { return alone && b.overlaps(box); },
