@@ -438,6 +438,22 @@ std::uint32_t Arrangement::edge_key(std::uint32_t p, std::uint32_t q) {
   return it->second;
 }
 
+void Arrangement::find_alone_vertices() {
+  constexpr std::uint32_t kUnset = kInvalidIndex - 1;
+  alone_in.assign(pos.size(), kUnset);
+  for (std::uint32_t t = 0; t < tris.size(); ++t)
+    for (std::uint32_t v : tris[t].v) {
+      std::uint32_t& o = alone_in[v];
+      if (near_other[t] || (o != kUnset && o != tris[t].operand)) {
+        o = kInvalidIndex;
+      } else if (o == kUnset) {
+        o = tris[t].operand;
+      }
+    }
+  for (std::uint32_t& o : alone_in)
+    if (o == kUnset) o = kInvalidIndex;
+}
+
 bool Arrangement::is_triangle_edge(std::uint32_t p, std::uint32_t q) const {
   const std::uint64_t key = ordered(p, q);
   const auto it = std::lower_bound(halves.begin(), halves.end(), key,
@@ -487,7 +503,6 @@ Arrangement::Arrangement(std::vector<Vec3> positions, std::vector<Tri> triangles
       plane_joins(std::move(joins)),
       halves(std::move(half_edges)) {
   embedded.resize(operands, 0);
-  if (halves.empty()) halves = sorted_half_edges(tris, pos.size());
   std::vector<Box> boxes(tris.size());
   std::vector<std::uint32_t> groups(tris.size(), Bvh::kNoGroup);  // an embedded operand's
   for (std::size_t t = 0; t < tris.size(); ++t) {
@@ -819,19 +834,7 @@ void Arrangement::intersect(int threads) {
   near_other.assign(tris.size(), 0);
   for (const PairEvents& e : events)
     for (std::uint32_t t : e.near_other) near_other[t] = 1;
-  constexpr std::uint32_t kUnset = kInvalidIndex - 1;
-  alone_in.assign(pos.size(), kUnset);
-  for (std::uint32_t t = 0; t < tris.size(); ++t)
-    for (std::uint32_t v : tris[t].v) {
-      std::uint32_t& o = alone_in[v];
-      if (near_other[t] || (o != kUnset && o != tris[t].operand)) {
-        o = kInvalidIndex;
-      } else if (o == kUnset) {
-        o = tris[t].operand;
-      }
-    }
-  for (std::uint32_t& o : alone_in)
-    if (o == kUnset) o = kInvalidIndex;
+
   std::sort(contact_edges.begin(), contact_edges.end());
   contact_edges.erase(std::unique(contact_edges.begin(), contact_edges.end()), contact_edges.end());
 

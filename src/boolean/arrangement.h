@@ -277,6 +277,33 @@ struct HalfEdge {
 // Every edge of every triangle, sorted by edge, then triangle (points below n_points).
 std::vector<HalfEdge> sorted_half_edges(std::span<const Tri> tris, std::size_t n_points);
 
+// Sorts edge uses (anything with `key` = ordered(p, q), p and q below n_points), made
+// in the order of what uses them, by key and stably: counted by the key's smaller end,
+// then each vertex's few edges sorted in place.
+template <class Use>
+void sort_by_edge(std::vector<Use>& uses, std::size_t n_points) {
+  std::vector<std::uint32_t> start(n_points + 1, 0);
+  for (const Use& u : uses) ++start[(u.key >> 32) + 1];
+  for (std::size_t v = 0; v < n_points; ++v) start[v + 1] += start[v];
+  std::vector<Use> out(uses.size());
+  {
+    std::vector<std::uint32_t> at(start.begin(), start.end() - 1);
+    for (const Use& u : uses) out[at[u.key >> 32]++] = u;
+  }
+  const auto by_key = [](const Use& x, const Use& y) { return x.key < y.key; };
+  for (std::size_t v = 0; v < n_points; ++v) {
+    Use* b = out.data() + start[v];
+    Use* e = out.data() + start[v + 1];
+    if (e - b > 32) {
+      std::stable_sort(b, e, by_key);
+      continue;
+    }
+    for (Use* x = b + 1; x < e; ++x)  // insertion sort, stable
+      for (Use* y = x; y > b && by_key(*y, *(y - 1)); --y) std::swap(*y, *(y - 1));
+  }
+  uses.swap(out);
+}
+
 // Which operands' triangles certainly form one closed surface embedded in space,
 // decided by exact predicates: closed and oriented, star-shaped from a point that
 // every triangle's plane has on one side, covering the directions from it once.
@@ -293,12 +320,13 @@ std::vector<char> embedded_operands(const std::vector<Vec3>& pos, std::span<cons
 class Arrangement {
  public:
   // embedded: by operand, whether its own triangles are known to meet only in the
-  // corners and edges they share (boolean.cpp's embedded_surface), so that no pair of
-  // them is tested; plane_joins: pairs of those triangles that lie in one plane.
+  // corners and edges they share (embedded_operands), so that no pair of them is
+  // tested; plane_joins: pairs of those triangles that lie in one plane; halves:
+  // sorted_half_edges(tris).
   Arrangement(std::vector<Vec3> positions, std::vector<Tri> tris, std::vector<SoupFace> faces,
-              LoopTable loops, std::uint32_t operands, std::vector<WireSeg> wires = {},
-              std::vector<char> embedded = {}, std::vector<std::array<std::uint32_t, 2>> plane_joins = {},
-              std::vector<HalfEdge> halves = {});
+              LoopTable loops, std::uint32_t operands, std::vector<WireSeg> wires,
+              std::vector<char> embedded, std::vector<std::array<std::uint32_t, 2>> plane_joins,
+              std::vector<HalfEdge> halves);
 
   // Stage 1: candidate pairs, exact tests, clusters and their constraints.
   // Stage 1 on `threads` threads (0: all); the same result at any count.
@@ -339,7 +367,7 @@ class Arrangement {
   std::uint32_t operands = 0;
   std::vector<char> embedded;  // by operand (constructor)
   std::vector<std::array<std::uint32_t, 2>> plane_joins;
-  std::vector<HalfEdge> halves;  // sorted_half_edges(tris) (the constructor makes them if not given)
+  std::vector<HalfEdge> halves;  // sorted_half_edges(tris)
   Bvh bvh;  // over the triangles' boxes (bvh.box(t))
   std::vector<std::uint32_t> cluster_of;  // by triangle
   // By cluster: the first cluster found to lie in the same plane (coplanar triangles
@@ -363,8 +391,10 @@ class Arrangement {
   std::vector<char> near_other;
   // By input vertex: the operand of its triangles when none of them came near another
   // operand's (nothing of another operand reaches the vertex, nor the triangles' edges
-  // at it), else kInvalidIndex (and for a vertex of no triangle). Set by intersect().
+  // at it), else kInvalidIndex (and for a vertex of no triangle). Set by
+  // find_alone_vertices(), which the non-regularized output calls.
   std::vector<std::uint32_t> alone_in;
+  void find_alone_vertices();
   // Whether pq is an edge of a triangle (a binary search of the half-edges, which
   // release_pieces keeps only with keep_tree).
   bool is_triangle_edge(std::uint32_t p, std::uint32_t q) const;

@@ -232,34 +232,16 @@ bool strictly_convex(const std::vector<Vec3>& pos, std::span<const std::uint32_t
 
 }  // namespace
 
-// arrangement.h. Counted by the smaller end, then sorted by the larger within each
-// vertex's few edges (stably: the triangles were placed in order).
+// arrangement.h.
 std::vector<HalfEdge> sorted_half_edges(std::span<const Tri> tris, std::size_t n_points) {
-  std::vector<std::uint32_t> start(n_points + 1, 0);
-  for (const Tri& t : tris)
-    for (int e = 0; e < 3; ++e) ++start[std::min(t.v[e], t.v[(e + 1) % 3]) + 1];
-  for (std::size_t v = 0; v < n_points; ++v) start[v + 1] += start[v];
-  std::vector<HalfEdge> out(3 * tris.size());
-  {
-    std::vector<std::uint32_t> at(start.begin(), start.end() - 1);
-    for (std::uint32_t i = 0; i < tris.size(); ++i)
-      for (int e = 0; e < 3; ++e) {
-        const std::uint32_t p = tris[i].v[e], q = tris[i].v[(e + 1) % 3];
-        const std::uint64_t key = (std::uint64_t{std::min(p, q)} << 32) | std::max(p, q);
-        out[at[std::min(p, q)]++] = {key, i, p < q};
-      }
-  }
-  const auto by_key = [](const HalfEdge& x, const HalfEdge& y) { return x.key < y.key; };
-  for (std::size_t v = 0; v < n_points; ++v) {
-    HalfEdge* b = out.data() + start[v];
-    HalfEdge* e = out.data() + start[v + 1];
-    if (e - b > 32) {
-      std::stable_sort(b, e, by_key);
-      continue;
+  std::vector<HalfEdge> out;
+  out.reserve(3 * tris.size());
+  for (std::uint32_t i = 0; i < tris.size(); ++i)
+    for (int e = 0; e < 3; ++e) {
+      const std::uint32_t p = tris[i].v[e], q = tris[i].v[(e + 1) % 3];
+      out.push_back({(std::uint64_t{std::min(p, q)} << 32) | std::max(p, q), i, p < q});
     }
-    for (HalfEdge* x = b + 1; x < e; ++x)  // insertion sort, stable
-      for (HalfEdge* y = x; y > b && by_key(*y, *(y - 1)); --y) std::swap(*y, *(y - 1));
-  }
+  sort_by_edge(out, n_points);
   return out;
 }
 

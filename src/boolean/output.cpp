@@ -345,7 +345,7 @@ bool only_operand_near(const Arrangement& a, std::uint32_t x, std::uint32_t p, s
   // An input vertex, or a triangle's edge between two, of triangles that nothing of
   // another operand came near (their boxes hold the site, and the pair tests saw every
   // box of another operand's that met theirs): that operand's alone.
-  if (p < a.pos.size() && q < a.pos.size()) {
+  if (p < a.alone_in.size() && q < a.alone_in.size()) {
     const std::uint32_t o = a.alone_in[p];
     if (o != kInvalidIndex && a.alone_in[q] == o && (p == q || a.is_triangle_edge(p, q)))
       return x == kAnyOperand || x == o;
@@ -723,6 +723,7 @@ Result<BooleanResult> build_result(Arrangement& a, Selection selection, const Ex
                                    const Options& options, Report& report) {
   const int threads = options.threads;
   std::vector<OutPoly>& polys = selection.polys;
+  if (options.keep_lower_dim) a.find_alone_vertices();  // for only_operand_near
   // 1. One id per exact position, among the points a face or a line holds.
   std::vector<std::uint32_t> used;
   for (const OutPoly& p : polys)
@@ -794,44 +795,18 @@ Result<BooleanResult> build_result(Arrangement& a, Selection selection, const Ex
     bool forward;
   };
   // Every edge use of the faces' loops (OutPolys, or MeshFaces: anything with loops),
-  // sorted by edge, then face: counted by the edge's smaller end, then each vertex's
-  // few edges sorted in place, stably (the faces were placed in order).
+  // sorted by edge, then face.
   auto edge_uses = [](const auto& ps) {
+    std::vector<Use> uses;
     std::uint32_t top = 0;
-    std::size_t n = 0;
-    for (const auto& f : ps)
-      for (const auto& loop : f.loops) {
-        n += loop.size();
-        for (std::uint32_t v : loop) top = std::max(top, v);
-      }
-    std::vector<std::uint32_t> start(std::size_t{top} + 2, 0);
-    auto each_use = [&](auto&& g) {
-      for (std::uint32_t f = 0; f < ps.size(); ++f)
-        for (const auto& loop : ps[f].loops)
-          for (std::size_t i = 0; i < loop.size(); ++i) g(f, loop[i], loop[(i + 1) % loop.size()]);
-    };
-    each_use([&](std::uint32_t, std::uint32_t p, std::uint32_t q) { ++start[std::min(p, q) + 1]; });
-    for (std::size_t v = 0; v + 1 < start.size(); ++v) start[v + 1] += start[v];
-    std::vector<Use> uses(n);
-    {
-      std::vector<std::uint32_t> at(start.begin(), start.end() - 1);
-      each_use([&](std::uint32_t f, std::uint32_t p, std::uint32_t q) {
-        uses[at[std::min(p, q)]++] = {ordered(p, q), f, p < q};
-      });
-    }
-    const auto before = [](const Use& x, const Use& y) {
-      return x.key < y.key || (x.key == y.key && x.poly < y.poly);
-    };
-    for (std::size_t v = 0; v + 1 < start.size(); ++v) {
-      Use* b = uses.data() + start[v];
-      Use* e = uses.data() + start[v + 1];
-      if (e - b > 32) {
-        std::stable_sort(b, e, before);
-        continue;
-      }
-      for (Use* x = b + 1; x < e; ++x)
-        for (Use* y = x; y > b && before(*y, *(y - 1)); --y) std::swap(*y, *(y - 1));
-    }
+    for (std::uint32_t f = 0; f < ps.size(); ++f)
+      for (const auto& loop : ps[f].loops)
+        for (std::size_t i = 0; i < loop.size(); ++i) {
+          const std::uint32_t p = loop[i], q = loop[(i + 1) % loop.size()];
+          uses.push_back({ordered(p, q), f, p < q});
+          top = std::max(top, p);
+        }
+    sort_by_edge(uses, std::size_t{top} + 1);
     return uses;
   };
   {
