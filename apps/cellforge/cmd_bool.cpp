@@ -53,6 +53,7 @@ std::string report_json(const boolean::BooleanResult& r, bool valid, double volu
          ", \"intersecting_pairs\": " + std::to_string(p.intersecting_pairs) +
          ", \"pieces\": " + std::to_string(p.pieces) + ", \"rays\": " + std::to_string(p.rays) +
          ", \"implicit_points\": " + std::to_string(p.implicit_points) +
+         ", \"convex_split_clusters\": " + std::to_string(p.convex_split_clusters) +
          ", \"exact_fallbacks\": " + std::to_string(p.exact_fallbacks) +
          ", \"rounding_self_intersections\": " + std::to_string(p.rounding_self_intersections) +
          ", \"sheet_faces\": " + std::to_string(p.sheet_faces) +

@@ -243,15 +243,21 @@ int Arrangement::side(const Cluster& c, const Line& l, std::uint32_t p) const {
 
 int Arrangement::along(const Cluster& c, const Line& l, std::uint32_t p, std::uint32_t q) const {
   if (p == q) return 0;
-  const int sb = decide([&]<class T>() { return coeffs<T>(c, l)[1]; });
-  const bool use_u = sb != 0;
-  const int dir =
-      use_u ? sb : -decide([&]<class T>() { return coeffs<T>(c, l)[0]; });
+  const bool use_u = l.sign_b != 0;
+  const int dir = use_u ? l.sign_b : -l.sign_a;
   const int s = decide([&]<class T>() {
     const H2<T> a = point2<T>(c, p), b = point2<T>(c, q);
     return use_u ? a.u * b.w - b.u * a.w : a.v * b.w - b.v * a.w;
   });
   return s * w2_sign(c, p) * w2_sign(c, q) * dir;
+}
+
+int Arrangement::turn(const Cluster& c, const Line& l, const Line& m) const {
+  return decide([&]<class T>() {
+    const auto L = coeffs<T>(c, l);
+    const auto M = coeffs<T>(c, m);
+    return M[0] * L[1] - M[1] * L[0];
+  });
 }
 
 int Arrangement::orient2(const Cluster& c, std::uint32_t p, std::uint32_t q,
@@ -569,6 +575,11 @@ std::uint32_t Arrangement::add_line(Cluster& c, Line l) {
   l.A = co[0];
   l.B = co[1];
   l.C = co[2];
+  int sa = sign_of(l.A), sb = sign_of(l.B);
+  if (sa == kUncertain) sa = decide([&]<class T>() { return line_coeffs<T>(*this, c, l)[0]; });
+  if (sb == kUncertain) sb = decide([&]<class T>() { return line_coeffs<T>(*this, c, l)[1]; });
+  l.sign_a = static_cast<std::int8_t>(sa);
+  l.sign_b = static_cast<std::int8_t>(sb);
   c.lines.push_back(std::move(l));
   return static_cast<std::uint32_t>(c.lines.size() - 1);
 }
@@ -736,7 +747,9 @@ void Arrangement::test_pair(std::uint32_t i, std::uint32_t j, PairEvents& ev) co
     int n = 0;
     for (int k = 0; k < 3; ++k)
       if (o[k] == 0) e[n++] = y.v[k];
-    return segment_enters(x, e[0], e[1]);
+    // Along x's side too, when that side may be a diagonal of x's planar face.
+    const SoupFace& f = faces[x.input_face];
+    return segment_enters(x, e[0], e[1], f.planar && f.tris.size() > 1);
   };
   // A triangle resting on the other's plane by one corner, the rest on one side, meets
   // the other in that corner at most: the other's trace cuts nothing of it (the touch
@@ -896,6 +909,15 @@ void Arrangement::intersect(int threads) {
   }
 }
 
+bool Arrangement::may_be_diagonal(const Tri& t, std::uint32_t p, std::uint32_t q) const {
+  const SoupFace& f = faces[t.input_face];
+  if (!f.planar || f.tris.size() < 2) return false;
+  for (const auto loop : loops_of(f))
+    for (std::size_t i = 0; i < loop.size(); ++i)
+      if (ordered(loop[i], loop[(i + 1) % loop.size()]) == ordered(p, q)) return false;
+  return true;
+}
+
 // Triangle b crosses the plane of triangle t, or has an edge in it: the constraint
 // on t's cluster.
 void Arrangement::add_pair(std::uint32_t t, std::uint32_t b) {
@@ -935,12 +957,16 @@ void Arrangement::add_pair(std::uint32_t t, std::uint32_t b) {
     if (at < 0) continue;
     const std::uint32_t next = a.v[(at + 1) % 3], prev = a.v[(at + 2) % 3];
     const int turn = orient2d_projected(pos[a.v[0]], pos[a.v[1]], pos[a.v[2]], c.k);
-    if (orient2(c, v, next, x) * turn <= 0 || orient2(c, v, x, prev) * turn <= 0) {
+    const int o_next = orient2(c, v, next, x) * turn, o_prev = orient2(c, v, x, prev) * turn;
+    // Along one of t's sides it cuts nothing, unless that side is a diagonal of t's
+    // planar face, which the split makes no edge of otherwise (open_edges).
+    if (o_next < 0 || o_prev < 0 || (o_next == 0 && !may_be_diagonal(a, v, next)) ||
+        (o_prev == 0 && !may_be_diagonal(a, prev, v))) {
       drop_new_points();
       return;
     }
   }
-  clusters[ct].constraints.push_back({cb, b, ends[0], ends[1]});
+  clusters[ct].constraints.push_back({cb, b, ends[0], ends[1], t});
   clusters[ct].touched = true;
 }
 
@@ -1076,7 +1102,10 @@ void Arrangement::split_wires() {
 void Arrangement::split() {
   open_edges.assign(tris.size(), 0);
   for (std::uint32_t ci = 0; ci < clusters.size(); ++ci)
-    if (clusters[ci].touched) split_cluster(ci);
+    if (clusters[ci].touched && (!segment_split || !split_cluster_graph(ci))) {
+      ++convex_splits;
+      split_cluster(ci);
+    }
 }
 
 void Arrangement::release_pieces(bool keep_tree) {
@@ -1138,6 +1167,11 @@ void Arrangement::mark_open_edges(const Cluster& c) {
       std::sort(loop_edges.begin(), loop_edges.end());
     }
     if (std::binary_search(loop_edges.begin(), loop_edges.end(), x.edge)) continue;  // a slit
+    // Used by a triangle of another face too (another operand's edge on the diagonal):
+    // a place where that surface may cross this one.
+    const auto uses = std::equal_range(halves.begin(), halves.end(), HalfEdge{x.edge, 0, false},
+                                       [](const HalfEdge& u, const HalfEdge& v) { return u.key < v.key; });
+    if (uses.second - uses.first > 2) continue;
     open_edges[x.t] |= static_cast<std::uint8_t>(1u << x.e);
     open_edges[y.t] |= static_cast<std::uint8_t>(1u << y.e);
   }

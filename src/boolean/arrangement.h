@@ -164,6 +164,7 @@ struct Line {
   std::uint32_t a = 0, b = 0;  // kThrough: vertices a, b; kTrace: triangle a
   double c = 0;                // kAxisU: u = c; kAxisV: v = c
   Fp A, B, C;                  // the coefficients, filtered
+  std::int8_t sign_a = 0, sign_b = 0;  // the signs of A and B, exactly (add_line)
   std::uint32_t key = 0;       // global line key (Arrangement::line_key)
   std::vector<std::uint32_t> points;  // points found on it
 
@@ -200,6 +201,7 @@ struct Constraint {
   std::uint32_t other_cluster;  // the trace of that cluster's plane
   std::uint32_t other_tri;
   std::uint32_t p, q;  // where the other triangle meets this plane
+  std::uint32_t tri;   // this cluster's triangle that the other one met
 };
 
 // A list that takes one pointer while empty, as most of a cluster's lists stay: a
@@ -331,8 +333,12 @@ class Arrangement {
   // Stage 1: candidate pairs, exact tests, clusters and their constraints.
   // Stage 1 on `threads` threads (0: all); the same result at any count.
   void intersect(int threads = 1);
-  // Stage 2: each cluster cut into convex pieces.
+  // Stage 2: each cluster cut into pieces: along its segments alone (split.cpp), or,
+  // where that would make a face pass a point twice or segment_split is off, into
+  // convex pieces along the segments' whole lines.
   void split();
+  bool segment_split = true;
+  std::size_t convex_splits = 0;  // clusters cut the convex way
   // The operands' wire edges cut where they cross a face, an edge or another wire, or
   // pass through a vertex (wire_pieces); points on input edges are recorded there.
   void split_wires();
@@ -434,6 +440,9 @@ class Arrangement {
   // Order of p and q along l (direction (B, -A)): -1 when p comes first.
   int along(const Cluster& c, const Line& l, std::uint32_t p, std::uint32_t q) const;
   int orient2(const Cluster& c, std::uint32_t p, std::uint32_t q, std::uint32_t r) const;
+  // Sign of A_m B_l - B_m A_l: how m's side of a point changes as it moves along l's
+  // direction (B, -A); 0 when the lines are parallel.
+  int turn(const Cluster& c, const Line& l, const Line& m) const;
   // sign(coordinate axis of p - coordinate axis of q)
   int compare3(std::uint32_t p, std::uint32_t q, int axis) const;
   // Whether coordinate `axis` of p is a double known from how p was made, without
@@ -472,10 +481,18 @@ class Arrangement {
   std::uint32_t crossing_point(std::uint32_t ci, std::uint32_t li, std::uint32_t m);
   std::uint32_t add_line(Cluster& c, Line l);
   void add_pair(std::uint32_t t, std::uint32_t b);
+  // Whether side pq of triangle t may be a diagonal of t's face (a side of no loop of
+  // a planar face of several tiles), which the split leaves open (open_edges).
+  bool may_be_diagonal(const Tri& t, std::uint32_t p, std::uint32_t q) const;
   bool segment_enters(const Tri& x, std::uint32_t p, std::uint32_t q, bool closed = false) const;
   // orient3d of y's corners against x's plane, into o (the plane set up once).
   void sides_of(const Tri& x, const Tri& y, int o[3]) const;
   void split_cluster(std::uint32_t ci);
+  // Stage 2 by segments (split.cpp): cluster ci's faces cut along its segments alone,
+  // into simple polygons that need not be convex. False, with the cluster as it was
+  // (its lines' point lists emptied), where a face would pass a point twice; the
+  // convex split (split_cluster) is then used.
+  bool split_cluster_graph(std::uint32_t ci);
   void mark_open_edges(const Cluster& c);  // sets open_edges for c's triangles
   bool split_piece(Cluster& c, std::uint32_t ci, std::size_t pi, std::uint32_t li,
                    std::uint32_t s0, std::uint32_t s1, std::vector<Piece>& out,

@@ -521,6 +521,7 @@ Result<BooleanResult> evaluate(std::span<const Model* const> operands, const Exp
   report.seconds.intersect = seconds_since(t);
 
   t = Clock::now();
+  a.segment_split = !options.convex_split;
   a.split();
   a.split_wires();
   report.seconds.split = seconds_since(t);
@@ -531,6 +532,7 @@ Result<BooleanResult> evaluate(std::span<const Model* const> operands, const Exp
   // A non-regularized result classifies points and edges after merging: the tree stays.
   a.release_pieces(/*keep_tree=*/options.keep_lower_dim);
   report.implicit_points = a.points.size();
+  report.convex_split_clusters = a.convex_splits;
 
   t = Clock::now();
   report.rounding_self_intersections = kRoundingUnchecked;  // unless the repair vouches

@@ -443,11 +443,34 @@ void reverse_loop(std::vector<std::uint32_t>& pts, std::vector<std::uint32_t>& k
   keys = std::move(k2);
 }
 
-// A point strictly inside a convex piece: three corners not on one line.
+// A point strictly inside a piece (a simple polygon, counterclockwise): the centroid
+// of an ear, three consecutive corners turning left with no other corner in their
+// closed triangle (then no side of the piece enters it either). A convex piece's
+// first corner that turns is one.
 RepPoint rep_of(const Arrangement& a, std::uint32_t ci, const Piece& p) {
   const Cluster& c = a.clusters[ci];
-  for (std::size_t i = 1; i + 1 < p.pts.size(); ++i)
-    if (a.orient2(c, p.pts[0], p.pts[i], p.pts[i + 1]) != 0) return {ci, {p.pts[0], p.pts[i], p.pts[i + 1]}};
+  const std::size_t n = p.pts.size();
+  std::vector<int> turn(n);
+  bool convex = true;
+  for (std::size_t i = 0; i < n; ++i) {
+    // Two sides on one line (a segment cut at a point of another's) go straight on.
+    const std::uint32_t before = p.lines[(i + n - 1) % n], after = p.lines[i];
+    turn[i] = before == after || c.lines[before].key == c.lines[after].key
+                  ? 0
+                  : a.orient2(c, p.pts[(i + n - 1) % n], p.pts[i], p.pts[(i + 1) % n]);
+    convex &= turn[i] >= 0;
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    if (turn[i] <= 0) continue;
+    const std::uint32_t x = p.pts[(i + n - 1) % n], y = p.pts[i], z = p.pts[(i + 1) % n];
+    bool ear = true;
+    for (std::size_t m = 0; m < n && ear && !convex; ++m) {
+      const std::uint32_t q = p.pts[m];
+      if (q == x || q == y || q == z) continue;
+      ear = !(a.orient2(c, x, y, q) >= 0 && a.orient2(c, y, z, q) >= 0 && a.orient2(c, z, x, q) >= 0);
+    }
+    if (ear) return {ci, {x, y, z}};
+  }
   return {ci, {p.pts[0], p.pts[1], p.pts[2]}};
 }
 

@@ -61,6 +61,10 @@ struct Options {
   // Faces between two kept 3-cells that lie in different operands stay, as inner faces
   // separating two volumes of the result's group (a part of several materials).
   bool cells = false;
+  // Cut the clusters as earlier versions did: every segment along its whole line
+  // through the convex pieces it crosses. The same point sets, with more vertices
+  // and slower; for comparisons (tests, benchmarks).
+  bool convex_split = false;
 };
 
 // Where a result face came from.
@@ -84,6 +88,9 @@ struct Report {
   std::size_t pieces = 0;               // faces of the arrangement
   std::size_t rays = 0;                 // classification rays cast
   std::size_t implicit_points = 0;      // points made by intersection
+  // Clusters (coplanar triangles cut as one) cut into convex pieces rather than along
+  // their segments alone, where a face would pass a point twice (Options::convex_split).
+  std::size_t convex_split_clusters = 0;
   std::size_t exact_fallbacks = 0;      // predicates the double filter could not decide
   std::size_t rounding_self_intersections = 0;  // pairs of result triangles that cross
                                                 // after rounding (checked exactly)
