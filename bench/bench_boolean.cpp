@@ -12,12 +12,13 @@
 //
 //   bench_boolean [--max-fn N] [--menger4] [--case SUBSTR] [--runs N] [--threads N]
 //                 [--timeout S] [--peers coref,nef,manifold|none] [--peer-timeout S]
-//                 [--keep-lower-dim] [--chains]
+//                 [--keep-lower-dim] [--chains] [--convex-split]
 //
 // --keep-lower-dim times cellforge's non-regularized operations (Nef's results are
 // not regularized either). --chains times chains of Booleans instead (chain_cases):
 // rounded between steps, exact at every step, exact and evaluated once, beside Nef
 // evaluating the same chain step by step (exact throughout, as it always is).
+// --convex-split times the split of earlier versions (Options::convex_split).
 #include <fcntl.h>
 #include <malloc.h>
 #include <poll.h>
@@ -415,6 +416,7 @@ struct Settings {
   int runs = 0;  // 0: by the first run's time
   int threads = 1;
   bool keep_lower_dim = false;  // non-regularized, as CGAL Nef computes it
+  bool convex_split = false;    // the split of earlier versions (Options::convex_split)
   bool chains = false;          // the chain cases instead
   double timeout = 1800, peer_timeout = 60, budget = 20;
   bool coref = true, nef = true, manifold = true;
@@ -427,7 +429,7 @@ Outcome run_cellforge(const Case& c, const Settings& s) {
         Operands ops = c.make();
         std::vector<const Model*> ptrs;
         for (const Model& m : ops.models) ptrs.push_back(&m);
-        const boolean::Options options{.threads = s.threads, .keep_lower_dim = s.keep_lower_dim};
+        const boolean::Options options{.threads = s.threads, .keep_lower_dim = s.keep_lower_dim, .convex_split = s.convex_split};
         const long base = reset_peak();
         std::vector<double> times;
         std::vector<boolean::Report> reports;
@@ -818,6 +820,7 @@ Settings parse(int argc, char** argv) {
     else if (a == "--runs") s.runs = std::stoi(next());
     else if (a == "--threads") s.threads = std::stoi(next());
     else if (a == "--keep-lower-dim") s.keep_lower_dim = true;
+    else if (a == "--convex-split") s.convex_split = true;
     else if (a == "--chains") s.chains = true;
     else if (a == "--timeout") s.timeout = std::stod(next());
     else if (a == "--peer-timeout") s.peer_timeout = std::stod(next());
@@ -830,7 +833,7 @@ Settings parse(int argc, char** argv) {
       std::fprintf(stderr,
                    "usage: bench_boolean [--max-fn N (512; 2048 for the full set)] [--menger4] [--case SUBSTR]\n"
                    "                     [--runs N] [--threads N] [--timeout S] [--peers coref,nef,manifold|none]\n"
-                   "                     [--peer-timeout S (60)] [--keep-lower-dim] [--chains]\n");
+                   "                     [--peer-timeout S (60)] [--keep-lower-dim] [--chains] [--convex-split]\n");
       std::exit(a == "--help" ? 0 : 2);
     }
   }

@@ -397,9 +397,11 @@ Vec3 Arrangement::approx3(std::uint32_t p, double* err) const {
 bool Arrangement::rounds_exactly(std::uint32_t p) const {
   if (p < pos.size()) return true;
   const H3<Fp>& h = h3f[p - pos.size()];
-  if (h.c[3].e != 0 || h.c[3].v == 0) return false;
+  const bool w_exact = h.c[3].e == 0 && h.c[3].v != 0;
   for (int i = 0; i < 3; ++i) {
-    if (h.c[i].e != 0) return false;
+    // A coordinate known from how the point was made (the result's position takes it).
+    if (double known = 0; known_coordinate(p, i, known)) continue;
+    if (!w_exact || h.c[i].e != 0) return false;
     const double x = h.c[i].v / h.c[3].v;
     if (x * h.c[3].v != h.c[i].v || std::fma(x, h.c[3].v, -h.c[i].v) != 0) return false;
   }

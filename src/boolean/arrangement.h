@@ -462,8 +462,9 @@ class Arrangement {
 
   // Approximate position (for boxes and output): value and error per coordinate.
   Vec3 approx3(std::uint32_t p, double* err = nullptr) const;
-  // Whether approx3(p) is known to be p's exact position (always for input vertices;
-  // for implicit points when the filter's arithmetic was exact and the quotient is).
+  // Whether p's position in the result (approx3, with the coordinates known_coordinate
+  // gives) is known to be exact: always for input vertices; for implicit points when
+  // each coordinate is known so, or the filter's arithmetic was exact and its quotient is.
   bool rounds_exactly(std::uint32_t p) const;
   // Whether coordinate `axis` of point p is exactly the double x (an exact test).
   bool coordinate_is(std::uint32_t p, int axis, double x) const;
