@@ -1101,15 +1101,6 @@ void Arrangement::split_wires() {
   }
 }
 
-void Arrangement::split() {
-  open_edges.assign(tris.size(), 0);
-  for (std::uint32_t ci = 0; ci < clusters.size(); ++ci)
-    if (clusters[ci].touched && (!segment_split || !split_cluster_graph(ci))) {
-      ++convex_splits;
-      split_cluster(ci);
-    }
-}
-
 void Arrangement::release_pieces(bool keep_tree) {
   for (Cluster& c : clusters) {
     c.pieces.release();

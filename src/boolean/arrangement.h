@@ -319,6 +319,8 @@ std::vector<char> embedded_operands(const std::vector<Vec3>& pos, std::span<cons
                                     std::span<const HalfEdge> halves, const std::vector<char>& candidates,
                                     int threads, std::vector<std::array<std::uint32_t, 2>>& joins);
 
+struct SplitScratch;  // split.cpp
+
 class Arrangement {
  public:
   // embedded: by operand, whether its own triangles are known to meet only in the
@@ -493,7 +495,7 @@ class Arrangement {
   // into simple polygons that need not be convex. False, with the cluster as it was
   // (its lines' point lists emptied), where a face would pass a point twice; the
   // convex split (split_cluster) is then used.
-  bool split_cluster_graph(std::uint32_t ci);
+  bool split_cluster_graph(std::uint32_t ci, SplitScratch& scratch);
   void mark_open_edges(const Cluster& c);  // sets open_edges for c's triangles
   bool split_piece(Cluster& c, std::uint32_t ci, std::size_t pi, std::uint32_t li,
                    std::uint32_t s0, std::uint32_t s1, std::vector<Piece>& out,

@@ -62,13 +62,71 @@ bool segment_meets_box(double x0, double y0, double x1, double y1, const Box& b,
 
 }  // namespace
 
-bool Arrangement::split_cluster_graph(std::uint32_t ci) {
+// What one cluster's split builds, kept from cluster to cluster (most clusters are a
+// triangle or two and a few segments: their tables would otherwise be allocated anew
+// each time).
+struct SplitScratch {
+  struct Segment {
+    std::uint32_t line, p, q;
+    auto operator<=>(const Segment&) const = default;
+  };
+  struct TriSides {
+    std::uint32_t line[3];
+    int inner[3];  // the side of the opposite corner
+  };
+  struct Edge {
+    std::uint32_t a, b, line;  // local vertices (roots)
+  };
+  std::unordered_map<std::uint32_t, std::uint32_t> through, traces, local;
+  std::unordered_map<std::uint64_t, std::uint32_t> crossings, edge_at;
+  std::unordered_map<std::uint32_t, TriSides> tri_sides;
+  std::vector<Segment> segments;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> touching, on;
+  std::vector<Box> seg_box, edge_box;
+  std::vector<std::uint32_t> chain, chain_begin, pts, vid, parent;
+  std::vector<Edge> edges;
+
+  template <class Map>
+  static void reset(Map& m) {
+    if (m.bucket_count() > 256) {
+      Map().swap(m);
+    } else {
+      m.clear();
+    }
+  }
+  void clear() {
+    for (auto* m : {&through, &traces, &local}) reset(*m);
+    reset(crossings);
+    reset(edge_at);
+    reset(tri_sides);
+    segments.clear();
+    touching.clear();
+    seg_box.clear();
+    edge_box.clear();
+    vid.clear();
+    parent.clear();
+    edges.clear();
+  }
+};
+
+void Arrangement::split() {
+  open_edges.assign(tris.size(), 0);
+  SplitScratch scratch;
+  for (std::uint32_t ci = 0; ci < clusters.size(); ++ci)
+    if (clusters[ci].touched && (!segment_split || !split_cluster_graph(ci, scratch))) {
+      ++convex_splits;
+      split_cluster(ci);
+    }
+}
+
+bool Arrangement::split_cluster_graph(std::uint32_t ci, SplitScratch& scratch) {
+  scratch.clear();
   Cluster& c = clusters[ci];
   const int k = c.k, iu = (k + 1) % 3;
   if (c.tris.size() > 1) mark_open_edges(c);
 
   // ---- lines and the crossing points of pairs of them
-  std::unordered_map<std::uint32_t, std::uint32_t> through;  // edge key -> line
+  auto& through = scratch.through;  // edge key -> line
   auto through_line = [&](std::uint32_t p, std::uint32_t q) {
     const std::uint32_t key = edge_key(p, q);
     auto [it, fresh] = through.try_emplace(key, 0);
@@ -79,7 +137,7 @@ bool Arrangement::split_cluster_graph(std::uint32_t ci) {
     }
     return it->second;
   };
-  std::unordered_map<std::uint64_t, std::uint32_t> crossings;  // line pair -> point
+  auto& crossings = scratch.crossings;  // line pair -> point
   auto cross_of = [&](std::uint32_t l1, std::uint32_t l2) {
     auto [it, fresh] = crossings.try_emplace(unordered_pair(l1, l2), 0);
     if (fresh) it->second = crossing_point(ci, std::min(l1, l2), std::max(l1, l2));
@@ -91,11 +149,8 @@ bool Arrangement::split_cluster_graph(std::uint32_t ci) {
   auto turn_of = [&](std::uint32_t l, std::uint32_t m) { return turn(c, c.lines[l], c.lines[m]); };
 
   // ---- the segments
-  struct Segment {
-    std::uint32_t line, p, q;
-    auto operator<=>(const Segment&) const = default;
-  };
-  std::vector<Segment> segments;
+  using Segment = SplitScratch::Segment;
+  auto& segments = scratch.segments;
   for (std::uint32_t t : c.tris)
     for (int e = 0; e < 3; ++e) {
       if (open_edges[t] & (1u << e)) continue;
@@ -106,13 +161,10 @@ bool Arrangement::split_cluster_graph(std::uint32_t ci) {
   // edges' lines (the side of the opposite corner). A segment that meets t at one
   // point only (an end on t's side, the rest outside) leaves that point, where the
   // surfaces touch, to be made a vertex as the touching points are.
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> touching;  // point, a line through it
+  auto& touching = scratch.touching;  // point, a line through it
   for (std::uint32_t v : c.touch_points) touching.push_back({v, kInvalidIndex});
-  struct TriSides {
-    std::uint32_t line[3];
-    int inner[3];  // the side of the opposite corner
-  };
-  std::unordered_map<std::uint32_t, TriSides> tri_sides;  // by triangle, made once
+  using TriSides = SplitScratch::TriSides;
+  auto& tri_sides = scratch.tri_sides;  // by triangle, made once
   auto clip = [&](std::uint32_t line, std::uint32_t p, std::uint32_t q, std::uint32_t t) {
     const Tri& tri = tris[t];
     auto [at, fresh] = tri_sides.try_emplace(t);
@@ -163,7 +215,7 @@ bool Arrangement::split_cluster_graph(std::uint32_t ci) {
     if (d != dir) return;
     segments.push_back({line, in_p, in_q});
   };
-  std::unordered_map<std::uint32_t, std::uint32_t> traces;  // other plane -> line
+  auto& traces = scratch.traces;  // other plane -> line
   for (const Constraint& k2 : c.constraints) {
     if (k2.p == k2.q) continue;
     // An edge of the other triangle lying in this plane: the line through its ends.
@@ -193,7 +245,8 @@ bool Arrangement::split_cluster_graph(std::uint32_t ci) {
     b.add(Vec3{u + e, v + e, 0});
   };
   Box extent;
-  std::vector<Box> seg_box(segments.size());
+  auto& seg_box = scratch.seg_box;
+  seg_box.resize(segments.size());
   for (std::size_t s = 0; s < segments.size(); ++s) {
     bounds_of(segments[s].p, seg_box[s]);
     bounds_of(segments[s].q, seg_box[s]);
@@ -202,14 +255,25 @@ bool Arrangement::split_cluster_graph(std::uint32_t ci) {
   const double size = std::max(extent.hi.x - extent.lo.x, extent.hi.y - extent.lo.y);
 
   // ---- the points on each segment: its ends, the crossings, the ends of others on it
-  std::vector<std::vector<std::uint32_t>> on(segments.size());
-  for (std::size_t s = 0; s < segments.size(); ++s) on[s] = {segments[s].p, segments[s].q};
+  // (segment, point) pairs: each segment's ends, then what meet finds.
+  std::vector<std::pair<std::uint32_t, std::uint32_t>>& on = scratch.on;
+  on.clear();
+  struct OnList {  // on.push_back for one segment
+    std::vector<std::pair<std::uint32_t, std::uint32_t>>& on;
+    std::uint32_t s;
+    void push_back(std::uint32_t x) { on.push_back({s, x}); }
+  };
+  auto on_of = [&](std::uint32_t si) { return OnList{on, si}; };
+  for (std::uint32_t s = 0; s < segments.size(); ++s) {
+    on.push_back({s, segments[s].p});
+    on.push_back({s, segments[s].q});
+  }
   auto meet = [&](std::uint32_t si, std::uint32_t ti) {
     const Segment &s = segments[si], &t = segments[ti];
     // The ends of one lying on the other's line and within it (closed).
     auto ends_within = [&](const Segment& x, std::uint32_t xi, const Segment& y) {
       for (std::uint32_t e : {y.p, y.q})
-        if (along_of(x.line, x.p, e) * along_of(x.line, e, x.q) >= 0) on[xi].push_back(e);
+        if (along_of(x.line, x.p, e) * along_of(x.line, e, x.q) >= 0) on_of(xi).push_back(e);
     };
     if (s.line == t.line) {
       ends_within(s, si, t);
@@ -228,15 +292,15 @@ bool Arrangement::split_cluster_graph(std::uint32_t ci) {
     if (cp * cq > 0) return;
     if (a * b < 0 && cp * cq < 0) {
       const std::uint32_t x = cross_of(s.line, t.line);
-      on[si].push_back(x);
-      on[ti].push_back(x);
+      on_of(si).push_back(x);
+      on_of(ti).push_back(x);
       return;
     }
     // They touch where an end of one lies on the other (the lines meet only there).
-    if (a == 0) on[si].push_back(t.p);
-    if (b == 0) on[si].push_back(t.q);
-    if (cp == 0) on[ti].push_back(s.p);
-    if (cq == 0) on[ti].push_back(s.q);
+    if (a == 0) on_of(si).push_back(t.p);
+    if (b == 0) on_of(si).push_back(t.q);
+    if (cp == 0) on_of(ti).push_back(s.p);
+    if (cq == 0) on_of(ti).push_back(s.q);
   };
   auto boxes_meet = [](const Box& x, const Box& y) {
     return x.lo.x <= y.hi.x && y.lo.x <= x.hi.x && x.lo.y <= y.hi.y && y.lo.y <= x.hi.y;
@@ -253,9 +317,9 @@ bool Arrangement::split_cluster_graph(std::uint32_t ci) {
   }
 
   // ---- the graph's vertices: points at one place are one vertex (the smallest id)
-  std::vector<std::uint32_t> vid;                            // local vertex -> point id
-  std::unordered_map<std::uint32_t, std::uint32_t> local;    // point id -> local vertex
-  std::vector<std::uint32_t> parent;                         // local union, to the smaller id
+  auto& vid = scratch.vid;        // local vertex -> point id
+  auto& local = scratch.local;    // point id -> local vertex
+  auto& parent = scratch.parent;  // local union, to the smaller id
   auto vertex = [&](std::uint32_t p) {
     auto [it, fresh] = local.try_emplace(p, static_cast<std::uint32_t>(vid.size()));
     if (fresh) {
@@ -275,44 +339,51 @@ bool Arrangement::split_cluster_graph(std::uint32_t ci) {
     if (vid[y] < vid[x]) std::swap(x, y);
     parent[y] = x;
   };
-  std::vector<std::vector<std::uint32_t>> chain(segments.size());  // local vertices in order
-  for (std::size_t s = 0; s < segments.size(); ++s) {
-    const std::uint32_t li = segments[s].line;
-    std::vector<std::uint32_t>& pts = on[s];
-    std::sort(pts.begin(), pts.end());
-    pts.erase(std::unique(pts.begin(), pts.end()), pts.end());
-    std::sort(pts.begin(), pts.end(), [&](std::uint32_t x, std::uint32_t y) { return along_of(li, x, y) < 0; });
+  // Each segment's points in order along it (a segment with its two ends alone needs
+  // no comparison), as local vertices: chain[chain_begin[s]] ...
+  std::sort(on.begin(), on.end());
+  on.erase(std::unique(on.begin(), on.end()), on.end());
+  std::vector<std::uint32_t>& chain = scratch.chain;
+  std::vector<std::uint32_t>& chain_begin = scratch.chain_begin;
+  chain.clear();
+  chain_begin.assign(1, 0);
+  std::vector<std::uint32_t>& pts = scratch.pts;
+  for (std::size_t i = 0; i < on.size();) {
+    const std::uint32_t si = on[i].first, li = segments[si].line;
+    pts.clear();
+    for (; i < on.size() && on[i].first == si; ++i) pts.push_back(on[i].second);
+    if (pts.size() > 2)
+      std::sort(pts.begin(), pts.end(), [&](std::uint32_t x, std::uint32_t y) { return along_of(li, x, y) < 0; });
+    const std::size_t first = chain.size();
     for (std::size_t m = 0; m < pts.size(); ++m) {
-      chain[s].push_back(vertex(pts[m]));
-      if (m > 0 && along_of(li, pts[m - 1], pts[m]) == 0) join(chain[s][m - 1], chain[s][m]);
+      chain.push_back(vertex(pts[m]));
+      if (m > 0 && pts.size() > 2 && along_of(li, pts[m - 1], pts[m]) == 0) join(chain[first + m - 1], chain[first + m]);
     }
+    chain_begin.push_back(static_cast<std::uint32_t>(chain.size()));
   }
 
   // ---- the edges
-  struct Edge {
-    std::uint32_t a, b, line;  // local vertices (roots)
-  };
-  std::vector<Edge> edges;
-  std::unordered_map<std::uint64_t, std::uint32_t> edge_at;
+  using Edge = SplitScratch::Edge;
+  auto& edges = scratch.edges;
+  auto& edge_at = scratch.edge_at;
   auto add_edge = [&](std::uint32_t a, std::uint32_t b, std::uint32_t line) {
     if (a == b) return;
     if (edge_at.try_emplace(unordered_pair(a, b), static_cast<std::uint32_t>(edges.size())).second)
       edges.push_back({a, b, line});
   };
-  for (std::size_t s = 0; s < segments.size(); ++s) {
+  for (std::size_t s = 0; s + 1 < chain_begin.size(); ++s) {
     std::uint32_t prev = kInvalidIndex;
-    for (std::uint32_t x : chain[s]) {
-      const std::uint32_t r = root(x);
+    for (std::uint32_t m = chain_begin[s]; m < chain_begin[s + 1]; ++m) {
+      const std::uint32_t r = root(chain[m]);
       if (prev != kInvalidIndex) add_edge(prev, r, segments[s].line);
       prev = r;
     }
   }
-  on.clear();
-  chain.clear();
 
   // ---- rays: from vertex o along line l (dir +1: the line's direction (B, -A)) to the
   // first edge or vertex they meet, which they join (splitting the edge there).
-  std::vector<Box> edge_box(edges.size());
+  auto& edge_box = scratch.edge_box;
+  edge_box.resize(edges.size());
   for (std::size_t e = 0; e < edges.size(); ++e) {
     bounds_of(vid[edges[e].a], edge_box[e]);
     bounds_of(vid[edges[e].b], edge_box[e]);
@@ -638,9 +709,21 @@ bool Arrangement::split_cluster_graph(std::uint32_t ci) {
   }
   // One connected plane graph: V - E + F = 2 (F with the outer face).
   if (used.size() + made.size() + 1 != edges.size() + 2) return false;
+  // Each line's points, once each, appended in one go.
+  auto& on_line = scratch.on;  // (line, point)
+  on_line.clear();
   for (const Edge& e : edges) {
-    c.lines[e.line].points.push_back(vid[e.a]);
-    c.lines[e.line].points.push_back(vid[e.b]);
+    on_line.push_back({e.line, vid[e.a]});
+    on_line.push_back({e.line, vid[e.b]});
+  }
+  std::sort(on_line.begin(), on_line.end());
+  on_line.erase(std::unique(on_line.begin(), on_line.end()), on_line.end());
+  for (std::size_t i = 0; i < on_line.size();) {
+    std::size_t j = i;
+    while (j < on_line.size() && on_line[j].first == on_line[i].first) ++j;
+    std::vector<std::uint32_t>& points = c.lines[on_line[i].first].points;
+    points.reserve(points.size() + (j - i));
+    for (; i < j; ++i) points.push_back(on_line[i].second);
   }
   for (Piece& p : made) {
     piece_box(c, p);
