@@ -233,11 +233,24 @@ int Arrangement::side(const Cluster& c, const Line& l, std::uint32_t p) const {
   } else if (l.kind == LineKind::kTrace && on_traced_plane(p)) {
     return 0;  // a corner of the triangle (or planar quad) whose plane this traces.
   }
-  const int s = decide([&]<class T>() {
+  const auto poly = [&]<class T>() {
     const auto L = coeffs<T>(c, l);
     const H2<T> h = point2<T>(c, p);
     return L[0] * h.u + L[1] * h.v + L[2] * h.w;
-  });
+  };
+  int s = sign_of(poly.template operator()<Fp>());
+  if (s == kUncertain) {
+    // Where segment ab meets this cluster's plane, on the line through input vertices
+    // e, f in it: exactly when ab and ef are coplanar (ab crosses the plane at one
+    // point), an orient3d of input doubles rather than the point's exact coordinates.
+    if (p >= pos.size() && l.kind == LineKind::kThrough) {
+      const PointDef& d = points[p - pos.size()];
+      if (d.kind == PointKind::kLpi && plane_of[cluster_of[d.c]] == plane_of[cluster_of[c.ref]] &&
+          orient3d(pos[d.a], pos[d.b], pos[l.a], pos[l.b]) == 0)
+        return 0;
+    }
+    s = decide(poly);
+  }
   return s * w2_sign(c, p);
 }
 
