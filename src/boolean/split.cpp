@@ -414,7 +414,9 @@ bool Arrangement::split_cluster_graph(std::uint32_t ci, SplitScratch& scratch) {
     dv /= norm;
     const double reach = 4 * size + 4 * oe + pad;
     const double fu = ou + du * reach, fv = ov + dv * reach;
-    const double grow = pad + oe;
+    // The tube the ray may be in: its origin's error, and its direction's from the
+    // line's filtered coefficients over its length.
+    const double grow = pad + oe + reach * (L.A.e + L.B.e) / norm;
     struct Hit {
       double t;
       std::uint32_t edge;   // crossing that edge; kInvalidIndex: at vertex x
