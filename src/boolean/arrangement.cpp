@@ -1,8 +1,9 @@
 // Stages 1 and 2 of the Boolean (arrangement.h): exact evaluation of implicit points,
-// the pair tests, clusters of coplanar overlapping triangles, and the cutting of each
-// cluster into convex pieces.
+// the pair tests, clusters of coplanar overlapping triangles, and the cutting of a
+// cluster into convex pieces, which split.cpp falls back to where cutting along the
+// segments alone would make a face pass a point twice (Options::convex_split: always).
 //
-// Cutting. A cluster starts as its triangle (or, with several triangles, as their
+// Convex cutting. A cluster starts as its triangle (or, with several triangles, as their
 // bounding box in (u, v)); every segment that must become an edge (the cluster's
 // triangle edges, and the traces of the triangles that cross it) cuts each convex
 // piece whose interior it meets along its whole line through that piece. So pieces
