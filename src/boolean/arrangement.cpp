@@ -586,6 +586,18 @@ std::uint32_t Arrangement::crossing_point(std::uint32_t ci, std::uint32_t li, st
   return new_point({PointKind::kCross, ci, std::min(li, m), std::max(li, m)}, &c);
 }
 
+std::uint32_t Arrangement::edge_line(Cluster& c, std::unordered_map<std::uint32_t, std::uint32_t>& made,
+                                     std::uint32_t p, std::uint32_t q) {
+  const std::uint32_t key = edge_key(p, q);
+  auto [it, fresh] = made.try_emplace(key, 0);
+  if (fresh) {
+    Line l = Line::make(LineKind::kThrough, p, q);
+    l.key = key;
+    it->second = add_line(c, std::move(l));
+  }
+  return it->second;
+}
+
 std::uint32_t Arrangement::add_line(Cluster& c, Line l) {
   const auto co = line_coeffs<Fp>(*this, c, l);
   l.A = co[0];
@@ -1189,16 +1201,7 @@ void Arrangement::split_cluster(std::uint32_t ci) {
   const int k = c.k, i = (k + 1) % 3, j = (k + 2) % 3;
   std::unordered_map<std::uint64_t, std::uint32_t> crossings;  // line pair -> point
   std::unordered_map<std::uint32_t, std::uint32_t> through;    // edge key -> line
-  auto through_line = [&](std::uint32_t p, std::uint32_t q) {
-    const std::uint32_t key = edge_key(p, q);
-    auto [it, fresh] = through.try_emplace(key, 0);
-    if (fresh) {
-      Line l = Line::make(LineKind::kThrough, p, q);
-      l.key = key;
-      it->second = add_line(c, std::move(l));
-    }
-    return it->second;
-  };
+  auto through_line = [&](std::uint32_t p, std::uint32_t q) { return edge_line(c, through, p, q); };
 
   struct Segment {
     std::uint32_t line, p, q;

@@ -483,6 +483,10 @@ class Arrangement {
   // cluster that finds it.
   std::uint32_t crossing_point(std::uint32_t ci, std::uint32_t li, std::uint32_t m);
   std::uint32_t add_line(Cluster& c, Line l);
+  // Cluster c's line through input vertices p and q (an edge's), made once: `made`
+  // maps edge keys to the lines made so far.
+  std::uint32_t edge_line(Cluster& c, std::unordered_map<std::uint32_t, std::uint32_t>& made, std::uint32_t p,
+                          std::uint32_t q);
   void add_pair(std::uint32_t t, std::uint32_t b);
   // Whether side pq of triangle t may be a diagonal of t's face (a side of no loop of
   // a planar face of several tiles), which the split leaves open (open_edges).

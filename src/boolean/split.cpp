@@ -127,16 +127,7 @@ bool Arrangement::split_cluster_graph(std::uint32_t ci, SplitScratch& scratch) {
 
   // ---- lines and the crossing points of pairs of them
   auto& through = scratch.through;  // edge key -> line
-  auto through_line = [&](std::uint32_t p, std::uint32_t q) {
-    const std::uint32_t key = edge_key(p, q);
-    auto [it, fresh] = through.try_emplace(key, 0);
-    if (fresh) {
-      Line l = Line::make(LineKind::kThrough, p, q);
-      l.key = key;
-      it->second = add_line(c, std::move(l));
-    }
-    return it->second;
-  };
+  auto through_line = [&](std::uint32_t p, std::uint32_t q) { return edge_line(c, through, p, q); };
   auto& crossings = scratch.crossings;  // line pair -> point
   auto cross_of = [&](std::uint32_t l1, std::uint32_t l2) {
     auto [it, fresh] = crossings.try_emplace(unordered_pair(l1, l2), 0);

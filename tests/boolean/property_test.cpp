@@ -71,14 +71,22 @@ Model random_primitive(std::mt19937_64& rng) {
 
 double volume_of(const Model& m) { return m.num_faces() ? shape::mass_properties(m).volume : 0; }
 
-// One case; false (with the reason in `why`) on any failure, a crossing made by
-// rounding included; `rounded` counts the results with such crossings.
-bool run_case(std::uint64_t seed, std::string& why, int& rounded) {
-  std::mt19937_64 rng(seed);
+// A case's operands: two (three every fifth seed) grid boxes, or primitives under
+// random motions every fourth seed.
+std::vector<Model> random_operands(std::uint64_t seed, std::mt19937_64& rng) {
   const bool boxes = seed % 4 != 3;
   const int n = seed % 5 == 0 ? 3 : 2;
   std::vector<Model> ops;
   for (int i = 0; i < n; ++i) ops.push_back(boxes ? random_box(rng) : random_primitive(rng));
+  return ops;
+}
+
+// One case; false (with the reason in `why`) on any failure, a crossing made by
+// rounding included; `rounded` counts the results with such crossings.
+bool run_case(std::uint64_t seed, std::string& why, int& rounded) {
+  std::mt19937_64 rng(seed);
+  const std::vector<Model> ops = random_operands(seed, rng);
+  const int n = static_cast<int>(ops.size());
   std::vector<const Model*> p;
   for (const Model& m : ops) p.push_back(&m);
   auto eval = [&](Op op) -> Result<boolean::BooleanResult> { return boolean::apply(op, p); };
@@ -188,10 +196,7 @@ TEST(BooleanProperty, SegmentAndConvexSplitsAgree) {
 #endif
   for (std::uint64_t seed = 0; seed < kSeeds; ++seed) {
     std::mt19937_64 rng(seed);
-    const bool boxes = seed % 4 != 3;
-    const int n = seed % 5 == 0 ? 3 : 2;
-    std::vector<Model> ops;
-    for (int i = 0; i < n; ++i) ops.push_back(boxes ? random_box(rng) : random_primitive(rng));
+    const std::vector<Model> ops = random_operands(seed, rng);
     std::vector<const Model*> p;
     for (const Model& m : ops) p.push_back(&m);
     for (Op op : {Op::kUnion, Op::kIntersection, Op::kDifference})
@@ -208,7 +213,9 @@ TEST(BooleanProperty, SegmentAndConvexSplitsAgree) {
         for (int s = 0; s < 10; ++s) {
           const Vec3 q{x(rng), x(rng), x(rng)};
           const int wa = winding_at(a->model, q), wb = winding_at(b->model, q);
-          if (wa >= 0 && wb >= 0) EXPECT_EQ(wa > 0, wb > 0) << "seed " << seed << " at " << q.x << " " << q.y << " " << q.z;
+          if (wa >= 0 && wb >= 0) {
+            EXPECT_EQ(wa > 0, wb > 0) << "seed " << seed << " at " << q.x << " " << q.y << " " << q.z;
+          }
         }
         points_segment += a->report.implicit_points;
         points_convex += b->report.implicit_points;
