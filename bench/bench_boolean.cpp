@@ -44,6 +44,7 @@
 
 #include "cellforge/boolean/boolean.h"
 #include "cellforge/boolean/exact.h"
+#include "cellforge/geom/memory.h"
 #include "cellforge/shape/mass.h"
 #include "cellforge/shape/primitives.h"
 #include "cellforge/io/triangulate.h"
@@ -663,6 +664,7 @@ Outcome run_manifold(const Case& c, const Settings& s) {
         write_mesh_file(path, peer_input(c));
         dup2(fd, 1);
         setenv("CELLFORGE_BENCH_BUDGET", budget.c_str(), 1);
+        restore_tunables_for_children();  // node as it runs on its own (faster so)
         execlp("node", "node", CELLFORGE_PEERS_SOURCE_DIR "/manifold_peer.mjs", CELLFORGE_PEERS_NODE_DIR,
                path.c_str(), static_cast<char*>(nullptr));
         _exit(127);
@@ -843,9 +845,15 @@ Settings parse(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // As the command line runs (geom/memory.h), for cellforge and for CGAL alike, which
+  // run in this program's children.
+  prefer_huge_pages(argv);
+  keep_freed_memory();
   const Settings s = parse(argc, argv);
-  std::printf("bench_boolean: %u hardware threads; max fn %d%s\n", std::thread::hardware_concurrency(), s.max_fn,
-              s.menger4 ? "; menger level 4" : "");
+  const char* tunables = std::getenv("GLIBC_TUNABLES");
+  std::printf("bench_boolean: %u hardware threads; max fn %d%s; GLIBC_TUNABLES=%s\n",
+              std::thread::hardware_concurrency(), s.max_fn, s.menger4 ? "; menger level 4" : "",
+              tunables != nullptr ? tunables : "(unset)");
 #ifdef CELLFORGE_PEERS
   std::printf("peers: CGAL %s (corefinement: Epick Surface_mesh; Nef: Epeck), manifold-3d via node; timeout %.0f s\n",
               bench::cgal_version(), s.peer_timeout);

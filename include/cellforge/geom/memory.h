@@ -1,0 +1,37 @@
+// How a program built on cellforge can have the kernel back its heap with huge pages.
+//
+// A Boolean of two spheres of 262,000 triangles each touches about 200 MB that it has
+// just allocated. Each 4 KiB page costs a fault the first time it is touched, and on
+// a virtual machine a fault costs microseconds (7.8 us measured here): 96,000 faults,
+// a third of the run. With transparent huge pages (2 MiB) the same run faults 5,400
+// times and takes 0.79 s instead of 1.2 s (docs/benchmarks.md, "Page faults").
+//
+// Linux gives huge pages to the memory a program asks for with madvise(MADV_HUGEPAGE)
+// when /sys/kernel/mm/transparent_hugepage/enabled is "madvise" (Debian's default);
+// glibc's malloc does that for its heap under the tunable glibc.malloc.hugetlb=1,
+// which it reads from the environment when the program starts and never again.
+#pragma once
+
+namespace cellforge::inline geom {
+
+// Runs the program again, at once, with GLIBC_TUNABLES extended by
+// glibc.malloc.hugetlb=1 (execv of /proc/self/exe with the same argv): call it first
+// in main(). Returns without doing anything when the environment already says
+// glibc.malloc.hugetlb, when CELLFORGE_HUGE_PAGES=0, when the kernel gives huge pages
+// to every program or to none, under valgrind (which follows no exec), or when the
+// exec fails. Only glibc's malloc reads the tunable; with another C library or
+// allocator it changes nothing.
+void prefer_huge_pages(char** argv);
+
+// Keeps memory that the program frees for its own later allocations instead of giving
+// it back to the system (glibc's mallopt: no separate mapping below 1 GiB, no trimming
+// of the heap's top below 1 GiB): a large Boolean allocates and frees its arrays stage
+// by stage, and the next stage then reuses pages already faulted in. For a program
+// that runs one large job, not for a long-lived one whose memory use falls for good.
+void keep_freed_memory();
+
+// Puts back the GLIBC_TUNABLES that the program had before prefer_huge_pages, for a
+// program it is about to start that should run as it would on its own.
+void restore_tunables_for_children();
+
+}  // namespace cellforge::inline geom
