@@ -37,7 +37,8 @@ std::uint64_t ordered(std::uint32_t a, std::uint32_t b) {
   return (static_cast<std::uint64_t>(std::min(a, b)) << 32) | std::max(a, b);
 }
 
-// canon[p]: the smallest id among the `used` points at p's exact position.
+// canon[p]: the smallest id among the `used` points at p's exact position, or, when
+// that one does not round exactly, the smallest that does.
 std::vector<std::uint32_t> canonical_points(const Arrangement& a, const std::vector<std::uint32_t>& used) {
   const std::uint32_t total = static_cast<std::uint32_t>(a.pos.size() + a.points.size());
   std::vector<std::uint32_t> canon(total);
@@ -119,6 +120,19 @@ std::vector<std::uint32_t> canonical_points(const Arrangement& a, const std::vec
       }
     }
   }
+  // A class whose least id rounds inexactly while another of its points rounds exactly
+  // (a diagonal of a face's tiling through a corner of another operand, whose point
+  // is also a vertical edge's through a plane) takes that one: the result vertex is
+  // then exact, and its faces stay out of the rounding repair.
+  std::unordered_map<std::uint32_t, std::uint32_t> better;  // least id -> exact member
+  for (const Item& it : items) {
+    const std::uint32_t r = canon[it.id];
+    if (r == it.id || better.count(r) || a.rounds_exactly(r) || !a.rounds_exactly(it.id)) continue;
+    better.emplace(r, it.id);
+  }
+  if (!better.empty())
+    for (const Item& it : items)
+      if (auto b = better.find(canon[it.id]); b != better.end()) canon[it.id] = b->second;
   return canon;
 }
 
