@@ -586,7 +586,7 @@ std::uint32_t Arrangement::crossing_point(std::uint32_t ci, std::uint32_t li, st
   return new_point({PointKind::kCross, ci, std::min(li, m), std::max(li, m)}, &c);
 }
 
-std::uint32_t Arrangement::edge_line(Cluster& c, std::unordered_map<std::uint32_t, std::uint32_t>& made,
+std::uint32_t Arrangement::edge_line(Cluster& c, FlatMap<std::uint32_t, std::uint32_t>& made,
                                      std::uint32_t p, std::uint32_t q) {
   const std::uint32_t key = edge_key(p, q);
   auto [it, fresh] = made.try_emplace(key, 0);
@@ -1200,7 +1200,7 @@ void Arrangement::split_cluster(std::uint32_t ci) {
   Cluster& c = clusters[ci];
   const int k = c.k, i = (k + 1) % 3, j = (k + 2) % 3;
   std::unordered_map<std::uint64_t, std::uint32_t> crossings;  // line pair -> point
-  std::unordered_map<std::uint32_t, std::uint32_t> through;    // edge key -> line
+  FlatMap<std::uint32_t, std::uint32_t> through;    // edge key -> line
   auto through_line = [&](std::uint32_t p, std::uint32_t q) { return edge_line(c, through, p, q); };
 
   struct Segment {

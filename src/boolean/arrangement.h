@@ -29,6 +29,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "boolean/flat_map.h"
 #include "cellforge/geom/bvh.h"
 #include "cellforge/geom/implicit.h"
 #include "cellforge/geom/vec.h"
@@ -485,7 +486,7 @@ class Arrangement {
   std::uint32_t add_line(Cluster& c, Line l);
   // Cluster c's line through input vertices p and q (an edge's), made once: `made`
   // maps edge keys to the lines made so far.
-  std::uint32_t edge_line(Cluster& c, std::unordered_map<std::uint32_t, std::uint32_t>& made, std::uint32_t p,
+  std::uint32_t edge_line(Cluster& c, FlatMap<std::uint32_t, std::uint32_t>& made, std::uint32_t p,
                           std::uint32_t q);
   void add_pair(std::uint32_t t, std::uint32_t b);
   // Whether side pq of triangle t may be a diagonal of t's face (a side of no loop of

@@ -77,28 +77,20 @@ struct SplitScratch {
   struct Edge {
     std::uint32_t a, b, line;  // local vertices (roots)
   };
-  std::unordered_map<std::uint32_t, std::uint32_t> through, traces, local;
-  std::unordered_map<std::uint64_t, std::uint32_t> crossings, edge_at;
-  std::unordered_map<std::uint32_t, TriSides> tri_sides;
+  FlatMap<std::uint32_t, std::uint32_t> through, traces, local;
+  FlatMap<std::uint64_t, std::uint32_t> crossings, edge_at;
+  FlatMap<std::uint32_t, TriSides> tri_sides;
   std::vector<Segment> segments;
   std::vector<std::pair<std::uint32_t, std::uint32_t>> touching, on;
   std::vector<Box> seg_box, edge_box;
   std::vector<std::uint32_t> chain, chain_begin, pts, vid, parent;
   std::vector<Edge> edges;
 
-  template <class Map>
-  static void reset(Map& m) {
-    if (m.bucket_count() > 256) {
-      Map().swap(m);
-    } else {
-      m.clear();
-    }
-  }
   void clear() {
-    for (auto* m : {&through, &traces, &local}) reset(*m);
-    reset(crossings);
-    reset(edge_at);
-    reset(tri_sides);
+    for (auto* m : {&through, &traces, &local}) m->clear();
+    crossings.clear();
+    edge_at.clear();
+    tri_sides.clear();
     segments.clear();
     touching.clear();
     seg_box.clear();
