@@ -1,14 +1,19 @@
-# store/: SQLite (the default database) and libpq (PostgreSQL), through CMake's
-# FindPostgreSQL or, where that finds nothing, pkg-config. The choice is kept in
-# CELLFORGE_LIBPQ_FROM so the installed package config finds libpq the same way.
+# store/: SQLite (the default database), linked, and libpq (PostgreSQL), whose header
+# alone is used here: store/pg_connection.cpp loads libpq.so.5 with dlopen when a
+# PostgreSQL database is first opened, so that the twenty libraries libpq needs are
+# not loaded by every run. libpq is found through CMake's FindPostgreSQL or, where that
+# finds nothing, pkg-config; CELLFORGE_LIBPQ is the target, for the test and benchmark
+# programs that call libpq themselves.
 find_package(SQLite3 REQUIRED)
+target_link_libraries(${layer} PUBLIC SQLite::SQLite3)
 find_package(PostgreSQL QUIET)
 if(PostgreSQL_FOUND)
-  target_link_libraries(${layer} PUBLIC SQLite::SQLite3 PostgreSQL::PostgreSQL)
-  set(CELLFORGE_LIBPQ_FROM PostgreSQL CACHE INTERNAL "")
+  set(CELLFORGE_LIBPQ PostgreSQL::PostgreSQL)
 else()
   find_package(PkgConfig REQUIRED)
   pkg_check_modules(LIBPQ REQUIRED IMPORTED_TARGET libpq)
-  target_link_libraries(${layer} PUBLIC SQLite::SQLite3 PkgConfig::LIBPQ)
-  set(CELLFORGE_LIBPQ_FROM pkg-config CACHE INTERNAL "")
+  set(CELLFORGE_LIBPQ PkgConfig::LIBPQ)
 endif()
+target_include_directories(${layer} PRIVATE $<TARGET_PROPERTY:${CELLFORGE_LIBPQ},INTERFACE_INCLUDE_DIRECTORIES>)
+target_link_libraries(${layer} PRIVATE ${CMAKE_DL_LIBS})
+set(CELLFORGE_LIBPQ ${CELLFORGE_LIBPQ} CACHE INTERNAL "")

@@ -7,6 +7,7 @@
 // so nothing is formatted or parsed and every double comes back bit for bit.
 // Writers serialize per volume name on a transaction-scoped advisory lock;
 // versions are also UNIQUE.
+#include <dlfcn.h>
 #include <libpq-fe.h>
 
 #include <algorithm>
@@ -19,6 +20,8 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <string>
+#include <utility>
 
 #include "store/connection.h"
 
@@ -26,21 +29,91 @@ namespace cellforge::store {
 
 namespace {
 
+// libpq is loaded by the first PostgreSQL connection (dlopen of libpq.so.5, Debian's
+// libpq5) rather than linked: linking it, and the twenty libraries it needs (GnuTLS,
+// Kerberos, LDAP, ...), added 14 ms to the start of every run of cellforge on this
+// machine (a small OpenSCAD file builds in about as much), for a backend that few
+// runs use. The functions keep their names, as members of one table.
+#define CELLFORGE_LIBPQ_FUNCTIONS(X) \
+  X(PQcancel) \
+  X(PQclear) \
+  X(PQconnectdb) \
+  X(PQconninfoFree) \
+  X(PQconninfoParse) \
+  X(PQerrorMessage) \
+  X(PQexec) \
+  X(PQexecParams) \
+  X(PQfinish) \
+  X(PQfname) \
+  X(PQfreeCancel) \
+  X(PQfreemem) \
+  X(PQftype) \
+  X(PQgetCancel) \
+  X(PQgetCopyData) \
+  X(PQgetResult) \
+  X(PQgetisnull) \
+  X(PQgetlength) \
+  X(PQgetvalue) \
+  X(PQnfields) \
+  X(PQntuples) \
+  X(PQputCopyData) \
+  X(PQputCopyEnd) \
+  X(PQresultErrorField) \
+  X(PQresultErrorMessage) \
+  X(PQresultStatus) \
+  X(PQsendQueryParams) \
+  X(PQsetClientEncoding) \
+  X(PQsetNoticeProcessor) \
+  X(PQsetSingleRowMode) \
+  X(PQstatus)
+
+struct Libpq {
+#define CELLFORGE_LIBPQ_MEMBER(f) decltype(&::f) f = nullptr;
+  CELLFORGE_LIBPQ_FUNCTIONS(CELLFORGE_LIBPQ_MEMBER)
+#undef CELLFORGE_LIBPQ_MEMBER
+};
+
+// The table, loaded once; nullptr with the reason in `why` when libpq cannot be.
+const Libpq* load_libpq(std::string& why) {
+  static const std::pair<const Libpq*, std::string> loaded = []() -> std::pair<const Libpq*, std::string> {
+    void* lib = dlopen("libpq.so.5", RTLD_NOW | RTLD_LOCAL);
+    if (lib == nullptr) return {nullptr, std::string("cannot load libpq.so.5 (Debian's libpq5): ") + dlerror()};
+    static Libpq table;
+    std::string missing;
+#define CELLFORGE_LIBPQ_LOAD(f)                                      \
+  table.f = reinterpret_cast<decltype(&::f)>(dlsym(lib, #f));      \
+  if (table.f == nullptr) missing += std::string(missing.empty() ? "" : ", ") + #f;
+    CELLFORGE_LIBPQ_FUNCTIONS(CELLFORGE_LIBPQ_LOAD)
+#undef CELLFORGE_LIBPQ_LOAD
+    if (!missing.empty()) return {nullptr, "libpq.so.5 lacks " + missing};
+    return {&table, ""};
+  }();
+  why = loaded.second;
+  return loaded.first;
+}
+
+// The loaded table: every caller is past a connection's open(), which loaded it.
+const Libpq& pq() {
+  std::string why;
+  return *load_libpq(why);
+}
+
+
 struct ResultGuard {
   PGresult* r;
-  ~ResultGuard() { PQclear(r); }
+  ~ResultGuard() { pq().PQclear(r); }
 };
 
 class PgRow final : public Row {
  public:
   PgRow(PGresult* r, int row) : r_(r), row_(row) {}
-  bool is_null(int c) const override { return PQgetisnull(r_, row_, c) != 0; }
+  bool is_null(int c) const override { return pq().PQgetisnull(r_, row_, c) != 0; }
   std::int64_t i(int c) const override {
-    return std::strtoll(PQgetvalue(r_, row_, c), nullptr, 10);
+    return std::strtoll(pq().PQgetvalue(r_, row_, c), nullptr, 10);
   }
-  double d(int c) const override { return std::strtod(PQgetvalue(r_, row_, c), nullptr); }
+  double d(int c) const override { return std::strtod(pq().PQgetvalue(r_, row_, c), nullptr); }
   std::string s(int c) const override {
-    return std::string(PQgetvalue(r_, row_, c), static_cast<std::size_t>(PQgetlength(r_, row_, c)));
+    return std::string(pq().PQgetvalue(r_, row_, c), static_cast<std::size_t>(pq().PQgetlength(r_, row_, c)));
   }
 
  private:
@@ -493,15 +566,18 @@ std::string param_text(const Value& v) {
 
 class PgConnection final : public Connection {
  public:
-  ~PgConnection() override { PQfinish(conn_); }
+  ~PgConnection() override {
+    if (conn_ != nullptr) pq().PQfinish(conn_);
+  }
 
   Status open(const std::string& url) {
     url_ = url;
-    conn_ = PQconnectdb(url.c_str());
-    if (!conn_ || PQstatus(conn_) != CONNECTION_OK) return fail("cannot connect");
-    PQsetNoticeProcessor(
+    if (std::string why; load_libpq(why) == nullptr) return db_error("postgresql: " + why);
+    conn_ = pq().PQconnectdb(url.c_str());
+    if (!conn_ || pq().PQstatus(conn_) != CONNECTION_OK) return fail("cannot connect");
+    pq().PQsetNoticeProcessor(
         conn_, [](void*, const char*) {}, nullptr);
-    if (PQsetClientEncoding(conn_, "UTF8") != 0) return fail("client encoding");
+    if (pq().PQsetClientEncoding(conn_, "UTF8") != 0) return fail("client encoding");
     // The cube type and its operators live where the extension was created.
     if (Status s = exec("SELECT set_config('search_path', current_setting('search_path') || "
                         "', public', false)",
@@ -529,7 +605,7 @@ class PgConnection final : public Connection {
                 const RowFn& fn) override {
     ResultGuard r{run(sql, params)};
     if (Status s = check(r.r, sql); !s) return s;
-    for (int k = 0, n = PQntuples(r.r); k < n; ++k) fn(PgRow(r.r, k));
+    for (int k = 0, n = pq().PQntuples(r.r); k < n; ++k) fn(PgRow(r.r, k));
     return Status::Ok();
   }
 
@@ -550,7 +626,7 @@ class PgConnection final : public Connection {
   }
   void rollback() override {
     in_transaction_ = read_only_ = false;
-    PQclear(PQexec(conn_, "ROLLBACK"));
+    pq().PQclear(pq().PQexec(conn_, "ROLLBACK"));
   }
 
   Status bulk_insert(const std::string& table, int, std::size_t rows, const FillFn& fill,
@@ -560,8 +636,8 @@ class PgConnection final : public Connection {
     auto widths = column_widths(table);
     if (!widths) return widths.error();
     {
-      ResultGuard r{PQexec(conn_, ("COPY " + table + " FROM STDIN (FORMAT binary)").c_str())};
-      if (PQresultStatus(r.r) != PGRES_COPY_IN) return fail("COPY " + table);
+      ResultGuard r{pq().PQexec(conn_, ("COPY " + table + " FROM STDIN (FORMAT binary)").c_str())};
+      if (pq().PQresultStatus(r.r) != PGRES_COPY_IN) return fail("COPY " + table);
     }
     BinaryCopyWriter w(widths.value());
     constexpr std::size_t kChunk = 1 << 20;
@@ -570,14 +646,14 @@ class PgConnection final : public Connection {
       fill(k, w);
       if (k + 1 == rows) put_be(w.buf, 0xFFFF, 2);  // the trailer
       if (w.buf.size() >= kChunk || k + 1 == rows) {
-        if (PQputCopyData(conn_, w.buf.data(), static_cast<int>(w.buf.size())) != 1) {
+        if (pq().PQputCopyData(conn_, w.buf.data(), static_cast<int>(w.buf.size())) != 1) {
           return fail("COPY " + table);
         }
         w.buf.clear();
         if (progress) progress(k + 1);
       }
     }
-    if (PQputCopyEnd(conn_, nullptr) != 1) return fail("COPY " + table);
+    if (pq().PQputCopyEnd(conn_, nullptr) != 1) return fail("COPY " + table);
     return copy_result("COPY " + table);
   }
 
@@ -705,14 +781,14 @@ class PgConnection final : public Connection {
 
   Status copy_out(const std::string& text, const std::function<void(const BinaryRow&)>& fn) {
     {
-      ResultGuard r{PQexec(conn_, ("COPY (" + text + ") TO STDOUT (FORMAT binary)").c_str())};
-      if (PQresultStatus(r.r) != PGRES_COPY_OUT) return result_error(r.r, "COPY out");
+      ResultGuard r{pq().PQexec(conn_, ("COPY (" + text + ") TO STDOUT (FORMAT binary)").c_str())};
+      if (pq().PQresultStatus(r.r) != PGRES_COPY_OUT) return result_error(r.r, "COPY out");
     }
     BinaryRow row;
     bool header = true, ok = true;
     for (;;) {
       char* buf = nullptr;
-      const int n = PQgetCopyData(conn_, &buf, 0);
+      const int n = pq().PQgetCopyData(conn_, &buf, 0);
       if (n < 0) break;  // -1: done; -2: error (reported by the result below)
       const char* p = buf;
       std::size_t len = static_cast<std::size_t>(n);
@@ -728,7 +804,7 @@ class PgConnection final : public Connection {
         ok = row.parse(p, len);
         if (ok) fn(row);
       }
-      PQfreemem(buf);
+      pq().PQfreemem(buf);
     }
     Status s = copy_result("COPY out");
     if (s && !ok) s = db_error("postgresql: COPY out: malformed binary row");
@@ -810,7 +886,7 @@ END $$)"};
   // inside a READ ONLY transaction with a statement timeout, rolled back after.
   Result<bool> read_only_query(const std::string& sql, const QueryOptions& options,
                                const QueryCallbacks& callbacks) override {
-    if (!reader_ || PQstatus(reader_->conn_) != CONNECTION_OK) {
+    if (!reader_ || pq().PQstatus(reader_->conn_) != CONNECTION_OK) {
       auto reader = open_reader();
       if (!reader) return reader.error();
       reader_ = std::move(reader.value());
@@ -824,10 +900,10 @@ END $$)"};
   // This connection's parameters with the user replaced by the reader role.
   Result<std::unique_ptr<PgConnection>> open_reader() const {
     char* error = nullptr;
-    PQconninfoOption* options = PQconninfoParse(url_.c_str(), &error);
+    PQconninfoOption* options = pq().PQconninfoParse(url_.c_str(), &error);
     if (!options) {
       std::string m = error ? error : "cannot parse the connection string";
-      PQfreemem(error);
+      pq().PQfreemem(error);
       return db_error("postgresql: " + m);
     }
     std::string conninfo;
@@ -841,7 +917,7 @@ END $$)"};
       }
       conninfo += std::string(conninfo.empty() ? "" : " ") + o->keyword + "=" + quoted + "'";
     }
-    PQconninfoFree(options);
+    pq().PQconninfoFree(options);
     auto c = std::make_unique<PgConnection>();
     if (Status s = c->open(conninfo); !s) {
       return db_error("user SQL runs as the role " + std::string(kReader) +
@@ -870,8 +946,8 @@ END $$)"};
     const std::string wrapped =
         "SELECT * FROM (\n" + sql + "\n) AS cellforge_user_query" +
         (options.max_rows ? " LIMIT " + std::to_string(options.max_rows + 1) : std::string());
-    if (PQsendQueryParams(conn_, wrapped.c_str(), 0, nullptr, nullptr, nullptr, nullptr, 0) != 1 ||
-        PQsetSingleRowMode(conn_) != 1) {
+    if (pq().PQsendQueryParams(conn_, wrapped.c_str(), 0, nullptr, nullptr, nullptr, nullptr, 0) != 1 ||
+        pq().PQsetSingleRowMode(conn_) != 1) {
       Status e = fail("query");
       drain();
       rollback();
@@ -882,27 +958,27 @@ END $$)"};
     std::size_t rows = 0;
     std::vector<ValueKind> kinds;
     QueryRow row;
-    while (PGresult* r = PQgetResult(conn_)) {
+    while (PGresult* r = pq().PQgetResult(conn_)) {
       ResultGuard guard{r};
-      const ExecStatusType st = PQresultStatus(r);
+      const ExecStatusType st = pq().PQresultStatus(r);
       if (error || stopped || truncated) continue;  // the rest of a stopped query
       if (st != PGRES_SINGLE_TUPLE && st != PGRES_TUPLES_OK) {
-        const char* state = PQresultErrorField(r, PG_DIAG_SQLSTATE);
+        const char* state = pq().PQresultErrorField(r, PG_DIAG_SQLSTATE);
         error = state && std::strcmp(state, "57014") == 0 && !stopped
                     ? db_error("postgresql: the query ran past its time limit of " +
                                std::to_string(options.timeout) + " s and was cancelled")
                     : result_error(r, "query");
         continue;
       }
-      const int n = PQnfields(r);
+      const int n = pq().PQnfields(r);
       if (!started) {
         started = true;
         std::vector<std::string> columns;
-        for (int c = 0; c < n; ++c) columns.emplace_back(PQfname(r, c));
+        for (int c = 0; c < n; ++c) columns.emplace_back(pq().PQfname(r, c));
         // The kind of each column from its type (pg_type's OIDs): int2, int4,
         // int8, oid; float4, float8, numeric; bytea.
         for (int c = 0; c < n; ++c) {
-          const Oid type = PQftype(r, c);
+          const Oid type = pq().PQftype(r, c);
           kinds.push_back(type == 20 || type == 21 || type == 23 || type == 26 ? ValueKind::kInteger
                           : type == 700 || type == 701 || type == 1700         ? ValueKind::kReal
                           : type == 17                                         ? ValueKind::kBlob
@@ -910,7 +986,7 @@ END $$)"};
         }
         if (callbacks.columns) callbacks.columns(columns);
       }
-      for (int k = 0, count = PQntuples(r); k < count && !stopped && !truncated; ++k) {
+      for (int k = 0, count = pq().PQntuples(r); k < count && !stopped && !truncated; ++k) {
         if (options.max_rows && rows == options.max_rows) {
           truncated = true;
           break;
@@ -919,11 +995,11 @@ END $$)"};
         row.values.clear();
         row.kinds = kinds;
         for (int c = 0; c < n; ++c) {
-          if (PQgetisnull(r, k, c)) {
+          if (pq().PQgetisnull(r, k, c)) {
             row.values.emplace_back();
           } else {
             row.values.emplace_back(
-                std::string(PQgetvalue(r, k, c), static_cast<std::size_t>(PQgetlength(r, k, c))));
+                std::string(pq().PQgetvalue(r, k, c), static_cast<std::size_t>(pq().PQgetlength(r, k, c))));
           }
         }
         if (callbacks.row && !callbacks.row(row)) {
@@ -939,15 +1015,15 @@ END $$)"};
 
   // Asks the server to stop the query running on this connection.
   void cancel() {
-    if (PGcancel* c = PQgetCancel(conn_)) {
+    if (PGcancel* c = pq().PQgetCancel(conn_)) {
       char message[256];
-      PQcancel(c, message, sizeof message);
-      PQfreeCancel(c);
+      pq().PQcancel(c, message, sizeof message);
+      pq().PQfreeCancel(c);
     }
   }
 
   void drain() {
-    while (PGresult* r = PQgetResult(conn_)) PQclear(r);
+    while (PGresult* r = pq().PQgetResult(conn_)) pq().PQclear(r);
   }
 
   Status begin(const char* sql) {
@@ -965,25 +1041,25 @@ END $$)"};
       values.push_back(std::holds_alternative<std::monostate>(params[k]) ? nullptr
                                                                          : text[k].c_str());
     }
-    return PQexecParams(conn_, sql.c_str(), static_cast<int>(params.size()), nullptr, values.data(),
+    return pq().PQexecParams(conn_, sql.c_str(), static_cast<int>(params.size()), nullptr, values.data(),
                         nullptr, nullptr, 0);
   }
 
   Status check(PGresult* r, const std::string& what) {
-    const ExecStatusType st = PQresultStatus(r);
+    const ExecStatusType st = pq().PQresultStatus(r);
     if (st == PGRES_COMMAND_OK || st == PGRES_TUPLES_OK) return Status::Ok();
     return result_error(r, what.substr(0, what.find('\n')));
   }
 
   Status result_error(PGresult* r, const std::string& what) {
-    const char* msg = r ? PQresultErrorMessage(r) : PQerrorMessage(conn_);
+    const char* msg = r ? pq().PQresultErrorMessage(r) : pq().PQerrorMessage(conn_);
     std::string m = msg ? msg : "";
     while (!m.empty() && (m.back() == '\n' || m.back() == ' ')) m.pop_back();
     return db_error("postgresql: " + what + ": " + m);
   }
 
   Status fail(const std::string& what) {
-    std::string m = conn_ ? PQerrorMessage(conn_) : "out of memory";
+    std::string m = conn_ ? pq().PQerrorMessage(conn_) : "out of memory";
     while (!m.empty() && (m.back() == '\n' || m.back() == ' ')) m.pop_back();
     return db_error("postgresql: " + what + ": " + m);
   }
@@ -994,8 +1070,8 @@ END $$)"};
                        const std::function<void(std::uint64_t)>& progress) {
     const std::string what = std::string("COPY ") + t.blocks;
     {
-      ResultGuard r{PQexec(conn_, (what + " FROM STDIN (FORMAT binary)").c_str())};
-      if (PQresultStatus(r.r) != PGRES_COPY_IN) return fail(what);
+      ResultGuard r{pq().PQexec(conn_, (what + " FROM STDIN (FORMAT binary)").c_str())};
+      if (pq().PQresultStatus(r.r) != PGRES_COPY_IN) return fail(what);
     }
     std::string buf(kCopySignature, 11);
     put_be(buf, 0, 4);
@@ -1008,7 +1084,7 @@ END $$)"};
       w.start_row();
       fill(k, w);
       if (w.wrong) {
-        PQputCopyEnd(conn_, "a value of the wrong kind");
+        pq().PQputCopyEnd(conn_, "a value of the wrong kind");
         (void)copy_result(what);
         return db_error("postgresql: " + what + ": a value of the wrong kind for its column");
       }
@@ -1023,12 +1099,12 @@ END $$)"};
       w.data.clear();
       if (k + 1 == rows) put_be(buf, 0xFFFF, 2);  // the trailer
       if (buf.size() >= kChunk || k + 1 == rows) {
-        if (PQputCopyData(conn_, buf.data(), static_cast<int>(buf.size())) != 1) return fail(what);
+        if (pq().PQputCopyData(conn_, buf.data(), static_cast<int>(buf.size())) != 1) return fail(what);
         buf.clear();
         if (progress) progress(k + 1);
       }
     }
-    if (PQputCopyEnd(conn_, nullptr) != 1) return fail(what);
+    if (pq().PQputCopyEnd(conn_, nullptr) != 1) return fail(what);
     return copy_result(what);
   }
 
@@ -1050,9 +1126,9 @@ END $$)"};
 
   Status copy_result(const std::string& what) {
     Status s = Status::Ok();
-    while (PGresult* r = PQgetResult(conn_)) {
-      if (s && PQresultStatus(r) != PGRES_COMMAND_OK) s = result_error(r, what);
-      PQclear(r);
+    while (PGresult* r = pq().PQgetResult(conn_)) {
+      if (s && pq().PQresultStatus(r) != PGRES_COMMAND_OK) s = result_error(r, what);
+      pq().PQclear(r);
     }
     return s;
   }
