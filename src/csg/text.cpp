@@ -2,6 +2,7 @@
 // glyph outlines (text.h says which calls and scales, OpenSCAD 2021.01's).
 #include "text.h"
 
+#include <dlfcn.h>
 #include <fontconfig/fontconfig.h>
 #include <ft2build.h>
 #include <hb-ft.h>
@@ -10,6 +11,8 @@
 #include <algorithm>
 #include <cmath>
 #include <mutex>
+#include <string>
+#include <utility>
 
 #include FT_FREETYPE_H
 #include FT_GLYPH_H
@@ -21,6 +24,105 @@ namespace cellforge::csg {
 
 namespace {
 
+// FreeType, HarfBuzz and fontconfig are loaded by the first text() (dlopen of
+// libfreetype.so.6, libharfbuzz.so.0 and libfontconfig.so.1, Debian's libfreetype6,
+// libharfbuzz0b and libfontconfig1) rather than linked: linked, they added about 6 ms
+// to the start of every run of cellforge, a third of a small file's build. The
+// functions keep their names, as members of one table.
+#define CELLFORGE_FREETYPE_FUNCTIONS(X) \
+  X(FT_Done_Face) \
+  X(FT_Done_Glyph) \
+  X(FT_Get_Glyph) \
+  X(FT_Glyph_Get_CBox) \
+  X(FT_Init_FreeType) \
+  X(FT_Load_Glyph) \
+  X(FT_New_Face) \
+  X(FT_Outline_Decompose) \
+  X(FT_Set_Char_Size)
+#define CELLFORGE_HARFBUZZ_FUNCTIONS(X) \
+  X(hb_buffer_add_utf8) \
+  X(hb_buffer_create) \
+  X(hb_buffer_destroy) \
+  X(hb_buffer_get_direction) \
+  X(hb_buffer_get_glyph_infos) \
+  X(hb_buffer_get_glyph_positions) \
+  X(hb_buffer_set_direction) \
+  X(hb_buffer_set_language) \
+  X(hb_buffer_set_script) \
+  X(hb_direction_from_string) \
+  X(hb_direction_to_string) \
+  X(hb_font_destroy) \
+  X(hb_ft_font_create) \
+  X(hb_language_from_string) \
+  X(hb_script_from_string) \
+  X(hb_script_get_horizontal_direction) \
+  X(hb_script_to_iso15924_tag) \
+  X(hb_shape) \
+  X(hb_tag_to_string) \
+  X(hb_unicode_funcs_get_default) \
+  X(hb_unicode_script)
+#define CELLFORGE_FONTCONFIG_FUNCTIONS(X) \
+  X(FcConfigSubstitute) \
+  X(FcDefaultSubstitute) \
+  X(FcFontMatch) \
+  X(FcInitLoadConfigAndFonts) \
+  X(FcNameParse) \
+  X(FcPatternAddBool) \
+  X(FcPatternDestroy) \
+  X(FcPatternGetInteger) \
+  X(FcPatternGetString)
+
+struct FontLibs {
+#define CELLFORGE_FONT_MEMBER(f) decltype(&::f) f = nullptr;
+  CELLFORGE_FREETYPE_FUNCTIONS(CELLFORGE_FONT_MEMBER)
+  CELLFORGE_HARFBUZZ_FUNCTIONS(CELLFORGE_FONT_MEMBER)
+  CELLFORGE_FONTCONFIG_FUNCTIONS(CELLFORGE_FONT_MEMBER)
+#undef CELLFORGE_FONT_MEMBER
+};
+
+// The table, loaded once; nullptr with the reason in `why` when a library cannot be.
+const FontLibs* load_font_libs(std::string& why) {
+  static const std::pair<const FontLibs*, std::string> loaded = []() -> std::pair<const FontLibs*, std::string> {
+    static FontLibs table;
+    std::string missing;
+    auto open = [&](const char* name) {
+      void* lib = dlopen(name, RTLD_NOW | RTLD_LOCAL);
+      if (lib == nullptr) missing += std::string(missing.empty() ? "" : "; ") + dlerror();
+      return lib;
+    };
+    auto resolve = [&](void* lib, const char* name) {
+      void* f = lib != nullptr ? dlsym(lib, name) : nullptr;
+      if (lib != nullptr && f == nullptr) missing += std::string(missing.empty() ? "" : "; ") + "no " + name;
+      return f;
+    };
+#define CELLFORGE_FONT_LOAD(f) table.f = reinterpret_cast<decltype(&::f)>(resolve(lib, #f));
+    {
+      void* lib = open("libfreetype.so.6");
+      CELLFORGE_FREETYPE_FUNCTIONS(CELLFORGE_FONT_LOAD)
+    }
+    {
+      void* lib = open("libharfbuzz.so.0");
+      CELLFORGE_HARFBUZZ_FUNCTIONS(CELLFORGE_FONT_LOAD)
+    }
+    {
+      void* lib = open("libfontconfig.so.1");
+      CELLFORGE_FONTCONFIG_FUNCTIONS(CELLFORGE_FONT_LOAD)
+    }
+#undef CELLFORGE_FONT_LOAD
+    if (!missing.empty()) return {nullptr, "text() cannot load its font libraries: " + missing};
+    return {&table, ""};
+  }();
+  why = loaded.second;
+  return loaded.first;
+}
+
+// The loaded table: every caller is past fonts(), which loaded it.
+const FontLibs& lib() {
+  std::string why;
+  return *load_font_libs(why);
+}
+
+
 // FreeType's library and fontconfig's configuration are shared by every text() call
 // and used under one lock (neither is safe to use from several threads at once).
 struct Fonts {
@@ -29,9 +131,12 @@ struct Fonts {
   FcConfig* config = nullptr;
   bool ok = false;
 
+  std::string why;  // when the libraries could not be loaded
+
   Fonts() {
-    ok = FT_Init_FreeType(&library) == 0;
-    config = FcInitLoadConfigAndFonts();
+    if (load_font_libs(why) == nullptr) return;
+    ok = lib().FT_Init_FreeType(&library) == 0;
+    config = lib().FcInitLoadConfigAndFonts();
     ok = ok && config != nullptr;
   }
 };
@@ -143,12 +248,12 @@ bool is_ignored_script(hb_script_t s) {
 // OpenSCAD's detection: the script of the string's letters when they agree (a given
 // script wins), the direction of that script unless one is given.
 void detect_properties(TextParams& p) {
-  hb_script_t script = hb_script_from_string(p.script.c_str(), -1);
+  hb_script_t script = lib().hb_script_from_string(p.script.c_str(), -1);
   if (script == HB_SCRIPT_INVALID) {
     std::vector<std::uint32_t> cps;
     decode_utf8(p.text, cps);
     for (std::uint32_t cp : cps) {
-      const hb_script_t s = hb_unicode_script(hb_unicode_funcs_get_default(), cp);
+      const hb_script_t s = lib().hb_unicode_script(lib().hb_unicode_funcs_get_default(), cp);
       if (is_ignored_script(s)) continue;
       if (script == HB_SCRIPT_INVALID) {
         script = s;
@@ -159,25 +264,25 @@ void detect_properties(TextParams& p) {
   }
   if (!is_ignored_script(script)) {
     char tag[5] = {0, 0, 0, 0, 0};
-    hb_tag_to_string(hb_script_to_iso15924_tag(script), tag);
+    lib().hb_tag_to_string(lib().hb_script_to_iso15924_tag(script), tag);
     p.script = tag;
   }
-  hb_direction_t d = hb_direction_from_string(p.direction.c_str(), -1);
-  if (d == HB_DIRECTION_INVALID) d = hb_script_get_horizontal_direction(script);
-  p.direction = hb_direction_to_string(d);
+  hb_direction_t d = lib().hb_direction_from_string(p.direction.c_str(), -1);
+  if (d == HB_DIRECTION_INVALID) d = lib().hb_script_get_horizontal_direction(script);
+  p.direction = lib().hb_direction_to_string(d);
 }
 
 struct FaceHolder {
   FT_Face face = nullptr;
   ~FaceHolder() {
-    if (face) FT_Done_Face(face);
+    if (face) lib().FT_Done_Face(face);
   }
 };
 
 struct GlyphHolder {
   std::vector<FT_Glyph> glyphs;
   ~GlyphHolder() {
-    for (FT_Glyph g : glyphs) FT_Done_Glyph(g);
+    for (FT_Glyph g : glyphs) lib().FT_Done_Glyph(g);
   }
 };
 
@@ -186,6 +291,7 @@ struct GlyphHolder {
 Result<TextGlyphs> render_text(const TextParams& given) {
   Fonts& f = fonts();
   std::lock_guard<std::mutex> guard(f.lock);
+  if (!f.why.empty()) return Error{ErrorCode::kUnsupported, f.why};
   if (!f.ok) return Error{ErrorCode::kUnsupported, "FreeType or fontconfig failed to start"};
   TextGlyphs out;
   TextParams p = given;
@@ -193,27 +299,27 @@ Result<TextGlyphs> render_text(const TextParams& given) {
 
   // fontconfig: the name as a pattern, outline (scalable) fonts only.
   const std::string name = trim(p.font).empty() ? "Liberation Sans:style=Regular" : trim(p.font);
-  FcPattern* pattern = FcNameParse(reinterpret_cast<const FcChar8*>(name.c_str()));
+  FcPattern* pattern = lib().FcNameParse(reinterpret_cast<const FcChar8*>(name.c_str()));
   if (!pattern) return Error{ErrorCode::kInvalidInput, "font \"" + name + "\" is not a font name"};
-  FcPatternAddBool(pattern, FC_OUTLINE, FcTrue);
-  FcPatternAddBool(pattern, FC_SCALABLE, FcTrue);
-  FcConfigSubstitute(f.config, pattern, FcMatchPattern);
-  FcDefaultSubstitute(pattern);
+  lib().FcPatternAddBool(pattern, FC_OUTLINE, FcTrue);
+  lib().FcPatternAddBool(pattern, FC_SCALABLE, FcTrue);
+  lib().FcConfigSubstitute(f.config, pattern, FcMatchPattern);
+  lib().FcDefaultSubstitute(pattern);
   FcResult fr;
-  FcPattern* match = FcFontMatch(f.config, pattern, &fr);
+  FcPattern* match = lib().FcFontMatch(f.config, pattern, &fr);
   std::string requested_family;
   FcChar8* value = nullptr;
-  if (FcPatternGetString(pattern, FC_FAMILY, 0, &value) == FcResultMatch)
+  if (lib().FcPatternGetString(pattern, FC_FAMILY, 0, &value) == FcResultMatch)
     requested_family = reinterpret_cast<const char*>(value);
-  FcPatternDestroy(pattern);
+  lib().FcPatternDestroy(pattern);
   if (!match) return Error{ErrorCode::kInvalidInput, "no font matches \"" + name + "\""};
   int index = 0;
-  if (FcPatternGetString(match, FC_FILE, 0, &value) == FcResultMatch)
+  if (lib().FcPatternGetString(match, FC_FILE, 0, &value) == FcResultMatch)
     out.font_file = reinterpret_cast<const char*>(value);
-  FcPatternGetInteger(match, FC_INDEX, 0, &index);
-  if (FcPatternGetString(match, FC_FAMILY, 0, &value) == FcResultMatch)
+  lib().FcPatternGetInteger(match, FC_INDEX, 0, &index);
+  if (lib().FcPatternGetString(match, FC_FAMILY, 0, &value) == FcResultMatch)
     out.font_family = reinterpret_cast<const char*>(value);
-  FcPatternDestroy(match);
+  lib().FcPatternDestroy(match);
   if (out.font_file.empty())
     return Error{ErrorCode::kInvalidInput, "no font file matches \"" + name + "\""};
   if (!trim(p.font).empty() && !requested_family.empty() &&
@@ -224,11 +330,11 @@ Result<TextGlyphs> render_text(const TextParams& given) {
   }
 
   FaceHolder face;
-  if (FT_New_Face(f.library, out.font_file.c_str(), index, &face.face) != 0) {
+  if (lib().FT_New_Face(f.library, out.font_file.c_str(), index, &face.face) != 0) {
     face.face = nullptr;
     return Error{ErrorCode::kInvalidInput, "FreeType cannot read the font file " + out.font_file};
   }
-  if (FT_Set_Char_Size(face.face, 0, kCharSize, 100, 100) != 0)
+  if (lib().FT_Set_Char_Size(face.face, 0, kCharSize, 100, 100) != 0)
     return Error{ErrorCode::kInvalidInput, "cannot set the size of font " + out.font_file};
   bool symbol_font = false;
   for (int i = 0; i < face.face->num_charmaps; ++i) {
@@ -236,11 +342,11 @@ Result<TextGlyphs> render_text(const TextParams& given) {
     symbol_font |= cm->platform_id == 3 && cm->encoding_id == 0;
   }
 
-  hb_font_t* hb_font = hb_ft_font_create(face.face, nullptr);
-  hb_buffer_t* buf = hb_buffer_create();
-  hb_buffer_set_direction(buf, hb_direction_from_string(p.direction.c_str(), -1));
-  hb_buffer_set_script(buf, hb_script_from_string(p.script.c_str(), -1));
-  hb_buffer_set_language(buf, hb_language_from_string(p.language.c_str(), -1));
+  hb_font_t* hb_font = lib().hb_ft_font_create(face.face, nullptr);
+  hb_buffer_t* buf = lib().hb_buffer_create();
+  lib().hb_buffer_set_direction(buf, lib().hb_direction_from_string(p.direction.c_str(), -1));
+  lib().hb_buffer_set_script(buf, lib().hb_script_from_string(p.script.c_str(), -1));
+  lib().hb_buffer_set_language(buf, lib().hb_language_from_string(p.language.c_str(), -1));
   if (symbol_font) {
     // Symbol fonts map their glyphs into the private use area: characters below 0x100
     // move to page 0xf000, as OpenSCAD does.
@@ -248,20 +354,20 @@ Result<TextGlyphs> render_text(const TextParams& given) {
     if (decode_utf8(p.text, cps)) {
       std::string mapped;
       for (std::uint32_t c : cps) append_utf8(mapped, c < 0x100 ? 0xF000 + c : c);
-      hb_buffer_add_utf8(buf, mapped.c_str(), static_cast<int>(mapped.size()), 0,
+      lib().hb_buffer_add_utf8(buf, mapped.c_str(), static_cast<int>(mapped.size()), 0,
                          static_cast<int>(mapped.size()));
     } else {
       out.warnings.push_back("text with invalid UTF-8 is ignored");
     }
   } else {
-    hb_buffer_add_utf8(buf, p.text.c_str(), static_cast<int>(p.text.size()), 0,
+    lib().hb_buffer_add_utf8(buf, p.text.c_str(), static_cast<int>(p.text.size()), 0,
                        static_cast<int>(p.text.size()));
   }
-  hb_shape(hb_font, buf, nullptr, 0);
+  lib().hb_shape(hb_font, buf, nullptr, 0);
   unsigned count = 0;
-  hb_glyph_info_t* info = hb_buffer_get_glyph_infos(buf, &count);
-  hb_glyph_position_t* pos = hb_buffer_get_glyph_positions(buf, &count);
-  const bool horizontal = HB_DIRECTION_IS_HORIZONTAL(hb_buffer_get_direction(buf));
+  hb_glyph_info_t* info = lib().hb_buffer_get_glyph_infos(buf, &count);
+  hb_glyph_position_t* pos = lib().hb_buffer_get_glyph_positions(buf, &count);
+  const bool horizontal = HB_DIRECTION_IS_HORIZONTAL(lib().hb_buffer_get_direction(buf));
 
   struct Placed {
     FT_Glyph glyph;
@@ -270,20 +376,20 @@ Result<TextGlyphs> render_text(const TextParams& given) {
   std::vector<Placed> placed;
   GlyphHolder held;
   for (unsigned i = 0; i < count; ++i) {
-    if (FT_Load_Glyph(face.face, info[i].codepoint, FT_LOAD_DEFAULT) != 0) continue;
+    if (lib().FT_Load_Glyph(face.face, info[i].codepoint, FT_LOAD_DEFAULT) != 0) continue;
     FT_Glyph g = nullptr;
-    if (FT_Get_Glyph(face.face->glyph, &g) != 0) continue;
+    if (lib().FT_Get_Glyph(face.face->glyph, &g) != 0) continue;
     held.glyphs.push_back(g);
     placed.push_back(Placed{g, pos[i].x_offset / kPositionScale, pos[i].y_offset / kPositionScale,
                             pos[i].x_advance / kPositionScale, pos[i].y_advance / kPositionScale});
   }
-  hb_buffer_destroy(buf);
-  hb_font_destroy(hb_font);
+  lib().hb_buffer_destroy(buf);
+  lib().hb_font_destroy(hb_font);
 
   double width = 0, ascend = 0, descend = 0;
   for (const Placed& g : placed) {
     FT_BBox box;
-    FT_Glyph_Get_CBox(g.glyph, FT_GLYPH_BBOX_GRIDFIT, &box);
+    lib().FT_Glyph_Get_CBox(g.glyph, FT_GLYPH_BBOX_GRIDFIT, &box);
     if (horizontal) {
       ascend = std::max(ascend, std::max(0.0, box.yMax / kPositionScale));
       descend = std::max(descend, std::max(0.0, -box.yMin / kPositionScale));
@@ -334,7 +440,7 @@ Result<TextGlyphs> render_text(const TextParams& given) {
                      "more than 2*10^7 outline points (the text, $fn and the font make " +
                          std::to_string(static_cast<long long>(total_points)) + " at least)"};
       }
-      FT_Outline_Decompose(&outline, &funcs, &o);
+      lib().FT_Outline_Decompose(&outline, &funcs, &o);
       const double ox = x0 + g.x_offset, oy = y0 + g.y_offset;
       std::vector<std::vector<Vec2>> contours;
       for (const auto& c : o.contours) {
