@@ -239,7 +239,10 @@ int Arrangement::side(const Cluster& c, const Line& l, std::uint32_t p) const {
     const H2<T> h = point2<T>(c, p);
     return L[0] * h.u + L[1] * h.v + L[2] * h.w;
   };
-  int s = sign_of(poly.template operator()<Fp>());
+  // The filter's projection once, for the side and the sign of w alike.
+  const H2<Fp> hf = point2<Fp>(c, p);
+  int s = sign_of(l.A * hf.u + l.B * hf.v + l.C * hf.w);
+  if (const int ws = sign_of(hf.w); s != kUncertain && ws != kUncertain) return s * ws;
   if (s == kUncertain) {
     // Where segment ab meets this cluster's plane, on the line through input vertices
     // e, f in it: exactly when ab and ef are coplanar (ab crosses the plane at one
@@ -259,10 +262,14 @@ int Arrangement::along(const Cluster& c, const Line& l, std::uint32_t p, std::ui
   if (p == q) return 0;
   const bool use_u = l.sign_b != 0;
   const int dir = use_u ? l.sign_b : -l.sign_a;
-  const int s = decide([&]<class T>() {
-    const H2<T> a = point2<T>(c, p), b = point2<T>(c, q);
+  const auto poly = [&]<class T>(const H2<T>& a, const H2<T>& b) {
     return use_u ? a.u * b.w - b.u * a.w : a.v * b.w - b.v * a.w;
-  });
+  };
+  // The filter on projections computed once, for the order and the signs of w alike.
+  const H2<Fp> a = point2<Fp>(c, p), b = point2<Fp>(c, q);
+  const int fs = sign_of(poly(a, b)), wa = sign_of(a.w), wb = sign_of(b.w);
+  if (fs != kUncertain && wa != kUncertain && wb != kUncertain) return fs * wa * wb * dir;
+  const int s = decide([&]<class T>() { return poly(point2<T>(c, p), point2<T>(c, q)); });
   return s * w2_sign(c, p) * w2_sign(c, q) * dir;
 }
 
@@ -276,6 +283,11 @@ int Arrangement::turn(const Cluster& c, const Line& l, const Line& m) const {
 
 int Arrangement::orient2(const Cluster& c, std::uint32_t p, std::uint32_t q,
                          std::uint32_t r) const {
+  {  // the filter on projections computed once, for the turn and the signs of w alike
+    const H2<Fp> a = point2<Fp>(c, p), b = point2<Fp>(c, q), d = point2<Fp>(c, r);
+    const int fs = sign_of(orient2_poly(a, b, d)), wa = sign_of(a.w), wb = sign_of(b.w), wd = sign_of(d.w);
+    if (fs != kUncertain && wa != kUncertain && wb != kUncertain && wd != kUncertain) return fs * wa * wb * wd;
+  }
   const int s = decide([&]<class T>() {
     return orient2_poly(point2<T>(c, p), point2<T>(c, q), point2<T>(c, r));
   });
