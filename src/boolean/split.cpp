@@ -77,20 +77,30 @@ struct SplitScratch {
   struct Edge {
     std::uint32_t a, b, line;  // local vertices (roots)
   };
+  struct Keyed {  // a point on a segment: its place along the line, within +-e
+    double t, e;
+    std::uint32_t p;
+  };
+  struct Approx {  // a point's (u, v), each within +-e (Arrangement::approx2)
+    double u, v, e;
+  };
   FlatMap<std::uint32_t, std::uint32_t> through, traces, local;
   FlatMap<std::uint64_t, std::uint32_t> crossings, edge_at;
   FlatMap<std::uint32_t, TriSides> tri_sides;
+  FlatMap<std::uint32_t, Approx> approx;
   std::vector<Segment> segments;
   std::vector<std::pair<std::uint32_t, std::uint32_t>> touching, on;
   std::vector<Box> seg_box, edge_box;
   std::vector<std::uint32_t> chain, chain_begin, pts, vid, parent;
   std::vector<Edge> edges;
+  std::vector<Keyed> keyed;
 
   void clear() {
     for (auto* m : {&through, &traces, &local}) m->clear();
     crossings.clear();
     edge_at.clear();
     tri_sides.clear();
+    approx.clear();
     segments.clear();
     touching.clear();
     seg_box.clear();
@@ -128,6 +138,25 @@ bool Arrangement::split_cluster_graph(std::uint32_t ci, SplitScratch& scratch) {
   };
   auto side_of = [&](std::uint32_t li, std::uint32_t p) { return side(c, c.lines[li], p); };
   auto along_of = [&](std::uint32_t li, std::uint32_t p, std::uint32_t q) { return along(c, c.lines[li], p, q); };
+  // A point's place along line li (increasing along its direction), within +-e: the
+  // doubles, computed once a point; places whose intervals part order their points
+  // as along_of does.
+  auto place = [&](std::uint32_t li, std::uint32_t p) {
+    auto [it, fresh] = scratch.approx.try_emplace(p);
+    SplitScratch::Approx& a = it->second;
+    if (fresh) approx2(c, p, a.u, a.v, a.e);
+    const Line& l = c.lines[li];
+    return l.sign_b != 0 ? std::pair{l.sign_b * a.u, a.e} : std::pair{-l.sign_a * a.v, a.e};
+  };
+  // along_of, the doubles first.
+  auto along_fast = [&](std::uint32_t li, std::uint32_t p, std::uint32_t q) {
+    if (p == q) return 0;
+    const auto [tp, ep] = place(li, p);
+    const auto [tq, eq] = place(li, q);
+    if (tp + ep < tq - eq) return -1;
+    if (tq + eq < tp - ep) return 1;
+    return along_of(li, p, q);
+  };
   // Sign of A_m B_l - B_m A_l: how line m's side function changes along l's direction.
   auto turn_of = [&](std::uint32_t l, std::uint32_t m) { return turn(c, c.lines[l], c.lines[m]); };
 
@@ -256,7 +285,7 @@ bool Arrangement::split_cluster_graph(std::uint32_t ci, SplitScratch& scratch) {
     // The ends of one lying on the other's line and within it (closed).
     auto ends_within = [&](const Segment& x, std::uint32_t xi, const Segment& y) {
       for (std::uint32_t e : {y.p, y.q})
-        if (along_of(x.line, x.p, e) * along_of(x.line, e, x.q) >= 0) on_of(xi).push_back(e);
+        if (along_fast(x.line, x.p, e) * along_fast(x.line, e, x.q) >= 0) on_of(xi).push_back(e);
     };
     if (s.line == t.line) {
       ends_within(s, si, t);
@@ -335,12 +364,28 @@ bool Arrangement::split_cluster_graph(std::uint32_t ci, SplitScratch& scratch) {
     const std::uint32_t si = on[i].first, li = segments[si].line;
     pts.clear();
     for (; i < on.size() && on[i].first == si; ++i) pts.push_back(on[i].second);
-    if (pts.size() > 2)
-      std::sort(pts.begin(), pts.end(), [&](std::uint32_t x, std::uint32_t y) { return along_of(li, x, y) < 0; });
+    // By the doubles where their error intervals part, exactly where they do not: the
+    // order along_of gives, with an exact comparison only between points close together.
+    auto& keyed = scratch.keyed;
+    keyed.clear();
+    if (pts.size() > 2) {
+      for (std::uint32_t x : pts) {
+        const auto [t, e] = place(li, x);
+        keyed.push_back({t, e, x});
+      }
+      std::sort(keyed.begin(), keyed.end(), [&](const SplitScratch::Keyed& x, const SplitScratch::Keyed& y) {
+        if (x.t + x.e < y.t - y.e) return true;
+        if (y.t + y.e < x.t - x.e) return false;
+        return along_of(li, x.p, y.p) < 0;
+      });
+      for (std::size_t m = 0; m < pts.size(); ++m) pts[m] = keyed[m].p;
+    }
     const std::size_t first = chain.size();
     for (std::size_t m = 0; m < pts.size(); ++m) {
       chain.push_back(vertex(pts[m]));
-      if (m > 0 && pts.size() > 2 && along_of(li, pts[m - 1], pts[m]) == 0) join(chain[first + m - 1], chain[first + m]);
+      if (m == 0 || pts.size() <= 2) continue;
+      const SplitScratch::Keyed &x = keyed[m - 1], &y = keyed[m];
+      if (x.t + x.e >= y.t - y.e && along_of(li, x.p, y.p) == 0) join(chain[first + m - 1], chain[first + m]);
     }
     chain_begin.push_back(static_cast<std::uint32_t>(chain.size()));
   }
