@@ -27,6 +27,7 @@
 #include <array>
 #include <cmath>
 #include <optional>
+#include <utility>
 #include <unordered_map>
 #include <vector>
 
@@ -65,6 +66,24 @@ bool segment_meets_box(double x0, double y0, double x1, double y1, const Box& b,
 // What one cluster's split builds, kept from cluster to cluster (most clusters are a
 // triangle or two and a few segments: their tables would otherwise be allocated anew
 // each time).
+// Sorts pairs by first, then second, where every first is below n: counted into
+// place by first (a linear pass), then each first's few pairs sorted (`out` is scratch).
+template <class Pair>
+void sort_by_first(std::vector<Pair>& v, std::size_t n, std::vector<Pair>& out, std::vector<std::uint32_t>& start) {
+  start.assign(n + 1, 0);
+  for (const Pair& x : v) ++start[std::get<0>(x) + 1];
+  for (std::size_t i = 0; i < n; ++i) start[i + 1] += start[i];
+  out.resize(v.size());
+  for (const Pair& x : v) out[start[std::get<0>(x)]++] = x;
+  // start[i] now ends bucket i; bucket i begins where bucket i - 1 ends.
+  std::uint32_t begin = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (start[i] - begin > 1) std::sort(out.begin() + begin, out.begin() + start[i]);
+    begin = start[i];
+  }
+  v.swap(out);
+}
+
 struct SplitScratch {
   struct Segment {
     std::uint32_t line, p, q;
@@ -89,7 +108,9 @@ struct SplitScratch {
   FlatMap<std::uint32_t, TriSides> tri_sides;
   FlatMap<std::uint32_t, Approx> approx;
   std::vector<Segment> segments;
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> touching, on;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> touching, on, on_sorted;
+  std::vector<std::array<std::uint32_t, 2>> pairs, pairs_sorted;
+  std::vector<std::uint32_t> count;
   std::vector<Box> seg_box, edge_box;
   std::vector<std::uint32_t> chain, chain_begin, pts, vid, parent;
   std::vector<Edge> edges;
@@ -322,9 +343,10 @@ bool Arrangement::split_cluster_graph(std::uint32_t ci, SplitScratch& scratch) {
       for (std::uint32_t t = s + 1; t < segments.size(); ++t)
         if (boxes_meet(seg_box[s], seg_box[t])) meet(s, t);
   } else {
-    std::vector<std::array<std::uint32_t, 2>> pairs;
+    auto& pairs = scratch.pairs;
+    pairs.clear();
     Bvh(seg_box).pairs([&](std::uint32_t s, std::uint32_t t) { pairs.push_back({std::min(s, t), std::max(s, t)}); });
-    std::sort(pairs.begin(), pairs.end());
+    sort_by_first(pairs, segments.size(), scratch.pairs_sorted, scratch.count);
     for (auto [s, t] : pairs) meet(s, t);
   }
 
@@ -353,7 +375,7 @@ bool Arrangement::split_cluster_graph(std::uint32_t ci, SplitScratch& scratch) {
   };
   // Each segment's points in order along it (a segment with its two ends alone needs
   // no comparison), as local vertices: chain[chain_begin[s]] ...
-  std::sort(on.begin(), on.end());
+  sort_by_first(on, segments.size(), scratch.on_sorted, scratch.count);
   on.erase(std::unique(on.begin(), on.end()), on.end());
   std::vector<std::uint32_t>& chain = scratch.chain;
   std::vector<std::uint32_t>& chain_begin = scratch.chain_begin;
