@@ -115,6 +115,11 @@ struct SplitScratch {
   std::vector<std::uint32_t> chain, chain_begin, pts, vid, parent;
   std::vector<Edge> edges;
   std::vector<Keyed> keyed;
+  // The faces: vertices' half-edges, and the traced boundaries (flat, by face).
+  std::vector<std::uint32_t> start, around, fill, slot, used, seen, part, first_edge;
+  std::vector<std::pair<int, std::uint32_t>> sectors;
+  std::vector<char> done;
+  std::vector<std::uint32_t> face_pts, face_lines, face_begin;
 
   void clear() {
     for (auto* m : {&through, &traces, &local}) m->clear();
@@ -638,13 +643,15 @@ bool Arrangement::split_cluster_graph(std::uint32_t ci, SplitScratch& scratch) {
   };
   // Parts not joined to the rest: two chords each.
   {
-    std::vector<std::uint32_t> part(vid.size());
+    auto& part = scratch.part;
+    part.resize(vid.size());
     for (std::uint32_t x = 0; x < vid.size(); ++x) part[x] = x;
     auto find = [&](std::uint32_t x) {
       while (part[x] != x) x = part[x] = part[part[x]];
       return x;
     };
-    std::vector<std::uint32_t> first_edge(vid.size(), kInvalidIndex);
+    auto& first_edge = scratch.first_edge;
+    first_edge.assign(vid.size(), kInvalidIndex);
     for (std::uint32_t ei = 0; ei < edges.size(); ++ei) {
       part[find(edges[ei].a)] = find(edges[ei].b);
       for (std::uint32_t x : {edges[ei].a, edges[ei].b})
@@ -680,15 +687,18 @@ bool Arrangement::split_cluster_graph(std::uint32_t ci, SplitScratch& scratch) {
   const std::uint32_t n = static_cast<std::uint32_t>(vid.size());
   // Half-edge h = 2 e (a -> b) or 2 e + 1 (b -> a); around each vertex, its outgoing
   // half-edges counterclockwise.
-  std::vector<std::uint32_t> start(n + 1, 0);
+  auto& start = scratch.start;
+  start.assign(n + 1, 0);
   for (const Edge& e : edges) {
     ++start[e.a + 1];
     ++start[e.b + 1];
   }
   for (std::uint32_t x = 0; x < n; ++x) start[x + 1] += start[x];
-  std::vector<std::uint32_t> around(start[n]);
+  auto& around = scratch.around;
+  around.resize(start[n]);
   {
-    std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
+    auto& fill = scratch.fill;
+    fill.assign(start.begin(), start.end() - 1);
     for (std::uint32_t ei = 0; ei < edges.size(); ++ei) {
       around[fill[edges[ei].a]++] = 2 * ei;
       around[fill[edges[ei].b]++] = 2 * ei + 1;
@@ -696,7 +706,8 @@ bool Arrangement::split_cluster_graph(std::uint32_t ci, SplitScratch& scratch) {
   }
   auto head = [&](std::uint32_t h) { return h & 1 ? edges[h >> 1].a : edges[h >> 1].b; };
   auto tail = [&](std::uint32_t h) { return h & 1 ? edges[h >> 1].b : edges[h >> 1].a; };
-  std::vector<std::uint32_t> slot(2 * edges.size());  // half-edge -> index in its tail's list
+  auto& slot = scratch.slot;  // half-edge -> index in its tail's list
+  slot.resize(2 * edges.size());
   for (std::uint32_t x = 0; x < n; ++x) {
     const std::uint32_t b = start[x], d = start[x + 1] - b;
     if (d > 2) {
@@ -710,7 +721,8 @@ bool Arrangement::split_cluster_graph(std::uint32_t ci, SplitScratch& scratch) {
         const int s = orient2(c, o, r, y);
         return s > 0 ? 1 : (s == 0 ? 2 : 3);
       };
-      std::vector<std::pair<int, std::uint32_t>> keyed;
+      auto& keyed = scratch.sectors;
+      keyed.clear();
       for (std::uint32_t m = b; m < b + d; ++m) keyed.push_back({sector(around[m]), around[m]});
       std::sort(keyed.begin(), keyed.end(), [&](const auto& p, const auto& q) {
         if (p.first != q.first) return p.first < q.first;
@@ -727,7 +739,8 @@ bool Arrangement::split_cluster_graph(std::uint32_t ci, SplitScratch& scratch) {
     return around[b + (slot[h ^ 1] + d - 1) % d];
   };
   // The outer face: right of the least vertex's most clockwise edge.
-  std::vector<std::uint32_t> used;
+  auto& used = scratch.used;
+  used.clear();
   for (std::uint32_t x = 0; x < n; ++x)
     if (start[x + 1] > start[x]) used.push_back(x);
   const std::uint32_t least = extreme(used, false);
@@ -736,12 +749,19 @@ bool Arrangement::split_cluster_graph(std::uint32_t ci, SplitScratch& scratch) {
     if (orient2(c, vid[least], vid[head(around[m])], vid[head(outer)]) > 0) outer = around[m];
   outer ^= 1;  // its twin, pointing at the least vertex
 
-  std::vector<char> done(2 * edges.size(), 0);
-  std::vector<std::uint32_t> seen(n, kInvalidIndex);
-  std::vector<Piece> made;
+  auto& done = scratch.done;
+  done.assign(2 * edges.size(), 0);
+  auto& seen = scratch.seen;
+  seen.assign(n, kInvalidIndex);
+  // The faces' boundaries, flat: face f is face_pts[face_begin[f] .. face_begin[f + 1]).
+  auto& face_pts = scratch.face_pts;
+  auto& face_lines = scratch.face_lines;
+  auto& face_begin = scratch.face_begin;
+  face_pts.clear();
+  face_lines.clear();
+  face_begin.assign(1, 0);
   for (std::uint32_t h0 = 0; h0 < done.size(); ++h0) {
     if (done[h0]) continue;
-    Piece piece;
     bool is_outer = false;
     std::uint32_t h = h0;
     do {
@@ -751,16 +771,21 @@ bool Arrangement::split_cluster_graph(std::uint32_t ci, SplitScratch& scratch) {
       const std::uint32_t x = tail(h);
       if (seen[x] == h0) return false;  // a point twice
       seen[x] = h0;
-      piece.pts.push_back(vid[x]);
-      piece.lines.push_back(edges[h >> 1].line);
+      face_pts.push_back(vid[x]);
+      face_lines.push_back(edges[h >> 1].line);
       h = next(h);
     } while (h != h0);
-    if (is_outer) continue;
-    if (piece.pts.size() < 3) return false;
-    made.push_back(std::move(piece));
+    if (is_outer || face_pts.size() - face_begin.back() < 3) {
+      if (!is_outer) return false;
+      face_pts.resize(face_begin.back());
+      face_lines.resize(face_begin.back());
+      continue;
+    }
+    face_begin.push_back(static_cast<std::uint32_t>(face_pts.size()));
   }
+  const std::size_t faces_made = face_begin.size() - 1;
   // One connected plane graph: V - E + F = 2 (F with the outer face).
-  if (used.size() + made.size() + 1 != edges.size() + 2) return false;
+  if (used.size() + faces_made + 1 != edges.size() + 2) return false;
   // Each line's points, once each, appended in one go.
   auto& on_line = scratch.on;  // (line, point)
   on_line.clear();
@@ -777,7 +802,10 @@ bool Arrangement::split_cluster_graph(std::uint32_t ci, SplitScratch& scratch) {
     points.reserve(points.size() + (j - i));
     for (; i < j; ++i) points.push_back(on_line[i].second);
   }
-  for (Piece& p : made) {
+  for (std::size_t f = 0; f < faces_made; ++f) {
+    Piece p;  // each vector allocated once, at its size
+    p.pts.assign(face_pts.begin() + face_begin[f], face_pts.begin() + face_begin[f + 1]);
+    p.lines.assign(face_lines.begin() + face_begin[f], face_lines.begin() + face_begin[f + 1]);
     piece_box(c, p);
     c.pieces.push_back(std::move(p));
   }
