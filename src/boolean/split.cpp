@@ -443,9 +443,18 @@ bool Arrangement::split_cluster_graph(std::uint32_t ci, SplitScratch& scratch) {
     bounds_of(vid[edges[e].a], edge_box[e]);
     bounds_of(vid[edges[e].b], edge_box[e]);
   }
-  const std::size_t indexed = edges.size();  // edges from here on are tested one by one
+  const std::size_t indexed = edges.size();
   std::optional<Bvh> edge_tree;
   if (indexed > 32) edge_tree.emplace(edge_box);
+  // The edges the rays add (a face with a thousand holes: two chords a hole) have a
+  // tree of their own, made again each time they double; the few since, one by one.
+  std::optional<Bvh> added_tree;
+  std::size_t added_end = indexed;  // added_tree holds edges [indexed, added_end)
+  auto reindex = [&] {
+    if (edges.size() - added_end <= std::max<std::size_t>(32, added_end - indexed)) return;
+    added_tree.emplace(std::vector<Box>(edge_box.begin() + static_cast<std::ptrdiff_t>(indexed), edge_box.end()));
+    added_end = edges.size();
+  };
   const double pad = 1e-9 * size + 1e-300;
   // Edge ei cut at vertex x, a point inside it: it keeps the first part (its box, a
   // superset, stays) and the second is a new edge.
@@ -459,6 +468,7 @@ bool Arrangement::split_cluster_graph(std::uint32_t ci, SplitScratch& scratch) {
     edge_box.push_back(edge_box[ei]);
   };
   auto ray = [&](std::uint32_t o, std::uint32_t l, int dir) {
+    reindex();
     const Line& L = c.lines[l];
     double ou, ov, oe;
     approx2(c, vid[o], ou, ov, oe);
@@ -509,7 +519,10 @@ bool Arrangement::split_cluster_graph(std::uint32_t ci, SplitScratch& scratch) {
     else
       for (std::uint32_t ei = 0; ei < indexed; ++ei)
         if (segment_meets_box(ou, ov, fu, fv, edge_box[ei], grow)) test(ei);
-    for (std::uint32_t ei = static_cast<std::uint32_t>(indexed); ei < edges.size(); ++ei)
+    if (added_tree)
+      added_tree->query([&](const Box& b) { return segment_meets_box(ou, ov, fu, fv, b, grow); },
+                        [&](std::uint32_t k) { test(static_cast<std::uint32_t>(indexed + k)); });
+    for (std::uint32_t ei = static_cast<std::uint32_t>(added_end); ei < edges.size(); ++ei)
       if (segment_meets_box(ou, ov, fu, fv, edge_box[ei], grow)) test(ei);
     if (hits.empty()) return false;
     // The nearest by the doubles, then made sure of exactly: a hit before it is taken.
