@@ -142,6 +142,9 @@ struct LineClasses {
   std::vector<std::uint32_t> begin;  // begin[k] .. begin[k + 1]
   std::vector<std::uint32_t> pts;
   std::vector<std::int8_t> axis;
+  // By entry of pts in a class of two points or more: its coordinate along the axis
+  // in doubles, within +-err.
+  std::vector<double> key, err;
   std::span<const std::uint32_t> points(std::uint32_t root) const {
     if (root + 1 >= begin.size()) return {};
     return {pts.data() + begin[root], pts.data() + begin[root + 1]};
@@ -199,6 +202,16 @@ LineClasses line_classes(Arrangement& a, const std::vector<std::uint32_t>& canon
       for (std::size_t j = i; j > 0 && a.compare3(list[j], list[j - 1], ax) < 0; --j)
         std::swap(list[j], list[j - 1]);
   }
+  lc.key.resize(lc.pts.size());
+  lc.err.resize(lc.pts.size());
+  for (std::size_t k = 0; k < keys; ++k) {
+    if (lc.axis[k] < 0) continue;
+    for (std::uint32_t i = lc.begin[k]; i < lc.begin[k + 1]; ++i) {
+      double e = 0;
+      lc.key[i] = a.approx3(lc.pts[i], &e)[lc.axis[k]];
+      lc.err[i] = e;
+    }
+  }
   return lc;
 }
 
@@ -216,10 +229,52 @@ void insert_between(const Arrangement& a, const LineClasses& lc, std::uint32_t r
   }
   const int dir = a.compare3(p, q, ax);
   if (dir == 0) return;
-  auto less = [&](std::uint32_t x, std::uint32_t y) { return a.compare3(x, y, ax) < 0; };
   const std::uint32_t lo = dir < 0 ? p : q, hi = dir < 0 ? q : p;
-  auto b = std::upper_bound(list.begin(), list.end(), lo, less);
-  auto e = std::lower_bound(list.begin(), list.end(), hi, less);
+  std::span<const std::uint32_t>::iterator b, e;
+  if (lc.axis[root] < 0) {
+    auto less = [&](std::uint32_t x, std::uint32_t y) { return a.compare3(x, y, ax) < 0; };
+    b = std::upper_bound(list.begin(), list.end(), lo, less);
+    e = std::lower_bound(list.begin(), list.end(), hi, less);
+  } else {
+    // By the doubles where the error intervals part, exactly where they meet: the
+    // exact order, with compare3 only between points close together.
+    struct Placed {
+      std::uint32_t p;
+      double key, err;
+    };
+    auto placed = [&](std::uint32_t x) {
+      double err = 0;
+      const double key = a.approx3(x, &err)[ax];
+      return Placed{x, key, err};
+    };
+    auto at = [&](std::span<const std::uint32_t>::iterator it) {
+      const std::size_t i = lc.begin[root] + static_cast<std::size_t>(it - list.begin());
+      return Placed{*it, lc.key[i], lc.err[i]};
+    };
+    auto less = [&](const Placed& x, const Placed& y) {
+      if (x.key + x.err < y.key - y.err) return true;
+      if (y.key + y.err < x.key - x.err) return false;
+      return a.compare3(x.p, y.p, ax) < 0;
+    };
+    const Placed plo = placed(lo), phi = placed(hi);
+    // The first entry after lo, and the first not before hi (binary searches).
+    auto search = [&](auto goes_right) {
+      auto first = list.begin();
+      std::size_t n = list.size();
+      while (n > 0) {
+        const std::size_t half = n / 2;
+        if (goes_right(at(first + static_cast<std::ptrdiff_t>(half)))) {
+          first += static_cast<std::ptrdiff_t>(half) + 1;
+          n -= half + 1;
+        } else {
+          n = half;
+        }
+      }
+      return first;
+    };
+    b = search([&](const Placed& x) { return !less(plo, x); });
+    e = search([&](const Placed& x) { return less(x, phi); });
+  }
   if (b >= e) return;
   if (dir < 0) {
     out.insert(out.end(), b, e);
