@@ -450,7 +450,10 @@ void reverse_loop(std::vector<std::uint32_t>& pts, std::vector<std::uint32_t>& k
 RepPoint rep_of(const Arrangement& a, std::uint32_t ci, const Piece& p) {
   const Cluster& c = a.clusters[ci];
   const std::size_t n = p.pts.size();
-  std::vector<int> turn(n);
+  // A triangle: every corner turns left (a piece has area), the first is the ear.
+  if (n == 3) return {ci, {p.pts[2], p.pts[0], p.pts[1]}};
+  thread_local std::vector<int> turn;  // one allocation a thread, not one a piece
+  turn.resize(n);
   bool convex = true;
   for (std::size_t i = 0; i < n; ++i) {
     // Two sides on one line (a segment cut at a point of another's) go straight on.
