@@ -11,8 +11,11 @@
 // 4. build_mesh, with the positions no face, wire or point uses left out;
 // 5. make the cells of the regions the faces bound (VolumeMode::kAuto, volumes.h).
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <numeric>
 #include <optional>
+#include <unordered_map>
 #include <unordered_set>
 
 #include "cellforge/geom/polygon.h"
@@ -426,6 +429,7 @@ Result<ReadResult> import_soup(Model& m, const PolygonSoup& soup, const ImportOp
     in.positions.push_back(welded[i]);
   }
   report.unused_vertices = welded.size() - in.positions.size();
+
   in.faces.reserve(faces.size());
   for (std::size_t f = 0; f < faces.size(); ++f) {
     MeshFace face;
@@ -447,6 +451,39 @@ Result<ReadResult> import_soup(Model& m, const PolygonSoup& soup, const ImportOp
     for (auto& w : wires) {
       const std::uint32_t a = compact[w[0]], b = compact[w[1]];
       if (known.insert(key(a, b)).second) in.wires.push_back({a, b});
+    }
+  }
+  // The exact predicates order the faces around an edge of three or more exactly
+  // while their coordinates are 0 or of magnitude 2^-80 to 2^120 (geom/predicates.h);
+  // beyond, their products underflow or overflow, and a model built on a wrong order
+  // would be invalid. The faces at such edges are held to that range.
+  {
+    std::unordered_map<std::uint64_t, std::uint32_t> uses;
+    const auto key = [](std::uint32_t a, std::uint32_t b) {
+      return a < b ? (std::uint64_t{a} << 32 | b) : (std::uint64_t{b} << 32 | a);
+    };
+    for (const MeshFace& f : in.faces)
+      for (const Polygon& l : f.loops)
+        for (std::size_t k = 0; k < l.size(); ++k) ++uses[key(l[k], l[(k + 1) % l.size()])];
+    for (const MeshFace& f : in.faces) {
+      bool radial = false;
+      for (const Polygon& l : f.loops)
+        for (std::size_t k = 0; k < l.size() && !radial; ++k) radial = uses[key(l[k], l[(k + 1) % l.size()])] > 2;
+      if (!radial) continue;
+      for (const Polygon& l : f.loops)
+        for (std::uint32_t v : l)
+          for (int k = 0; k < 3; ++k) {
+            const Vec3 p = in.positions[v];
+            const double x = std::abs(p[k]);
+            if (x == 0 || (x >= 0x1p-80 && x <= 0x1p120)) continue;
+            char text[320];
+            std::snprintf(text, sizeof text,
+                          "vertex %u (%.17g, %.17g, %.17g), on an edge of three faces or more: coordinate "
+                          "%.17g is outside the range their order is decided in exactly (0, or 2^-80 to "
+                          "2^120 in magnitude)",
+                          v, p.x, p.y, p.z, p[k]);
+            return Error{ErrorCode::kInvalidInput, text};
+          }
     }
   }
   in.group_name = !options.group_name.empty() ? options.group_name : soup.name;

@@ -69,6 +69,10 @@ TEST(BadInput, MessagesFromText) {
       {io::Format::kObj, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf -4 1 2\n", "vertex index -4 out of range"},
       {io::Format::kObj, "v 1 2 x\n", "line 1:7: expected a number, found 'x'"},
       {io::Format::kObj, "v 0 0 1e999\n", "non-finite coordinate '1e999'"},
+      // Three faces at an edge whose order the exact predicates would get wrong (a
+      // coordinate whose products underflow; found by fuzz_stl).
+      {io::Format::kObj, "v 0 0 0\nv 1 0 0\nv 0 1 1e-30\nv 0 -1 0\nv 0 0 1\nf 1 2 3\nf 1 2 4\nf 1 2 5\n",
+       "on an edge of three faces or more: coordinate 1.0000000000000001e-30 is outside the range"},
       {io::Format::kOff, "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n4 0 1 2\n",
        "face declares 4 vertices but the line has 3"},
       {io::Format::kOff, "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n3 0 1 2\n",
