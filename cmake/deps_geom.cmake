@@ -7,3 +7,5 @@ if(NOT GMP_INCLUDE_DIR OR NOT GMP_LIBRARY)
 endif()
 target_include_directories(${layer} PUBLIC $<BUILD_INTERFACE:${GMP_INCLUDE_DIR}>)
 target_link_libraries(${layer} PUBLIC ${GMP_LIBRARY})
+# geom/shared_library.cpp opens libraries with dlopen (libdl; in libc since glibc 2.34).
+target_link_libraries(${layer} PUBLIC ${CMAKE_DL_LIBS})

@@ -2,7 +2,6 @@
 // glyph outlines (text.h says which calls and scales, OpenSCAD 2021.01's).
 #include "text.h"
 
-#include <dlfcn.h>
 #include <fontconfig/fontconfig.h>
 #include <ft2build.h>
 #include <hb-ft.h>
@@ -19,6 +18,7 @@
 #include FT_OUTLINE_H
 
 #include "cellforge/csg/source.h"
+#include "cellforge/geom/shared_library.h"
 
 namespace cellforge::csg {
 
@@ -84,32 +84,22 @@ struct FontLibs {
 const FontLibs* load_font_libs(std::string& why) {
   static const std::pair<const FontLibs*, std::string> loaded = []() -> std::pair<const FontLibs*, std::string> {
     static FontLibs table;
-    std::string missing;
-    auto open = [&](const char* name) {
-      void* lib = dlopen(name, RTLD_NOW | RTLD_LOCAL);
-      if (lib == nullptr) missing += std::string(missing.empty() ? "" : "; ") + dlerror();
-      return lib;
-    };
-    auto resolve = [&](void* lib, const char* name) {
-      void* f = lib != nullptr ? dlsym(lib, name) : nullptr;
-      if (lib != nullptr && f == nullptr) missing += std::string(missing.empty() ? "" : "; ") + "no " + name;
-      return f;
-    };
-#define CELLFORGE_FONT_LOAD(f) table.f = reinterpret_cast<decltype(&::f)>(resolve(lib, #f));
-    {
-      void* lib = open("libfreetype.so.6");
-      CELLFORGE_FREETYPE_FUNCTIONS(CELLFORGE_FONT_LOAD)
-    }
-    {
-      void* lib = open("libharfbuzz.so.0");
-      CELLFORGE_HARFBUZZ_FUNCTIONS(CELLFORGE_FONT_LOAD)
-    }
-    {
-      void* lib = open("libfontconfig.so.1");
-      CELLFORGE_FONTCONFIG_FUNCTIONS(CELLFORGE_FONT_LOAD)
-    }
+    SharedLibrary freetype("libfreetype.so.6"), harfbuzz("libharfbuzz.so.0"), fontconfig("libfontconfig.so.1");
+#define CELLFORGE_FONT_LOAD(lib, f) table.f = reinterpret_cast<decltype(&::f)>(lib.symbol(#f));
+#define CELLFORGE_FREETYPE_LOAD(f) CELLFORGE_FONT_LOAD(freetype, f)
+#define CELLFORGE_HARFBUZZ_LOAD(f) CELLFORGE_FONT_LOAD(harfbuzz, f)
+#define CELLFORGE_FONTCONFIG_LOAD(f) CELLFORGE_FONT_LOAD(fontconfig, f)
+    CELLFORGE_FREETYPE_FUNCTIONS(CELLFORGE_FREETYPE_LOAD)
+    CELLFORGE_HARFBUZZ_FUNCTIONS(CELLFORGE_HARFBUZZ_LOAD)
+    CELLFORGE_FONTCONFIG_FUNCTIONS(CELLFORGE_FONTCONFIG_LOAD)
 #undef CELLFORGE_FONT_LOAD
-    if (!missing.empty()) return {nullptr, "text() cannot load its font libraries: " + missing};
+#undef CELLFORGE_FREETYPE_LOAD
+#undef CELLFORGE_HARFBUZZ_LOAD
+#undef CELLFORGE_FONTCONFIG_LOAD
+    std::string problems;
+    for (const SharedLibrary* lib : {&freetype, &harfbuzz, &fontconfig})
+      if (!lib->problems().empty()) problems += (problems.empty() ? "" : "; ") + lib->problems();
+    if (!problems.empty()) return {nullptr, "text() cannot load its font libraries: " + problems};
     return {&table, ""};
   }();
   why = loaded.second;
@@ -118,10 +108,10 @@ const FontLibs* load_font_libs(std::string& why) {
 
 // The loaded table: every caller is past fonts(), which loaded it.
 const FontLibs& lib() {
-  std::string why;
-  return *load_font_libs(why);
+  static std::string why;
+  static const FontLibs* table = load_font_libs(why);
+  return *table;
 }
-
 
 // FreeType's library and fontconfig's configuration are shared by every text() call
 // and used under one lock (neither is safe to use from several threads at once).

@@ -7,7 +7,6 @@
 // so nothing is formatted or parsed and every double comes back bit for bit.
 // Writers serialize per volume name on a transaction-scoped advisory lock;
 // versions are also UNIQUE.
-#include <dlfcn.h>
 #include <libpq-fe.h>
 
 #include <algorithm>
@@ -23,6 +22,7 @@
 #include <string>
 #include <utility>
 
+#include "cellforge/geom/shared_library.h"
 #include "store/connection.h"
 
 namespace cellforge::store {
@@ -76,16 +76,12 @@ struct Libpq {
 // The table, loaded once; nullptr with the reason in `why` when libpq cannot be.
 const Libpq* load_libpq(std::string& why) {
   static const std::pair<const Libpq*, std::string> loaded = []() -> std::pair<const Libpq*, std::string> {
-    void* lib = dlopen("libpq.so.5", RTLD_NOW | RTLD_LOCAL);
-    if (lib == nullptr) return {nullptr, std::string("cannot load libpq.so.5 (Debian's libpq5): ") + dlerror()};
     static Libpq table;
-    std::string missing;
-#define CELLFORGE_LIBPQ_LOAD(f)                                      \
-  table.f = reinterpret_cast<decltype(&::f)>(dlsym(lib, #f));      \
-  if (table.f == nullptr) missing += std::string(missing.empty() ? "" : ", ") + #f;
+    SharedLibrary lib("libpq.so.5");
+#define CELLFORGE_LIBPQ_LOAD(f) table.f = reinterpret_cast<decltype(&::f)>(lib.symbol(#f));
     CELLFORGE_LIBPQ_FUNCTIONS(CELLFORGE_LIBPQ_LOAD)
 #undef CELLFORGE_LIBPQ_LOAD
-    if (!missing.empty()) return {nullptr, "libpq.so.5 lacks " + missing};
+    if (!lib.problems().empty()) return {nullptr, lib.problems() + " (Debian's libpq5)"};
     return {&table, ""};
   }();
   why = loaded.second;
@@ -94,10 +90,10 @@ const Libpq* load_libpq(std::string& why) {
 
 // The loaded table: every caller is past a connection's open(), which loaded it.
 const Libpq& pq() {
-  std::string why;
-  return *load_libpq(why);
+  static std::string why;
+  static const Libpq* table = load_libpq(why);
+  return *table;
 }
-
 
 struct ResultGuard {
   PGresult* r;
