@@ -100,7 +100,7 @@ H3<T> compute3(const Arrangement& A, const PointDef& d) {
     }
     case PointKind::kCross: {
       const Cluster& c = A.clusters[d.a];
-      const H2<T> h = cross2(line_coeffs<T>(A, c, c.lines[d.b]), line_coeffs<T>(A, c, c.lines[d.c]));
+      const H2<T> h = cross2(line_coeffs<T>(A, c, c.lines()[d.b]), line_coeffs<T>(A, c, c.lines()[d.c]));
       return lift(A, c, h);
     }
     case PointKind::kMeet: {
@@ -161,7 +161,7 @@ H2<T> Arrangement::point2(const Cluster& c, std::uint32_t p) const {
       if constexpr (std::is_same_v<T, Fp>) {
         return h2f[p - pos.size()];
       } else {
-        return cross2(coeffs<T>(c, c.lines[d.b]), coeffs<T>(c, c.lines[d.c]));
+        return cross2(coeffs<T>(c, c.lines()[d.b]), coeffs<T>(c, c.lines()[d.c]));
       }
     }
   }
@@ -212,14 +212,14 @@ int Arrangement::side(const Cluster& c, const Line& l, std::uint32_t p) const {
   // Points on the line by construction (every point of a cluster lies in its plane):
   if (p >= pos.size()) {
     const PointDef& d = points[p - pos.size()];
-    const auto li = static_cast<std::uint32_t>(&l - c.lines.data());
+    const auto li = static_cast<std::uint32_t>(&l - c.lines().data());
     // a crossing of this line, or of another trace of this line's plane;
     if (d.kind == PointKind::kCross && &clusters[d.a] == &c) {
       if (d.b == li || d.c == li) return 0;
       if (l.kind == LineKind::kTrace)
         for (std::uint32_t m : {d.b, d.c})
-          if (c.lines[m].kind == LineKind::kTrace &&
-              plane_of[cluster_of[c.lines[m].a]] == plane_of[cluster_of[l.a]])
+          if (c.lines()[m].kind == LineKind::kTrace &&
+              plane_of[cluster_of[c.lines()[m].a]] == plane_of[cluster_of[l.a]])
             return 0;
     }
     if (d.kind == PointKind::kLpi) {
@@ -318,7 +318,7 @@ bool Arrangement::known_coordinate(std::uint32_t p, int axis, double& x) const {
       const Cluster& c = clusters[d.a];
       if (perpendicular(tris[c.ref])) return true;
       for (std::uint32_t li : {d.b, d.c}) {
-        const Line& l = c.lines[li];
+        const Line& l = c.lines()[li];
         if ((l.kind == LineKind::kAxisU && axis == (c.k + 1) % 3) ||
             (l.kind == LineKind::kAxisV && axis == (c.k + 2) % 3)) {
           x = l.c;
@@ -489,10 +489,7 @@ void Arrangement::find_alone_vertices() {
 }
 
 bool Arrangement::is_triangle_edge(std::uint32_t p, std::uint32_t q) const {
-  const std::uint64_t key = ordered(p, q);
-  const auto it = std::lower_bound(halves.begin(), halves.end(), key,
-                                   [](const HalfEdge& h, std::uint64_t k) { return h.key < k; });
-  return it != halves.end() && it->key == key;
+  return !edge_uses.uses(p, q).empty();
 }
 
 bool Arrangement::is_contact_edge(std::uint32_t p, std::uint32_t q) const {
@@ -526,7 +523,7 @@ void Arrangement::line_union(std::uint32_t a, std::uint32_t b) {
 Arrangement::Arrangement(std::vector<Vec3> positions, std::vector<Tri> triangles,
                          std::vector<SoupFace> soup_faces, LoopTable loops, std::uint32_t n_operands,
                          std::vector<WireSeg> wire_list, std::vector<char> embedded_operands,
-                         std::vector<std::array<std::uint32_t, 2>> joins, std::vector<HalfEdge> half_edges)
+                         std::vector<std::array<std::uint32_t, 2>> joins, EdgeUseTable edges)
     : pos(std::move(positions)),
       tris(std::move(triangles)),
       faces(std::move(soup_faces)),
@@ -535,7 +532,7 @@ Arrangement::Arrangement(std::vector<Vec3> positions, std::vector<Tri> triangles
       operands(n_operands),
       embedded(std::move(embedded_operands)),
       plane_joins(std::move(joins)),
-      halves(std::move(half_edges)) {
+      edge_uses(std::move(edges)) {
   embedded.resize(operands, 0);
   std::vector<Box> boxes(tris.size());
   std::vector<std::uint32_t> groups(tris.size(), Bvh::kNoGroup);  // an embedded operand's
@@ -557,7 +554,7 @@ std::uint32_t Arrangement::new_point(PointDef def, const Cluster* home) {
   points.push_back(def);
   h3f.push_back(compute3<Fp>(*this, def));
   if (home) {
-    h2f.push_back(cross2(coeffs<Fp>(*home, home->lines[def.b]), coeffs<Fp>(*home, home->lines[def.c])));
+    h2f.push_back(cross2(coeffs<Fp>(*home, home->lines()[def.b]), coeffs<Fp>(*home, home->lines()[def.c])));
   } else {
     h2f.push_back({});
   }
@@ -578,8 +575,8 @@ std::uint32_t Arrangement::lpi_point(std::uint32_t p, std::uint32_t q, std::uint
 
 std::uint32_t Arrangement::crossing_point(std::uint32_t ci, std::uint32_t li, std::uint32_t m) {
   Cluster& c = clusters[ci];
-  const Line* through = &c.lines[li];
-  const Line* trace = &c.lines[m];
+  const Line* through = &c.lines()[li];
+  const Line* trace = &c.lines()[m];
   if (through->kind != LineKind::kThrough) std::swap(through, trace);
   if (through->kind == LineKind::kThrough && trace->kind == LineKind::kTrace)
     return lpi_point(through->a, through->b, cluster_of[trace->a]);
@@ -620,8 +617,8 @@ std::uint32_t Arrangement::add_line(Cluster& c, Line l) {
   if (sb == kUncertain) sb = decide([&]<class T>() { return line_coeffs<T>(*this, c, l)[1]; });
   l.sign_a = static_cast<std::int8_t>(sa);
   l.sign_b = static_cast<std::int8_t>(sb);
-  c.lines.push_back(std::move(l));
-  return static_cast<std::uint32_t>(c.lines.size() - 1);
+  c.lines().push_back(std::move(l));
+  return static_cast<std::uint32_t>(c.lines().size() - 1);
 }
 
 // ---------------------------------------------------------------- stage 1
@@ -937,8 +934,8 @@ void Arrangement::intersect(int threads) {
     if (orient2d_projected(p0, p1, pos[v], k) * o > 0 && orient2d_projected(p1, p2, pos[v], k) * o > 0 &&
         orient2d_projected(p2, p0, pos[v], k) * o > 0) {
       Cluster& c = clusters[cluster_of[t]];
-      if (std::find(c.touch_points.begin(), c.touch_points.end(), v) == c.touch_points.end())
-        c.touch_points.push_back(v);
+      if (std::find(c.touch_points().begin(), c.touch_points().end(), v) == c.touch_points().end())
+        c.touch_points().push_back(v);
       c.touched = true;
     }
   }
@@ -1006,7 +1003,7 @@ void Arrangement::add_pair(std::uint32_t t, std::uint32_t b) {
       return;
     }
   }
-  clusters[ct].constraints.push_back({cb, b, ends[0], ends[1], t});
+  clusters[ct].constraints().push_back({cb, b, ends[0], ends[1], t});
   clusters[ct].touched = true;
 }
 
@@ -1141,12 +1138,12 @@ void Arrangement::split_wires() {
 
 void Arrangement::release_pieces(bool keep_tree) {
   for (Cluster& c : clusters) {
-    c.pieces.release();
-    c.constraints.release();
-    c.touch_points.release();
+    c.pieces().release();
+    c.constraints().release();
+    c.touch_points().release();
   }
   loop_table.clear();
-  if (!keep_tree) std::vector<HalfEdge>().swap(halves);
+  if (!keep_tree) edge_uses.clear();
   for (SoupFace& f : faces) f.loop_count = 0;
   lpi_ids_ = {};
   std::vector<std::uint32_t>().swap(quad_other);
@@ -1200,9 +1197,7 @@ void Arrangement::mark_open_edges(const Cluster& c) {
     if (std::binary_search(loop_edges.begin(), loop_edges.end(), x.edge)) continue;  // a slit
     // Used by a triangle of another face too (another operand's edge on the diagonal):
     // a place where that surface may cross this one.
-    const auto uses = std::equal_range(halves.begin(), halves.end(), HalfEdge{x.edge, 0, false},
-                                       [](const HalfEdge& u, const HalfEdge& v) { return u.key < v.key; });
-    if (uses.second - uses.first > 2) continue;
+    if (edge_uses.uses(static_cast<std::uint32_t>(x.edge >> 32), static_cast<std::uint32_t>(x.edge)).size() > 2) continue;
     open_edges[x.t] |= static_cast<std::uint8_t>(1u << x.e);
     open_edges[y.t] |= static_cast<std::uint8_t>(1u << y.e);
   }
@@ -1227,12 +1222,12 @@ void Arrangement::split_cluster(std::uint32_t ci) {
     Piece p;
     for (int e = 0; e < 3; ++e) {
       const std::uint32_t l = through_line(v[e], v[(e + 1) % 3]);
-      c.lines[l].points.push_back(v[e]);
-      c.lines[l].points.push_back(v[(e + 1) % 3]);
+      c.lines()[l].points.push_back(v[e]);
+      c.lines()[l].points.push_back(v[(e + 1) % 3]);
       p.pts.push_back(v[e]);
       p.lines.push_back(l);
     }
-    c.pieces.push_back(std::move(p));
+    c.pieces().push_back(std::move(p));
   } else {
     double lo[2] = {1e308, 1e308}, hi[2] = {-1e308, -1e308};
     for (std::uint32_t t : c.tris) {
@@ -1247,18 +1242,18 @@ void Arrangement::split_cluster(std::uint32_t ci) {
     const std::uint32_t sides[4] = {
         add_line(c, Line::make(LineKind::kAxisV, 0, 0, lo[1])), add_line(c, Line::make(LineKind::kAxisU, 0, 0, hi[0])),
         add_line(c, Line::make(LineKind::kAxisV, 0, 0, hi[1])), add_line(c, Line::make(LineKind::kAxisU, 0, 0, lo[0]))};
-    for (std::uint32_t l : sides) c.lines[l].key = fresh_key();
+    for (std::uint32_t l : sides) c.lines()[l].key = fresh_key();
     Piece p;
     for (int e = 0; e < 4; ++e) {
       const std::uint32_t a = sides[(e + 3) % 4], b = sides[e];
       const std::uint32_t corner = new_point({PointKind::kCross, ci, a, b}, &c);
       crossings[ordered(a, b)] = corner;
-      c.lines[a].points.push_back(corner);
-      c.lines[b].points.push_back(corner);
+      c.lines()[a].points.push_back(corner);
+      c.lines()[b].points.push_back(corner);
       p.pts.push_back(corner);
       p.lines.push_back(b);
     }
-    c.pieces.push_back(std::move(p));
+    c.pieces().push_back(std::move(p));
     mark_open_edges(c);
     for (std::uint32_t t : c.tris)
       for (int e = 0; e < 3; ++e) {
@@ -1269,7 +1264,7 @@ void Arrangement::split_cluster(std::uint32_t ci) {
   }
   // One line per other plane (the halves of a planar quad are two clusters, one plane).
   std::unordered_map<std::uint32_t, std::uint32_t> traces;  // other plane -> line
-  for (const Constraint& k2 : c.constraints) {
+  for (const Constraint& k2 : c.constraints()) {
     // An edge of the other triangle lying in this plane (a wall resting on a plate):
     // the line through its two input vertices, of lower degree than the trace, and
     // the one the edge's own cluster and a coplanar face with that edge use.
@@ -1291,17 +1286,17 @@ void Arrangement::split_cluster(std::uint32_t ci) {
     if (sg.p > sg.q) std::swap(sg.p, sg.q);
   std::sort(segments.begin(), segments.end());
   segments.erase(std::unique(segments.begin(), segments.end()), segments.end());
-  piece_box(c, c.pieces[0]);
+  piece_box(c, c.pieces()[0]);
 
   std::vector<Piece> made;
   // Piece pi cut by a line (where it overlaps segment pq; p = kInvalidIndex: wholly).
   auto cut = [&](std::size_t pi, std::uint32_t line, std::uint32_t p, std::uint32_t q) {
     made.clear();
     if (!split_piece(c, ci, pi, line, p, q, made, crossings)) return;
-    c.pieces[pi] = std::move(made[0]);
-    piece_box(c, c.pieces[pi]);
-    c.pieces.push_back(std::move(made[1]));
-    piece_box(c, c.pieces.back());
+    c.pieces()[pi] = std::move(made[0]);
+    piece_box(c, c.pieces()[pi]);
+    c.pieces().push_back(std::move(made[1]));
+    piece_box(c, c.pieces().back());
   };
   // Segments, with bounds in (u, v) that hold their exact ends.
   std::vector<Box> seg_box(segments.size());
@@ -1312,19 +1307,19 @@ void Arrangement::split_cluster(std::uint32_t ci) {
       seg_box[si].add(Vec3{u - e, v - e, 0});
       seg_box[si].add(Vec3{u + e, v + e, 0});
     }
-  // Each segment cuts the pieces of `region` (indices into c.pieces) whose boxes meet
+  // Each segment cuts the pieces of `region` (indices into c.pieces()) whose boxes meet
   // its own; the pieces it makes join the region.
   auto cut_all = [&](std::vector<std::uint32_t>& region, const std::vector<std::uint32_t>& segs) {
     for (std::uint32_t si : segs) {
       const Segment& s = segments[si];
       const Box& sb = seg_box[si];
       for (std::size_t k = 0, n = region.size(); k < n; ++k) {
-        const Box& pb = c.pieces[region[k]].box2;
+        const Box& pb = c.pieces()[region[k]].box2;
         if (pb.lo.x > sb.hi.x || sb.lo.x > pb.hi.x || pb.lo.y > sb.hi.y || sb.lo.y > pb.hi.y)
           continue;
-        const std::size_t before = c.pieces.size();
+        const std::size_t before = c.pieces().size();
         cut(region[k], s.line, s.p, s.q);
-        if (c.pieces.size() > before) region.push_back(static_cast<std::uint32_t>(before));
+        if (c.pieces().size() > before) region.push_back(static_cast<std::uint32_t>(before));
       }
     }
   };
@@ -1339,7 +1334,7 @@ void Arrangement::split_cluster(std::uint32_t ci) {
                        int depth) -> void {
     if (segs.size() <= kLeafSegments || depth >= 40) return cut_all(region, segs);
     Box rb;
-    for (std::uint32_t pi : region) rb.add(c.pieces[pi].box2);
+    for (std::uint32_t pi : region) rb.add(c.pieces()[pi].box2);
     const int axis = rb.hi.x - rb.lo.x >= rb.hi.y - rb.lo.y ? 0 : 1;
     std::vector<double> mids;
     mids.reserve(segs.size());
@@ -1357,26 +1352,26 @@ void Arrangement::split_cluster(std::uint32_t ci) {
       return cut_all(region, segs);
     const std::uint32_t l =
         add_line(c, Line::make(axis == 0 ? LineKind::kAxisU : LineKind::kAxisV, 0, 0, m));
-    c.lines[l].key = fresh_key();
+    c.lines()[l].key = fresh_key();
     std::vector<std::uint32_t> lo, hi;
     for (std::uint32_t pi : region) {
-      const std::size_t before = c.pieces.size();
+      const std::size_t before = c.pieces().size();
       cut(pi, l, kInvalidIndex, kInvalidIndex);
-      if (c.pieces.size() > before) {  // made[0] is on the positive side (u or v > m)
+      if (c.pieces().size() > before) {  // made[0] is on the positive side (u or v > m)
         hi.push_back(pi);
         lo.push_back(static_cast<std::uint32_t>(before));
         continue;
       }
       int s = 0;
-      for (std::size_t q = 0; q < c.pieces[pi].pts.size() && s == 0; ++q)
-        s = side(c, c.lines[l], c.pieces[pi].pts[q]);
+      for (std::size_t q = 0; q < c.pieces()[pi].pts.size() && s == 0; ++q)
+        s = side(c, c.lines()[l], c.pieces()[pi].pts[q]);
       (s > 0 ? hi : lo).push_back(pi);
     }
     self(self, std::move(lo), std::move(segs_lo), depth + 1);
     self(self, std::move(hi), std::move(segs_hi), depth + 1);
   };
   {
-    std::vector<std::uint32_t> all_segs(segments.size()), region(c.pieces.size());
+    std::vector<std::uint32_t> all_segs(segments.size()), region(c.pieces().size());
     std::iota(all_segs.begin(), all_segs.end(), 0u);
     std::iota(region.begin(), region.end(), 0u);
     subdivide(subdivide, std::move(region), std::move(all_segs), 0);
@@ -1388,7 +1383,7 @@ void Arrangement::split_cluster(std::uint32_t ci) {
   // its bottom ring, the cap in the plate's cluster: every ring vertex touches).
   // (Segments of two lines end there, so the second's cut meets the first's line at it.)
   std::vector<std::uint32_t> corners;
-  if (!c.touch_points.empty() && c.tris.size() > 1) {
+  if (!c.touch_points().empty() && c.tris.size() > 1) {
     std::vector<std::pair<std::uint32_t, std::uint32_t>> ends;  // point, line
     for (const Segment& sg : segments) {
       ends.push_back({sg.p, sg.line});
@@ -1400,19 +1395,19 @@ void Arrangement::split_cluster(std::uint32_t ci) {
           (corners.empty() || corners.back() != ends[k].first))
         corners.push_back(ends[k].first);
   }
-  for (std::uint32_t v : c.touch_points) {
+  for (std::uint32_t v : c.touch_points()) {
     if (std::binary_search(corners.begin(), corners.end(), v)) continue;
     const Vec3 p = pos[v];
     for (LineKind kind : {LineKind::kAxisU, LineKind::kAxisV}) {
       const std::uint32_t l = add_line(c, Line::make(kind, 0, 0, kind == LineKind::kAxisU ? p[i] : p[j]));
-      c.lines[l].key = fresh_key();
-      for (std::size_t pi = 0, n = c.pieces.size(); pi < n; ++pi) {
-        const Piece& P = c.pieces[pi];
+      c.lines()[l].key = fresh_key();
+      for (std::size_t pi = 0, n = c.pieces().size(); pi < n; ++pi) {
+        const Piece& P = c.pieces()[pi];
         // p in the closed piece: on each side's line or on the piece's side of it (a
         // line's direction is its own, not the piece's: the side of a corner off it).
         bool inside = true;
         for (std::size_t q = 0; q < P.pts.size() && inside; ++q) {
-          const Line& side_line = c.lines[P.lines[q]];
+          const Line& side_line = c.lines()[P.lines[q]];
           const int sv = side(c, side_line, v);
           int sp = 0;
           for (std::size_t r = 0; r < P.pts.size() && sp == 0 && sv != 0; ++r)
@@ -1428,20 +1423,20 @@ void Arrangement::split_cluster(std::uint32_t ci) {
 bool Arrangement::split_piece(Cluster& c, std::uint32_t ci, std::size_t pi, std::uint32_t li,
                               std::uint32_t s0, std::uint32_t s1, std::vector<Piece>& out,
                               std::unordered_map<std::uint64_t, std::uint32_t>& crossings) {
-  const Piece& P = c.pieces[pi];
+  const Piece& P = c.pieces()[pi];
   const std::size_t n = P.pts.size();
   std::vector<int> sides(n);
   bool pos_side = false, neg_side = false;
   for (std::size_t q = 0; q < n; ++q) {
-    sides[q] = side(c, c.lines[li], P.pts[q]);
+    sides[q] = side(c, c.lines()[li], P.pts[q]);
     pos_side |= sides[q] > 0;
     neg_side |= sides[q] < 0;
   }
   if (!pos_side || !neg_side) {
     for (std::size_t q = 0; q < n; ++q) {
       if (sides[q] != 0) continue;
-      c.lines[li].points.push_back(P.pts[q]);
-      if (sides[(q + 1) % n] == 0) line_union(c.lines[li].key, c.lines[P.lines[q]].key);
+      c.lines()[li].points.push_back(P.pts[q]);
+      if (sides[(q + 1) % n] == 0) line_union(c.lines()[li].key, c.lines()[P.lines[q]].key);
     }
     return false;
   }
@@ -1463,8 +1458,8 @@ bool Arrangement::split_piece(Cluster& c, std::uint32_t ci, std::size_t pi, std:
       auto [it, fresh] = crossings.try_emplace(ordered(li, m), 0);
       if (fresh) {
         it->second = crossing_point(ci, li, m);
-        c.lines[li].points.push_back(it->second);
-        c.lines[m].points.push_back(it->second);
+        c.lines()[li].points.push_back(it->second);
+        c.lines()[m].points.push_back(it->second);
       }
       seq.push_back({it->second, m, 0});
       chord[nc++ & 1] = it->second;
@@ -1472,7 +1467,7 @@ bool Arrangement::split_piece(Cluster& c, std::uint32_t ci, std::size_t pi, std:
   }
   assert(nc == 2);
   // Cut only where the segment overlaps the chord with positive length.
-  const Line& L = c.lines[li];
+  const Line& L = c.lines()[li];
   std::uint32_t a = chord[0], b = chord[1], lo = s0, hi = s1;
   if (s0 != kInvalidIndex) {  // kInvalidIndex: cut the whole chord
     if (along(c, L, a, b) > 0) std::swap(a, b);
@@ -1481,7 +1476,7 @@ bool Arrangement::split_piece(Cluster& c, std::uint32_t ci, std::size_t pi, std:
   if (s0 != kInvalidIndex && !(along(c, L, a, hi) < 0 && along(c, L, lo, b) < 0)) return false;
 
   for (std::size_t q = 0; q < n; ++q)
-    if (sides[q] == 0) c.lines[li].points.push_back(P.pts[q]);
+    if (sides[q] == 0) c.lines()[li].points.push_back(P.pts[q]);
   out.resize(2);
   const std::size_t m = seq.size();
   for (Piece& o : out) {  // each side takes at most all corners

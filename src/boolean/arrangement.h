@@ -26,6 +26,7 @@
 #include <memory>
 #include <shared_mutex>
 #include <span>
+#include <type_traits>
 #include <unordered_map>
 #include <vector>
 
@@ -205,31 +206,46 @@ struct Constraint {
   std::uint32_t tri;   // this cluster's triangle that the other one met
 };
 
-// A list that takes one pointer while empty, as most of a cluster's lists stay: a
-// cluster per input triangle, and only those near another surface are cut.
-template <class T>
-class LazyVec {
+// What a cut cluster holds. Most clusters (one per input triangle) are near nothing and
+// hold none of it: one pointer for all four lists, made on the first push_back.
+struct ClusterCuts {
+  std::vector<Constraint> constraints;
+  std::vector<std::uint32_t> touch_points;  // input vertices touching it inside
+  std::vector<Line> lines;
+  std::vector<Piece> pieces;
+};
+
+// One of a cluster's lists, seen through the cluster's block (Cluster::lines() ...):
+// reading never makes the block, push_back does.
+template <class T, std::vector<T> ClusterCuts::*kList, bool kConst>
+class CutList {
+  using Block = std::conditional_t<kConst, const std::unique_ptr<ClusterCuts>, std::unique_ptr<ClusterCuts>>;
+  using Elem = std::conditional_t<kConst, const T, T>;
+
  public:
-  std::size_t size() const { return v_ ? v_->size() : 0; }
-  bool empty() const { return !v_ || v_->empty(); }
-  const T* begin() const { return v_ ? v_->data() : nullptr; }
-  const T* end() const { return v_ ? v_->data() + v_->size() : nullptr; }
-  T* begin() { return v_ ? v_->data() : nullptr; }
-  T* end() { return v_ ? v_->data() + v_->size() : nullptr; }
-  const T* data() const { return begin(); }
-  const T& operator[](std::size_t i) const { return (*v_)[i]; }
-  T& operator[](std::size_t i) { return (*v_)[i]; }
-  const T& back() const { return v_->back(); }
-  T& back() { return v_->back(); }
-  void push_back(T x) { made().push_back(std::move(x)); }
-  void release() { v_.reset(); }
+  explicit CutList(Block& block) : block_(&block) {}
+  std::size_t size() const { return list() ? list()->size() : 0; }
+  bool empty() const { return size() == 0; }
+  Elem* begin() const { return list() ? list()->data() : nullptr; }
+  Elem* end() const { return list() ? list()->data() + list()->size() : nullptr; }
+  Elem* data() const { return begin(); }
+  Elem& operator[](std::size_t i) const { return (*list())[i]; }
+  Elem& back() const { return list()->back(); }
+  void push_back(T x) const
+    requires(!kConst)
+  {
+    if (!*block_) *block_ = std::make_unique<ClusterCuts>();
+    ((**block_).*kList).push_back(std::move(x));
+  }
+  void release() const
+    requires(!kConst)
+  {
+    if (*block_) std::vector<T>().swap((**block_).*kList);
+  }
 
  private:
-  std::vector<T>& made() {
-    if (!v_) v_ = std::make_unique<std::vector<T>>();
-    return *v_;
-  }
-  std::unique_ptr<std::vector<T>> v_;
+  auto* list() const { return *block_ ? &((**block_).*kList) : nullptr; }
+  Block* block_;
 };
 
 // A cluster's triangles: one, the common case, held in place.
@@ -252,16 +268,33 @@ class ClusterTris {
   std::unique_ptr<std::vector<std::uint32_t>> many_;
 };
 
+// 32 bytes a cluster (a million triangles: as many clusters).
 struct Cluster {
   ClusterTris tris;
-  std::uint32_t ref = 0;      // reference triangle (its plane)
-  int k = 2;                  // dominant axis of the reference normal
-  int nk_sign = 1;            // sign of the reference normal's component k
-  LazyVec<Constraint> constraints;
-  LazyVec<std::uint32_t> touch_points;  // input vertices touching it inside
-  LazyVec<Line> lines;
-  LazyVec<Piece> pieces;
-  bool touched = false;  // cut by anything, or several triangles
+  std::uint32_t ref = 0;     // reference triangle (its plane)
+  std::int8_t k = 2;         // dominant axis of the reference normal
+  std::int8_t nk_sign = 1;   // sign of the reference normal's component k
+  bool touched = false;      // cut by anything, or several triangles
+  std::unique_ptr<ClusterCuts> cuts;
+
+  template <class T, std::vector<T> ClusterCuts::*kList>
+  using List = CutList<T, kList, false>;
+  template <class T, std::vector<T> ClusterCuts::*kList>
+  using ConstList = CutList<T, kList, true>;
+  List<Constraint, &ClusterCuts::constraints> constraints() { return List<Constraint, &ClusterCuts::constraints>(cuts); }
+  ConstList<Constraint, &ClusterCuts::constraints> constraints() const {
+    return ConstList<Constraint, &ClusterCuts::constraints>(cuts);
+  }
+  List<std::uint32_t, &ClusterCuts::touch_points> touch_points() {
+    return List<std::uint32_t, &ClusterCuts::touch_points>(cuts);
+  }
+  ConstList<std::uint32_t, &ClusterCuts::touch_points> touch_points() const {
+    return ConstList<std::uint32_t, &ClusterCuts::touch_points>(cuts);
+  }
+  List<Line, &ClusterCuts::lines> lines() { return List<Line, &ClusterCuts::lines>(cuts); }
+  ConstList<Line, &ClusterCuts::lines> lines() const { return ConstList<Line, &ClusterCuts::lines>(cuts); }
+  List<Piece, &ClusterCuts::pieces> pieces() { return List<Piece, &ClusterCuts::pieces>(cuts); }
+  ConstList<Piece, &ClusterCuts::pieces> pieces() const { return ConstList<Piece, &ClusterCuts::pieces>(cuts); }
 };
 
 // A point strictly inside a piece: the centroid of three of its vertices that do
@@ -271,41 +304,61 @@ struct RepPoint {
   std::array<std::uint32_t, 3> p;
 };
 
-// A triangle's use of an edge.
-struct HalfEdge {
-  std::uint64_t key;  // ordered(p, q)
-  std::uint32_t tri;
-  bool forward;  // the triangle runs p -> q with p < q
-};
-// Every edge of every triangle, sorted by edge, then triangle (points below n_points).
-std::vector<HalfEdge> sorted_half_edges(std::span<const Tri> tris, std::size_t n_points);
-
-// Sorts edge uses (anything with `key` = ordered(p, q), p and q below n_points), made
-// in the order of what uses them, by key and stably: counted by the key's smaller end,
-// then each vertex's few edges sorted in place.
-template <class Use>
-void sort_by_edge(std::vector<Use>& uses, std::size_t n_points) {
-  std::vector<std::uint32_t> start(n_points + 1, 0);
-  for (const Use& u : uses) ++start[(u.key >> 32) + 1];
-  for (std::size_t v = 0; v < n_points; ++v) start[v + 1] += start[v];
-  std::vector<Use> out(uses.size());
-  {
-    std::vector<std::uint32_t> at(start.begin(), start.end() - 1);
-    for (const Use& u : uses) out[at[u.key >> 32]++] = u;
-  }
-  const auto by_key = [](const Use& x, const Use& y) { return x.key < y.key; };
-  for (std::size_t v = 0; v < n_points; ++v) {
-    Use* b = out.data() + start[v];
-    Use* e = out.data() + start[v + 1];
-    if (e - b > 32) {
-      std::stable_sort(b, e, by_key);
-      continue;
+// Every edge of every triangle, grouped by edge: the uses of edge {p, q} (p < q) lie
+// in p's row, ordered by q, then by triangle. 8 bytes a use and 4 a point, made
+// without a second copy (counted into place), where a sorted list of 64-bit keys
+// took 16 a use and a copy to sort.
+class EdgeUseTable {
+ public:
+  struct Use {
+    std::uint32_t q;    // the edge's larger end
+    std::uint32_t bits;  // triangle << 1 | forward (the triangle runs p -> q)
+    std::uint32_t tri() const { return bits >> 1; }
+    bool forward() const { return (bits & 1) != 0; }
+  };
+  EdgeUseTable() = default;
+  // The edges of triangles (ids: triangles).
+  EdgeUseTable(std::span<const Tri> tris, std::size_t n_points);
+  // The edges each_edge(emit) gives by emit(p, q, id) (p != q, both below n_points;
+  // id below 2^31), in increasing id: called twice, to count and to fill.
+  template <class EachEdge>
+  EdgeUseTable(std::size_t n_points, EachEdge&& each_edge) : start_(n_points + 1, 0) {
+    each_edge([&](std::uint32_t p, std::uint32_t q, std::uint32_t) { ++start_[std::min(p, q) + 1]; });
+    for (std::size_t v = 0; v < n_points; ++v) start_[v + 1] += start_[v];
+    uses_.resize(start_[n_points]);
+    {
+      std::vector<std::uint32_t> at(start_.begin(), start_.end() - 1);
+      each_edge([&](std::uint32_t p, std::uint32_t q, std::uint32_t id) {
+        uses_[at[std::min(p, q)]++] = {std::max(p, q), id << 1 | (p < q ? 1u : 0u)};
+      });
     }
-    for (Use* x = b + 1; x < e; ++x)  // insertion sort, stable
-      for (Use* y = x; y > b && by_key(*y, *(y - 1)); --y) std::swap(*y, *(y - 1));
+    sort_rows();
   }
-  uses.swap(out);
-}
+
+  std::size_t size() const { return uses_.size(); }
+  // f(p, q, uses) for every edge, by p, then q.
+  template <class F>
+  void each_edge(F&& f) const {
+    for (std::uint32_t p = 0; p + 1 < start_.size(); ++p)
+      for (std::uint32_t i = start_[p], end = start_[p + 1]; i < end;) {
+        std::uint32_t j = i + 1;
+        while (j < end && uses_[j].q == uses_[i].q) ++j;
+        f(p, uses_[i].q, std::span<const Use>(uses_.data() + i, j - i));
+        i = j;
+      }
+  }
+  // The uses of edge {p, q} (either order); empty when no triangle has it.
+  std::span<const Use> uses(std::uint32_t p, std::uint32_t q) const;
+  void clear() {
+    std::vector<std::uint32_t>().swap(start_);
+    std::vector<Use>().swap(uses_);
+  }
+
+ private:
+  void sort_rows();  // each row by q, stably
+  std::vector<std::uint32_t> start_;  // by point: its row uses_[start_[p]] .. uses_[start_[p + 1]]
+  std::vector<Use> uses_;
+};
 
 // Which operands' triangles certainly form one closed surface embedded in space,
 // decided by exact predicates: closed and oriented, star-shaped from a point that
@@ -314,10 +367,10 @@ void sort_by_edge(std::vector<Use>& uses, std::size_t n_points) {
 // only in the corners and edges they share, and no pair of them need be tested.
 // `candidates`: by operand, whether to try (its faces all bound one cell on one side:
 // no sheet, wire or point). `joins` gets the certified operands' pairs of triangles
-// from different faces that share an edge and lie in one plane. `halves`: the
-// triangles' sorted half-edges.
+// from different faces that share an edge and lie in one plane. `edges`: the
+// triangles' edge uses.
 std::vector<char> embedded_operands(const std::vector<Vec3>& pos, std::span<const Tri> tris,
-                                    std::span<const HalfEdge> halves, const std::vector<char>& candidates,
+                                    const EdgeUseTable& edges, const std::vector<char>& candidates,
                                     int threads, std::vector<std::array<std::uint32_t, 2>>& joins);
 
 struct SplitScratch;  // split.cpp
@@ -326,12 +379,12 @@ class Arrangement {
  public:
   // embedded: by operand, whether its own triangles are known to meet only in the
   // corners and edges they share (embedded_operands), so that no pair of them is
-  // tested; plane_joins: pairs of those triangles that lie in one plane; halves:
-  // sorted_half_edges(tris).
+  // tested; plane_joins: pairs of those triangles that lie in one plane; edges: the
+  // triangles' edge uses.
   Arrangement(std::vector<Vec3> positions, std::vector<Tri> tris, std::vector<SoupFace> faces,
               LoopTable loops, std::uint32_t operands, std::vector<WireSeg> wires,
               std::vector<char> embedded, std::vector<std::array<std::uint32_t, 2>> plane_joins,
-              std::vector<HalfEdge> halves);
+              EdgeUseTable edges);
 
   // Stage 1: candidate pairs, exact tests, clusters and their constraints.
   // Stage 1 on `threads` threads (0: all); the same result at any count.
@@ -347,7 +400,7 @@ class Arrangement {
   void split_wires();
   // Frees what only stages 1 to 4 read (the pieces, the constraints, the triangles'
   // boxes and tree, the input faces' loops), before the result is built; with
-  // keep_tree, the triangles' boxes and tree and their half-edges stay (for
+  // keep_tree, the triangles' boxes and tree and their edge uses stay (for
   // classify_sites and only_operand_near).
   void release_pieces(bool keep_tree = false);
 
@@ -376,7 +429,7 @@ class Arrangement {
   std::uint32_t operands = 0;
   std::vector<char> embedded;  // by operand (constructor)
   std::vector<std::array<std::uint32_t, 2>> plane_joins;
-  std::vector<HalfEdge> halves;  // sorted_half_edges(tris)
+  EdgeUseTable edge_uses;  // of tris
   Bvh bvh;  // over the triangles' boxes (bvh.box(t))
   std::vector<std::uint32_t> cluster_of;  // by triangle
   // By cluster: the first cluster found to lie in the same plane (coplanar triangles
@@ -404,7 +457,7 @@ class Arrangement {
   // find_alone_vertices(), which the non-regularized output calls.
   std::vector<std::uint32_t> alone_in;
   void find_alone_vertices();
-  // Whether pq is an edge of a triangle (a binary search of the half-edges, which
+  // Whether pq is an edge of a triangle (a search of the edge uses, which
   // release_pieces keeps only with keep_tree).
   bool is_triangle_edge(std::uint32_t p, std::uint32_t q) const;
 

@@ -233,16 +233,37 @@ bool strictly_convex(const std::vector<Vec3>& pos, std::span<const std::uint32_t
 }  // namespace
 
 // arrangement.h.
-std::vector<HalfEdge> sorted_half_edges(std::span<const Tri> tris, std::size_t n_points) {
-  std::vector<HalfEdge> out;
-  out.reserve(3 * tris.size());
-  for (std::uint32_t i = 0; i < tris.size(); ++i)
-    for (int e = 0; e < 3; ++e) {
-      const std::uint32_t p = tris[i].v[e], q = tris[i].v[(e + 1) % 3];
-      out.push_back({(std::uint64_t{std::min(p, q)} << 32) | std::max(p, q), i, p < q});
+EdgeUseTable::EdgeUseTable(std::span<const Tri> tris, std::size_t n_points)
+    : EdgeUseTable(n_points, [&](auto&& emit) {
+        for (std::uint32_t i = 0; i < tris.size(); ++i)
+          for (int e = 0; e < 3; ++e) emit(tris[i].v[e], tris[i].v[(e + 1) % 3], i);
+      }) {}
+
+// Rows are short (a vertex's edges to larger ends): insertion sort, stable, but for
+// the few long ones.
+void EdgeUseTable::sort_rows() {
+  const auto by_q = [](const Use& x, const Use& y) { return x.q < y.q; };
+  for (std::size_t v = 0; v + 1 < start_.size(); ++v) {
+    Use* b = uses_.data() + start_[v];
+    Use* e = uses_.data() + start_[v + 1];
+    if (e - b > 32) {
+      std::stable_sort(b, e, by_q);
+      continue;
     }
-  sort_by_edge(out, n_points);
-  return out;
+    for (Use* x = b + 1; x < e; ++x)
+      for (Use* y = x; y > b && by_q(*y, *(y - 1)); --y) std::swap(*y, *(y - 1));
+  }
+}
+
+std::span<const EdgeUseTable::Use> EdgeUseTable::uses(std::uint32_t p, std::uint32_t q) const {
+  if (p > q) std::swap(p, q);
+  if (p + 1 >= start_.size()) return {};
+  const Use* b = uses_.data() + start_[p];
+  const Use* e = uses_.data() + start_[p + 1];
+  const Use* lo = std::lower_bound(b, e, q, [](const Use& u, std::uint32_t x) { return u.q < x; });
+  const Use* hi = lo;
+  while (hi < e && hi->q == q) ++hi;
+  return {lo, static_cast<std::size_t>(hi - lo)};
 }
 
 // arrangement.h. The argument, for one operand's triangles:
@@ -256,26 +277,18 @@ std::vector<HalfEdge> sorted_half_edges(std::span<const Tri> tris, std::size_t n
 // Covering the sphere once, the projection is one to one, so two triangles meet only
 // in the corners and edges they share: the surface is embedded (and star-shaped from o).
 std::vector<char> embedded_operands(const std::vector<Vec3>& pos, std::span<const Tri> tris,
-                                    std::span<const HalfEdge> halves, const std::vector<char>& candidates,
+                                    const EdgeUseTable& edges, const std::vector<char>& candidates,
                                     int threads, std::vector<std::array<std::uint32_t, 2>>& joins) {
   const std::size_t operands = candidates.size();
   std::vector<char> ok(candidates);
   // 1, for all operands at once: in each edge's uses, an operand's are one each way.
-  auto each_edge = [&](auto&& f) {
-    for (std::size_t i = 0; i < halves.size();) {
-      std::size_t j = i + 1;
-      while (j < halves.size() && halves[j].key == halves[i].key) ++j;
-      f(halves.subspan(i, j - i));
-      i = j;
-    }
-  };
-  each_edge([&](std::span<const HalfEdge> uses) {
-    for (const HalfEdge& x : uses) {
-      const std::uint32_t k = tris[x.tri].operand;
+  edges.each_edge([&](std::uint32_t, std::uint32_t, std::span<const EdgeUseTable::Use> uses) {
+    for (const EdgeUseTable::Use& x : uses) {
+      const std::uint32_t k = tris[x.tri()].operand;
       if (!ok[k]) continue;
       int forward = 0, backward = 0;
-      for (const HalfEdge& y : uses)
-        if (tris[y.tri].operand == k) (y.forward ? forward : backward) += 1;
+      for (const EdgeUseTable::Use& y : uses)
+        if (tris[y.tri()].operand == k) (y.forward() ? forward : backward) += 1;
       if (forward != 1 || backward != 1) ok[k] = 0;
     }
   });
@@ -309,16 +322,16 @@ std::vector<char> embedded_operands(const std::vector<Vec3>& pos, std::span<cons
   for (std::size_t k = 0; k < operands; ++k) ok[k] = ok[k] && star[k];
   // The certified operands' neighbours in one plane, from different faces (a planar
   // face's tiles are joined whole).
-  each_edge([&](std::span<const HalfEdge> uses) {
+  edges.each_edge([&](std::uint32_t, std::uint32_t, std::span<const EdgeUseTable::Use> uses) {
     for (std::size_t i = 0; i < uses.size(); ++i)
       for (std::size_t j = i + 1; j < uses.size(); ++j) {
-        const Tri& a = tris[uses[i].tri];
-        const Tri& b = tris[uses[j].tri];
+        const Tri& a = tris[uses[i].tri()];
+        const Tri& b = tris[uses[j].tri()];
         if (a.operand != b.operand || !ok[a.operand] || a.input_face == b.input_face) continue;
         std::uint32_t w = b.v[0];
         for (std::uint32_t v : b.v)
           if (v != a.v[0] && v != a.v[1] && v != a.v[2]) w = v;
-        if (orient3d(pos[a.v[0]], pos[a.v[1]], pos[a.v[2]], pos[w]) == 0) joins.push_back({uses[i].tri, uses[j].tri});
+        if (orient3d(pos[a.v[0]], pos[a.v[1]], pos[a.v[2]], pos[w]) == 0) joins.push_back({uses[i].tri(), uses[j].tri()});
       }
   });
   return ok;
@@ -443,12 +456,12 @@ Result<Arrangement> make_soup(std::span<const Model* const> operands, int thread
     }
   });
   // The operands whose own tiles need not be tested against each other.
-  std::vector<HalfEdge> halves = sorted_half_edges(tris, pos.size());
+  EdgeUseTable edges(tris, pos.size());
   std::vector<std::array<std::uint32_t, 2>> plane_joins;
-  std::vector<char> embedded = embedded_operands(pos, tris, halves, closed_only, threads, plane_joins);
+  std::vector<char> embedded = embedded_operands(pos, tris, edges, closed_only, threads, plane_joins);
   return Arrangement(std::move(pos), std::move(tris), std::move(faces), std::move(loops),
                      static_cast<std::uint32_t>(operands.size()), std::move(wires),
-                     std::move(embedded), std::move(plane_joins), std::move(halves));
+                     std::move(embedded), std::move(plane_joins), std::move(edges));
 }
 
 // ---------------------------------------------------------------- the rounding check

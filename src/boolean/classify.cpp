@@ -458,7 +458,7 @@ RepPoint rep_of(const Arrangement& a, std::uint32_t ci, const Piece& p) {
   for (std::size_t i = 0; i < n; ++i) {
     // Two sides on one line (a segment cut at a point of another's) go straight on.
     const std::uint32_t before = p.lines[(i + n - 1) % n], after = p.lines[i];
-    turn[i] = before == after || c.lines[before].key == c.lines[after].key
+    turn[i] = before == after || c.lines()[before].key == c.lines()[after].key
                   ? 0
                   : a.orient2(c, p.pts[(i + n - 1) % n], p.pts[i], p.pts[(i + 1) % n]);
     convex &= turn[i] >= 0;
@@ -511,12 +511,12 @@ bool covers(const Arrangement& a, std::uint32_t t, const RepPoint& r, const H3<F
 // vertices found on another triangle's edge: what the patches of untouched triangles
 // and the groups of pieces that share a ray both ask of an edge.
 struct EdgeUses {
-  const std::vector<HalfEdge>& halves;
+  const EdgeUseTable& edges;
   std::vector<char> on_other_edge;  // by input vertex
 };
 
 EdgeUses edge_uses(const Arrangement& a) {
-  EdgeUses u{a.halves, std::vector<char>(a.pos.size(), 0)};
+  EdgeUses u{a.edge_uses, std::vector<char>(a.pos.size(), 0)};
   for (auto [key, v] : a.edge_points)
     if (v < u.on_other_edge.size()) u.on_other_edge[v] = 1;  // implicit ones (wires) have keys
   return u;
@@ -559,8 +559,8 @@ struct AxisLineSegments {
         const double r = (err + (std::abs(x) + err) * 4 * kUnit) * 1.01;
         return std::array<double, 2>{x - r, x + r};
       };
-      for (std::uint32_t q = 0; q < c.constraints.size(); ++q) {
-        const auto ip = interval(c.constraints[q].p), iq = interval(c.constraints[q].q);
+      for (std::uint32_t q = 0; q < c.constraints().size(); ++q) {
+        const auto ip = interval(c.constraints()[q].p), iq = interval(c.constraints()[q].q);
         const double lo = std::max(ip[0], iq[0]), hi = std::min(ip[1], iq[1]);
         if (lo > hi) continue;
         near[d].push_back({lo, hi, q});
@@ -577,7 +577,7 @@ struct AxisLineSegments {
                                [](const Near& x, double v) { return x.lo < v; });
     for (; it != near[d].end() && it->lo <= m; ++it) {
       if (it->hi < m) continue;
-      const Constraint& s = c.constraints[it->q];
+      const Constraint& s = c.constraints()[it->q];
       if (a.coordinate_is(s.p, axis, m) && a.coordinate_is(s.q, axis, m)) return true;
     }
     return false;
@@ -595,25 +595,17 @@ std::vector<std::uint32_t> shared_rays(const Arrangement& a, const std::vector<s
     return c.touched && c.tris.size() == 1;
   };
   std::vector<std::uint64_t> good;  // edges across which groups may form
-  const std::vector<HalfEdge>& halves = uses.halves;
-  for (std::size_t i = 0; i < halves.size();) {
-    std::size_t j = i;
-    while (j < halves.size() && halves[j].key == halves[i].key) ++j;
-    if (j - i != 2) {
-      i = j;
-      continue;
-    }
-    const HalfEdge &x = halves[i], &y = halves[i + 1];
-    i = j;
-    if (!cut_alone(x.tri) || !cut_alone(y.tri) || x.forward == y.forward ||
-        a.tris[x.tri].operand != a.tris[y.tri].operand)
-      continue;
-    const std::uint32_t p = static_cast<std::uint32_t>(x.key >> 32), q = static_cast<std::uint32_t>(x.key);
-    if (uses.on_other_edge[p] || uses.on_other_edge[q] || a.is_contact_edge(p, q)) continue;
+  uses.edges.each_edge([&](std::uint32_t p, std::uint32_t q, std::span<const EdgeUseTable::Use> at) {
+    if (at.size() != 2) return;
+    const EdgeUseTable::Use &x = at[0], &y = at[1];
+    if (!cut_alone(x.tri()) || !cut_alone(y.tri()) || x.forward() == y.forward() ||
+        a.tris[x.tri()].operand != a.tris[y.tri()].operand)
+      return;
+    if (uses.on_other_edge[p] || uses.on_other_edge[q] || a.is_contact_edge(p, q)) return;
     const std::uint32_t key = a.find_edge_key(p, q);
-    if (key != kInvalidIndex && std::binary_search(keys_with_vertex.begin(), keys_with_vertex.end(), key)) continue;
-    good.push_back(x.key);
-  }
+    if (key != kInvalidIndex && std::binary_search(keys_with_vertex.begin(), keys_with_vertex.end(), key)) return;
+    good.push_back(ordered(p, q));
+  });
   // The pieces' sides along those edges: (edge, the side's two points, job).
   struct Side {
     std::uint64_t edge, part;
@@ -623,9 +615,9 @@ std::vector<std::uint32_t> shared_rays(const Arrangement& a, const std::vector<s
   for (std::uint32_t k = 0; k < jobs.size(); ++k) {
     const Cluster& c = a.clusters[jobs[k][0]];
     if (c.tris.size() != 1) continue;
-    const Piece& piece = c.pieces[jobs[k][1]];
+    const Piece& piece = c.pieces()[jobs[k][1]];
     for (std::size_t e = 0; e < piece.pts.size(); ++e) {
-      const Line& l = c.lines[piece.lines[e]];
+      const Line& l = c.lines()[piece.lines[e]];
       if (l.kind != LineKind::kThrough) continue;
       const std::uint64_t edge = ordered(l.a, l.b);
       if (!std::binary_search(good.begin(), good.end(), edge)) continue;
@@ -660,13 +652,13 @@ std::vector<std::uint32_t> shared_rays(const Arrangement& a, const std::vector<s
       const std::uint32_t ci = jobs[k][0];
       const Cluster& c = a.clusters[ci];
       if (k == 0 || jobs[k - 1][0] != ci) {
-        free.assign(c.lines.size(), -1);
+        free.assign(c.lines().size(), -1);
         along.clear();
       }
-      const Piece& piece = c.pieces[jobs[k][1]];
+      const Piece& piece = c.pieces()[jobs[k][1]];
       for (std::size_t e = 0; e < piece.pts.size(); ++e) {
         const std::uint32_t li = piece.lines[e];
-        const Line& l = c.lines[li];
+        const Line& l = c.lines()[li];
         if (l.kind != LineKind::kAxisU && l.kind != LineKind::kAxisV) continue;
         if (free[li] < 0) {
           if (!along.made) along.make(a, c);
@@ -764,7 +756,7 @@ Selection classify_and_select(const Arrangement& a, const Expr& expr, const Opti
     const Cluster& c = a.clusters[ci];
     if (!c.touched) continue;
     report.touched_triangles += c.tris.size();
-    for (std::uint32_t pi = 0; pi < c.pieces.size(); ++pi) jobs.push_back({ci, pi});
+    for (std::uint32_t pi = 0; pi < c.pieces().size(); ++pi) jobs.push_back({ci, pi});
   }
   const EdgeUses uses = edge_uses(a);
   const std::vector<std::uint32_t> ray_of = shared_rays(a, jobs, uses);
@@ -788,9 +780,9 @@ Selection classify_and_select(const Arrangement& a, const Expr& expr, const Opti
       source = c.tris[0];
       on.push_back(a.tris[source].operand);
       if (ray_of[k] != k) return std::optional<RepPoint>();  // its group's ray decides
-      return std::optional<RepPoint>(rep_of(a, ci, c.pieces[pi]));
+      return std::optional<RepPoint>(rep_of(a, ci, c.pieces()[pi]));
     }
-    const RepPoint r = rep_of(a, ci, c.pieces[pi]);
+    const RepPoint r = rep_of(a, ci, c.pieces()[pi]);
     int source_sign = 0;
     std::vector<std::uint32_t> candidates;  // indices into c.tris, in order
     if (cluster_tree[ci]) {
@@ -840,7 +832,7 @@ Selection classify_and_select(const Arrangement& a, const Expr& expr, const Opti
     ++report.pieces;
     if (v.keep == 0) continue;
     const Cluster& c = a.clusters[jobs[k][0]];
-    const Piece& p = c.pieces[jobs[k][1]];
+    const Piece& p = c.pieces()[jobs[k][1]];
     OutPoly poly;
     poly.cluster = jobs[k][0];
     poly.normal_sign = v.keep;
@@ -848,7 +840,7 @@ Selection classify_and_select(const Arrangement& a, const Expr& expr, const Opti
     poly.kind = v.kind;
     poly.mark = v.mark;
     std::vector<std::uint32_t> pts = p.pts, keys(p.lines.size());
-    for (std::size_t i = 0; i < p.lines.size(); ++i) keys[i] = c.lines[p.lines[i]].key;
+    for (std::size_t i = 0; i < p.lines.size(); ++i) keys[i] = c.lines()[p.lines[i]].key;
     if (c.nk_sign * v.keep < 0) reverse_loop(pts, keys);
     poly.loops.push_back(std::move(pts));
     poly.keys.push_back(std::move(keys));
@@ -856,27 +848,21 @@ Selection classify_and_select(const Arrangement& a, const Expr& expr, const Opti
   }
 
   // Untouched triangles, a patch at a time.
-  const std::vector<HalfEdge>& halves = uses.halves;
   const std::vector<char>& on_other_edge = uses.on_other_edge;
   UnionFind patches(a.tris.size());
   auto untouched = [&](std::uint32_t t) { return !a.clusters[a.cluster_of[t]].touched; };
-  for (std::size_t i = 0; i < halves.size();) {
-    std::size_t j = i;
-    while (j < halves.size() && halves[j].key == halves[i].key) ++j;
-    if (j - i == 2) {
-      const HalfEdge &x = halves[i], &y = halves[i + 1];
-      // Not across an edge that another solid touches at a point inside it, nor at an
-      // end that lies on another's edge (the other's edge may run along this one, its
-      // faces passing between the two triangles).
-      const std::uint32_t p = static_cast<std::uint32_t>(x.key >> 32), q = static_cast<std::uint32_t>(x.key);
-      if (untouched(x.tri) && untouched(y.tri) && x.forward != y.forward &&
-          a.tris[x.tri].operand == a.tris[y.tri].operand && a.find_edge_key(p, q) == kInvalidIndex &&
-          !on_other_edge[p] && !on_other_edge[q] && !a.is_contact_edge(p, q)) {
-        patches.unite(x.tri, y.tri);
-      }
+  uses.edges.each_edge([&](std::uint32_t p, std::uint32_t q, std::span<const EdgeUseTable::Use> at) {
+    if (at.size() != 2) return;
+    const EdgeUseTable::Use &x = at[0], &y = at[1];
+    // Not across an edge that another solid touches at a point inside it, nor at an
+    // end that lies on another's edge (the other's edge may run along this one, its
+    // faces passing between the two triangles).
+    if (untouched(x.tri()) && untouched(y.tri()) && x.forward() != y.forward() &&
+        a.tris[x.tri()].operand == a.tris[y.tri()].operand && a.find_edge_key(p, q) == kInvalidIndex &&
+        !on_other_edge[p] && !on_other_edge[q] && !a.is_contact_edge(p, q)) {
+      patches.unite(x.tri(), y.tri());
     }
-    i = j;
-  }
+  });
   // One ray per patch, from its root triangle.
   std::vector<std::uint32_t> roots;
   std::vector<char> is_root(a.tris.size(), 0);
@@ -975,10 +961,10 @@ Selection classify_and_select(const Arrangement& a, const Expr& expr, const Opti
     for (std::size_t k = 0; k < jobs.size(); ++k) {
       if (pieces[k].source == kInvalidIndex || pieces[k].keep != 0) continue;
       const Cluster& c = a.clusters[jobs[k][0]];
-      const Piece& p = c.pieces[jobs[k][1]];
+      const Piece& p = c.pieces()[jobs[k][1]];
       for (std::size_t i = 0; i < p.pts.size(); ++i)
         selection.sides.push_back(
-            {p.pts[i], p.pts[(i + 1) % p.pts.size()], c.lines[p.lines[i]].key, pieces[k].settled});
+            {p.pts[i], p.pts[(i + 1) % p.pts.size()], c.lines()[p.lines[i]].key, pieces[k].settled});
     }
     for (std::uint32_t t = 0; t < a.tris.size(); ++t) {
       if (!untouched(t) || tri_keep[t] != 0) continue;

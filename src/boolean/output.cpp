@@ -155,7 +155,7 @@ LineClasses line_classes(Arrangement& a, const std::vector<std::uint32_t>& canon
   std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;  // (root key, point)
   std::vector<std::uint32_t> on_line;
   for (const Cluster& c : a.clusters)
-    for (const Line& l : c.lines) {
+    for (const Line& l : c.lines()) {
       // A line records a point once per piece it met there: each point once here.
       on_line.clear();
       for (std::uint32_t p : l.points) on_line.push_back(canon[p]);
@@ -758,19 +758,29 @@ std::vector<OutPoly> merge_greedily(
   return out;
 }
 
-// The vertices that merging would leave inside a face (`swallowed`, by region) whose
-// own points are in the set while the face's are not, or the other way round.
-std::unordered_set<std::uint32_t> pinned_vertices(
-    const Arrangement& a, const Expr& expr, const std::vector<OutPoly>& polys,
-    const std::vector<std::vector<std::uint32_t>>& swallowed, int threads) {
+// A region of faces on one plane, joined across edges, that may merge into one face:
+// its faces (the first the smallest), its boundary, and the vertices that merging would
+// leave inside it (kInvalidIndex: a reason to keep the faces apart).
+struct MergeRegion {
+  std::uint32_t root;
+  std::vector<const OutPoly*> members;
+  std::vector<std::vector<std::uint32_t>> outline;
+  std::vector<std::uint32_t> swallowed;
+};
+
+// The vertices that merging would leave inside a face whose own points are in the set
+// while the face's are not, or the other way round.
+std::unordered_set<std::uint32_t> pinned_vertices(const Arrangement& a, const Expr& expr,
+                                                  const std::vector<OutPoly>& polys,
+                                                  const std::vector<MergeRegion>& regions, int threads) {
   std::vector<std::array<std::uint32_t, 2>> sites;
   std::vector<bool> face_mark;
   // A vertex near one operand's elements alone lies on its face and has its verdict.
-  for (std::uint32_t f = 0; f < swallowed.size(); ++f)
-    for (std::uint32_t v : swallowed[f])
+  for (const MergeRegion& r : regions)
+    for (std::uint32_t v : r.swallowed)
       if (v != kInvalidIndex && !only_operand_near(a, kAnyOperand, v, v)) {
         sites.push_back({v, v});
-        face_mark.push_back(polys[f].mark);
+        face_mark.push_back(polys[r.root].mark);
       }
   const std::vector<SiteVerdict> v = classify_sites(a, expr, sites, threads);
   std::unordered_set<std::uint32_t> out;
@@ -806,7 +816,7 @@ Result<BooleanResult> build_result(Arrangement& a, Selection selection, const Ex
     used.push_back(w.q);
   }
   for (const Cluster& c : a.clusters)
-    for (const Line& l : c.lines) used.insert(used.end(), l.points.begin(), l.points.end());
+    for (const Line& l : c.lines()) used.insert(used.end(), l.points.begin(), l.points.end());
   for (auto [key, p] : a.edge_points) used.push_back(p);
   std::sort(used.begin(), used.end());
   used.erase(std::unique(used.begin(), used.end()), used.end());
@@ -835,7 +845,7 @@ Result<BooleanResult> build_result(Arrangement& a, Selection selection, const Ex
 
   // 2. No T-junctions.
   const LineClasses lc = line_classes(a, canon);
-  for (OutPoly& p : polys)
+  for (OutPoly& p : polys) {
     for (std::size_t l = 0; l < p.loops.size(); ++l) {
       const auto& loop = p.loops[l];
       if (std::all_of(p.keys[l].begin(), p.keys[l].end(), [](std::uint32_t k) { return k == kInvalidIndex; }))
@@ -848,6 +858,8 @@ Result<BooleanResult> build_result(Arrangement& a, Selection selection, const Ex
       }
       p.loops[l] = std::move(out);
     }
+    std::vector<std::vector<std::uint32_t>>().swap(p.keys);  // read no more
+  }
 
   // 2b. Non-regularized: the edges and points of the arrangement that are in the set
   // while no face holds them and the points around them are not: wires and points.
@@ -858,37 +870,27 @@ Result<BooleanResult> build_result(Arrangement& a, Selection selection, const Ex
   }
 
   // 3. Merge coplanar neighbours.
-  struct Use {
-    std::uint64_t key;
-    std::uint32_t poly;
-    bool forward;
-  };
   // Every edge use of the faces' loops (OutPolys, or MeshFaces: anything with loops),
-  // sorted by edge, then face.
-  auto edge_uses = [](const auto& ps) {
-    std::vector<Use> uses;
-    std::uint32_t top = 0;
-    for (std::uint32_t f = 0; f < ps.size(); ++f)
-      for (const auto& loop : ps[f].loops)
-        for (std::size_t i = 0; i < loop.size(); ++i) {
-          const std::uint32_t p = loop[i], q = loop[(i + 1) % loop.size()];
-          uses.push_back({ordered(p, q), f, p < q});
-          top = std::max(top, p);
-        }
-    sort_by_edge(uses, std::size_t{top} + 1);
-    return uses;
+  // by edge, then face.
+  auto edge_uses = [](const auto& ps, std::size_t n_points) {
+    return EdgeUseTable(n_points, [&](auto&& emit) {
+      for (std::uint32_t f = 0; f < ps.size(); ++f)
+        for (const auto& loop : ps[f].loops)
+          for (std::size_t i = 0; i < loop.size(); ++i) emit(loop[i], loop[(i + 1) % loop.size()], f);
+    });
   };
   {
-    const std::vector<Use> uses = edge_uses(polys);
-    std::vector<std::size_t> joins;  // into uses: the first of two faces that may merge
-    for (std::size_t i = 0; i < uses.size();) {
-      std::size_t j = i;
-      while (j < uses.size() && uses[j].key == uses[i].key) ++j;
-      if (j - i == 2 && uses[i].poly != uses[i + 1].poly && uses[i].forward != uses[i + 1].forward &&
-          same_plane(a, polys[uses[i].poly], polys[uses[i + 1].poly]))
-        joins.push_back(i);
-      i = j;
-    }
+    struct Join {  // an edge of two faces that may merge
+      std::uint64_t key;
+      std::uint32_t f, g;
+    };
+    std::vector<Join> joins;
+    edge_uses(polys, a.pos.size() + a.points.size())
+        .each_edge([&](std::uint32_t p, std::uint32_t q, std::span<const EdgeUseTable::Use> at) {
+          if (at.size() == 2 && at[0].tri() != at[1].tri() && at[0].forward() != at[1].forward() &&
+              same_plane(a, polys[at[0].tri()], polys[at[1].tri()]))
+            joins.push_back({ordered(p, q), at[0].tri(), at[1].tri()});
+        });
     // Non-regularized: not across an edge whose verdict differs from the faces' (a cut
     // in a face of the set: a wire of the subtrahend lying on it).
     std::vector<char> joined(joins.size(), 1);
@@ -897,7 +899,7 @@ Result<BooleanResult> build_result(Arrangement& a, Selection selection, const Ex
       std::vector<std::array<std::uint32_t, 2>> sites;
       std::vector<std::size_t> asked;
       for (std::size_t k = 0; k < joins.size(); ++k) {
-        const std::uint64_t key = uses[joins[k]].key;
+        const std::uint64_t key = joins[k].key;
         const auto p = static_cast<std::uint32_t>(key >> 32), q = static_cast<std::uint32_t>(key);
         if (only_operand_near(a, kAnyOperand, p, q)) continue;
         sites.push_back({p, q});
@@ -905,21 +907,35 @@ Result<BooleanResult> build_result(Arrangement& a, Selection selection, const Ex
       }
       const std::vector<SiteVerdict> v = classify_sites(a, expr, sites, threads);
       for (std::size_t i = 0; i < asked.size(); ++i)
-        joined[asked[i]] = v[i].in == polys[uses[joins[asked[i]]].poly].mark;
+        joined[asked[i]] = v[i].in == polys[joins[asked[i]].f].mark;
     }
     UnionFind regions(polys.size());
     std::unordered_set<std::uint64_t> cuts;
     for (std::size_t k = 0; k < joins.size(); ++k) {
-      if (joined[k]) regions.unite(uses[joins[k]].poly, uses[joins[k] + 1].poly);
-      if (!joined[k]) cuts.insert(uses[joins[k]].key);
+      if (joined[k]) regions.unite(joins[k].f, joins[k].g);
+      if (!joined[k]) cuts.insert(joins[k].key);
     }
-    std::vector<std::vector<const OutPoly*>> members(polys.size());
-    for (std::uint32_t f = 0; f < polys.size(); ++f) members[regions.find(f)].push_back(&polys[f]);
+    // The regions of several faces, in the order of their roots (a region of one face
+    // stays as it is: no lists made for it).
+    std::vector<std::uint32_t> root_of(polys.size()), region_of(polys.size(), 0);
+    for (std::uint32_t f = 0; f < polys.size(); ++f) ++region_of[root_of[f] = regions.find(f)];
+    std::vector<MergeRegion> multi;
+    for (std::uint32_t r = 0; r < polys.size(); ++r) {
+      const std::uint32_t size = region_of[r];
+      region_of[r] = kInvalidIndex;
+      if (size < 2) continue;
+      region_of[r] = static_cast<std::uint32_t>(multi.size());
+      multi.push_back({r, {}, {}, {}});
+      multi.back().members.reserve(size);
+    }
+    auto region = [&](std::uint32_t f) { return region_of[root_of[f]]; };  // kInvalidIndex: alone
+    for (std::uint32_t f = 0; f < polys.size(); ++f)
+      if (region(f) != kInvalidIndex) multi[region(f)].members.push_back(&polys[f]);
     // Faces using each vertex of a region of several faces: a merge may not swallow a
     // vertex another face needs.
     std::vector<char> in_region(a.pos.size() + a.points.size(), 0);
     for (std::uint32_t f = 0; f < polys.size(); ++f)
-      if (members[regions.find(f)].size() > 1)
+      if (region(f) != kInvalidIndex)
         for (const auto& loop : polys[f].loops)
           for (std::uint32_t v : loop) in_region[v] = 1;
     std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> users;
@@ -928,55 +944,49 @@ Result<BooleanResult> build_result(Arrangement& a, Selection selection, const Ex
         for (std::uint32_t v : loop)
           if (in_region[v]) users[v].push_back(f);
     // The boundary of each region of several faces, and the vertices it leaves inside.
-    std::vector<std::vector<std::vector<std::uint32_t>>> outline(polys.size());
-    std::vector<std::vector<std::uint32_t>> swallowed(polys.size());
-    for (std::uint32_t f = 0; f < polys.size(); ++f) {
-      if (members[f].size() < 2) continue;
-      outline[f] = boundary(a, members[f]);
+    for (MergeRegion& r : multi) {
+      r.outline = boundary(a, r.members);
       std::vector<std::uint32_t> seen;
-      for (const auto& loop : outline[f]) seen.insert(seen.end(), loop.begin(), loop.end());
+      for (const auto& loop : r.outline) seen.insert(seen.end(), loop.begin(), loop.end());
       std::sort(seen.begin(), seen.end());
-      for (const OutPoly* q : members[f])
+      for (const OutPoly* q : r.members)
         for (const auto& loop : q->loops)
           for (std::uint32_t v : loop)
-            if (!std::binary_search(seen.begin(), seen.end(), v)) swallowed[f].push_back(v);
-      if (std::adjacent_find(seen.begin(), seen.end()) != seen.end())
-        swallowed[f].push_back(kInvalidIndex);
+            if (!std::binary_search(seen.begin(), seen.end(), v)) r.swallowed.push_back(v);
+      if (std::adjacent_find(seen.begin(), seen.end()) != seen.end()) r.swallowed.push_back(kInvalidIndex);
     }
     // A cut between two faces that merge by other edges is kept by merging greedily.
-    for (std::size_t k = 0; k < joins.size(); ++k) {
-      const std::uint32_t f = regions.find(uses[joins[k]].poly);
-      if (!joined[k] && f == regions.find(uses[joins[k] + 1].poly))
-        swallowed[f].push_back(kInvalidIndex);
-    }
+    for (std::size_t k = 0; k < joins.size(); ++k)
+      if (!joined[k] && root_of[joins[k].f] == root_of[joins[k].g])
+        multi[region(joins[k].f)].swallowed.push_back(kInvalidIndex);
     // Non-regularized: a vertex whose verdict differs from its faces' (a closed
     // operand's corner touching a face of the set from outside it) stays a vertex.
     const std::unordered_set<std::uint32_t> pinned =
-        options.keep_lower_dim ? pinned_vertices(a, expr, polys, swallowed, threads)
+        options.keep_lower_dim ? pinned_vertices(a, expr, polys, multi, threads)
                                : std::unordered_set<std::uint32_t>{};
     std::vector<OutPoly> merged;
+    merged.reserve(polys.size());  // no more: a region gives at most its faces
     for (std::uint32_t f = 0; f < polys.size(); ++f) {
-      if (members[f].empty()) continue;
-      OutPoly& first = polys[static_cast<std::size_t>(members[f][0] - polys.data())];
-      if (members[f].size() == 1) {  // no other region reads it: moved
-        merged.push_back(std::move(first));
+      if (root_of[f] != f) continue;
+      if (region_of[f] == kInvalidIndex) {  // no other region reads it: moved
+        merged.push_back(std::move(polys[f]));
         continue;
       }
+      MergeRegion& r = multi[region_of[f]];
       // A boundary through a vertex twice (two holes touching at a corner), or a merge
       // that would leave inside the face a vertex other faces use (a corner touching
       // it) or a pinned one, is left as the pieces it came from.
       bool keep_apart = false;
-      for (std::uint32_t v : swallowed[f]) {
+      for (std::uint32_t v : r.swallowed) {
         keep_apart |= v == kInvalidIndex || pinned.count(v);
         if (keep_apart) break;
-        for (std::uint32_t u : users[v]) keep_apart |= regions.find(u) != f;
+        for (std::uint32_t u : users[v]) keep_apart |= root_of[u] != f;
       }
       if (keep_apart) {
-        for (OutPoly& q : merge_greedily(a, members[f], polys, users, pinned, cuts))
-          merged.push_back(std::move(q));
-      } else if (!outline[f].empty()) {
-        OutPoly m = std::move(first);
-        m.loops = std::move(outline[f]);
+        for (OutPoly& q : merge_greedily(a, r.members, polys, users, pinned, cuts)) merged.push_back(std::move(q));
+      } else if (!r.outline.empty()) {
+        OutPoly m = std::move(polys[static_cast<std::size_t>(r.members[0] - polys.data())]);
+        m.loops = std::move(r.outline);
         m.keys.clear();
         merged.push_back(std::move(m));
       }
@@ -987,6 +997,10 @@ Result<BooleanResult> build_result(Arrangement& a, Selection selection, const Ex
   // Collinear edges at a vertex of two neighbours merge.
   {
     std::vector<std::pair<std::uint32_t, std::uint32_t>> nb;
+    std::size_t sides = 0;
+    for (const OutPoly& p : polys)
+      for (const auto& loop : p.loops) sides += loop.size();
+    nb.reserve(2 * sides);  // not grown by doubling: the biggest list of this stage
     for (const OutPoly& p : polys)
       for (const auto& loop : p.loops)
         for (std::size_t i = 0; i < loop.size(); ++i) {
@@ -1075,14 +1089,11 @@ Result<BooleanResult> build_result(Arrangement& a, Selection selection, const Ex
   // cell, each of negative volume a cavity of the innermost cell around it, by the
   // exact nesting of the shells (geom/winding.h) on their rounded triangles.
   auto assign_shell_cells = [&](MeshInput& in, const std::vector<OutPoly>& polys, int) {
-    const std::vector<Use> uses = edge_uses(in.faces);
     UnionFind shells(polys.size());
-    for (std::size_t i = 0; i < uses.size();) {
-      std::size_t j = i;
-      while (j < uses.size() && uses[j].key == uses[i].key) ++j;
-      if (j - i == 2) shells.unite(uses[i].poly, uses[i + 1].poly);
-      i = j;
-    }
+    edge_uses(in.faces, in.positions.size())
+        .each_edge([&](std::uint32_t, std::uint32_t, std::span<const EdgeUseTable::Use> at) {
+          if (at.size() == 2) shells.unite(at[0].tri(), at[1].tri());
+        });
     std::vector<double> volume(polys.size(), 0);
     for (std::uint32_t f = 0; f < polys.size(); ++f) {
       const std::uint32_t s = shells.find(f);
@@ -1255,7 +1266,7 @@ Result<BooleanResult> build_result(Arrangement& a, Selection selection, const Ex
       report.excluded += !result.vertex_in[v.value];
     }
   }
-  std::vector<FaceSource> by_id;
+  std::vector<FaceSource> by_id(result.model.face_slots());
   for (std::uint32_t f = 0; f < polys.size(); ++f) {
     const OutPoly& p = polys[f];
     const Tri& t = a.tris[p.tri];
@@ -1266,9 +1277,7 @@ Result<BooleanResult> build_result(Arrangement& a, Selection selection, const Ex
     s.face = t.face;
     s.reversed = (p.normal_sign * a.tri_sign(c, p.tri) < 0) != a.faces[t.input_face].flipped;
     s.plane = {a.pos[ref.v[0]], a.pos[ref.v[1]], a.pos[ref.v[2]]};
-    const FaceId id = built->faces[f];
-    if (by_id.size() <= id.value) by_id.resize(id.value + 1);
-    by_id[id.value] = s;
+    by_id[built->faces[f].value] = s;
   }
   result.sources = std::move(by_id);
   result.rounded.assign(result.model.num_vertices(), false);

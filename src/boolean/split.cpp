@@ -162,8 +162,8 @@ bool Arrangement::split_cluster_graph(std::uint32_t ci, SplitScratch& scratch) {
     if (fresh) it->second = crossing_point(ci, std::min(l1, l2), std::max(l1, l2));
     return it->second;
   };
-  auto side_of = [&](std::uint32_t li, std::uint32_t p) { return side(c, c.lines[li], p); };
-  auto along_of = [&](std::uint32_t li, std::uint32_t p, std::uint32_t q) { return along(c, c.lines[li], p, q); };
+  auto side_of = [&](std::uint32_t li, std::uint32_t p) { return side(c, c.lines()[li], p); };
+  auto along_of = [&](std::uint32_t li, std::uint32_t p, std::uint32_t q) { return along(c, c.lines()[li], p, q); };
   // A point's place along line li (increasing along its direction), within +-e: the
   // doubles, computed once a point; places whose intervals part order their points
   // as along_of does.
@@ -171,7 +171,7 @@ bool Arrangement::split_cluster_graph(std::uint32_t ci, SplitScratch& scratch) {
     auto [it, fresh] = scratch.approx.try_emplace(p);
     SplitScratch::Approx& a = it->second;
     if (fresh) approx2(c, p, a.u, a.v, a.e);
-    const Line& l = c.lines[li];
+    const Line& l = c.lines()[li];
     return l.sign_b != 0 ? std::pair{l.sign_b * a.u, a.e} : std::pair{-l.sign_a * a.v, a.e};
   };
   // along_of, the doubles first.
@@ -184,7 +184,7 @@ bool Arrangement::split_cluster_graph(std::uint32_t ci, SplitScratch& scratch) {
     return along_of(li, p, q);
   };
   // Sign of A_m B_l - B_m A_l: how line m's side function changes along l's direction.
-  auto turn_of = [&](std::uint32_t l, std::uint32_t m) { return turn(c, c.lines[l], c.lines[m]); };
+  auto turn_of = [&](std::uint32_t l, std::uint32_t m) { return turn(c, c.lines()[l], c.lines()[m]); };
 
   // ---- the segments
   using Segment = SplitScratch::Segment;
@@ -200,7 +200,7 @@ bool Arrangement::split_cluster_graph(std::uint32_t ci, SplitScratch& scratch) {
   // point only (an end on t's side, the rest outside) leaves that point, where the
   // surfaces touch, to be made a vertex as the touching points are.
   auto& touching = scratch.touching;  // point, a line through it
-  for (std::uint32_t v : c.touch_points) touching.push_back({v, kInvalidIndex});
+  for (std::uint32_t v : c.touch_points()) touching.push_back({v, kInvalidIndex});
   using TriSides = SplitScratch::TriSides;
   auto& tri_sides = scratch.tri_sides;  // by triangle, made once
   auto clip = [&](std::uint32_t line, std::uint32_t p, std::uint32_t q, std::uint32_t t) {
@@ -254,7 +254,7 @@ bool Arrangement::split_cluster_graph(std::uint32_t ci, SplitScratch& scratch) {
     segments.push_back({line, in_p, in_q});
   };
   auto& traces = scratch.traces;  // other plane -> line
-  for (const Constraint& k2 : c.constraints) {
+  for (const Constraint& k2 : c.constraints()) {
     if (k2.p == k2.q) continue;
     // An edge of the other triangle lying in this plane: the line through its ends.
     if (k2.p < pos.size() && k2.q < pos.size()) {
@@ -320,7 +320,7 @@ bool Arrangement::split_cluster_graph(std::uint32_t ci, SplitScratch& scratch) {
     }
     const int a = side_of(s.line, t.p), b = side_of(s.line, t.q);
     if (a == 0 && b == 0) {  // one line under two names
-      line_union(c.lines[s.line].key, c.lines[t.line].key);
+      line_union(c.lines()[s.line].key, c.lines()[t.line].key);
       ends_within(s, si, t);
       ends_within(t, ti, s);
       return;
@@ -469,7 +469,7 @@ bool Arrangement::split_cluster_graph(std::uint32_t ci, SplitScratch& scratch) {
   };
   auto ray = [&](std::uint32_t o, std::uint32_t l, int dir) {
     reindex();
-    const Line& L = c.lines[l];
+    const Line& L = c.lines()[l];
     double ou, ov, oe;
     approx2(c, vid[o], ou, ov, oe);
     double du = dir * L.B.v, dv = -dir * L.A.v;
@@ -611,7 +611,7 @@ bool Arrangement::split_cluster_graph(std::uint32_t ci, SplitScratch& scratch) {
     std::uint32_t l = through_v;
     if (l == kInvalidIndex) {  // an input vertex: the axis line u = its u
       l = add_line(c, Line::make(LineKind::kAxisU, 0, 0, pos[v][iu]));
-      c.lines[l].key = fresh_key();
+      c.lines()[l].key = fresh_key();
     }
     const std::uint32_t x = vertex(v);
     if (!ray(x, l, 1) || !ray(x, l, -1)) return false;
@@ -811,7 +811,7 @@ bool Arrangement::split_cluster_graph(std::uint32_t ci, SplitScratch& scratch) {
   for (std::size_t i = 0; i < on_line.size();) {
     std::size_t j = i;
     while (j < on_line.size() && on_line[j].first == on_line[i].first) ++j;
-    std::vector<std::uint32_t>& points = c.lines[on_line[i].first].points;
+    std::vector<std::uint32_t>& points = c.lines()[on_line[i].first].points;
     points.reserve(points.size() + (j - i));
     for (; i < j; ++i) points.push_back(on_line[i].second);
   }
@@ -820,7 +820,7 @@ bool Arrangement::split_cluster_graph(std::uint32_t ci, SplitScratch& scratch) {
     p.pts.assign(face_pts.begin() + face_begin[f], face_pts.begin() + face_begin[f + 1]);
     p.lines.assign(face_lines.begin() + face_begin[f], face_lines.begin() + face_begin[f + 1]);
     piece_box(c, p);
-    c.pieces.push_back(std::move(p));
+    c.pieces().push_back(std::move(p));
   }
   return true;
 }

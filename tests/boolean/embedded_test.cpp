@@ -48,7 +48,7 @@ Tiles tiles_of(const Model& m) {
 
 bool embedded(const Tiles& t) {
   std::vector<std::array<std::uint32_t, 2>> joins;
-  return embedded_operands(t.pos, t.tris, sorted_half_edges(t.tris, t.pos.size()), {1}, 1, joins)[0];
+  return embedded_operands(t.pos, t.tris, EdgeUseTable(t.tris, t.pos.size()), {1}, 1, joins)[0];
 }
 
 Tiles from(std::vector<Vec3> pos, std::vector<std::array<std::uint32_t, 3>> tris) {
@@ -75,7 +75,7 @@ TEST(EmbeddedSurface, CoplanarNeighboursFromDifferentFacesAreJoined) {
   for (int side = 0; side < 6; ++side) t.tris[2 * side + 1].input_face = t.tris[2 * side].input_face;
   t.tris[3].input_face = 99;  // the top's second triangle: a face of its own
   std::vector<std::array<std::uint32_t, 2>> joins;
-  ASSERT_TRUE(embedded_operands(t.pos, t.tris, sorted_half_edges(t.tris, t.pos.size()), {1}, 1, joins)[0]);
+  ASSERT_TRUE(embedded_operands(t.pos, t.tris, EdgeUseTable(t.tris, t.pos.size()), {1}, 1, joins)[0]);
   ASSERT_EQ(joins.size(), 1u);
   EXPECT_EQ(std::min(joins[0][0], joins[0][1]), 2u);
   EXPECT_EQ(std::max(joins[0][0], joins[0][1]), 3u);
@@ -110,27 +110,44 @@ TEST(EmbeddedSurface, EachOperandIsJudgedOnItsOwnTriangles) {
   add(b, {0, 5, 0}, 3);
   std::vector<std::array<std::uint32_t, 2>> joins;
   const std::vector<char> ok =
-      embedded_operands(all.pos, all.tris, sorted_half_edges(all.tris, all.pos.size()), {1, 1, 1, 0}, 2, joins);
+      embedded_operands(all.pos, all.tris, EdgeUseTable(all.tris, all.pos.size()), {1, 1, 1, 0}, 2, joins);
   EXPECT_EQ(ok, (std::vector<char>{1, 1, 0, 0}));
   EXPECT_TRUE(joins.empty());  // a cube's faces' tiles are joined as faces, not here
 }
 
-TEST(EmbeddedSurface, HalfEdgesAreSortedByEdgeThenTriangle) {
+TEST(EmbeddedSurface, EdgeUsesAreGroupedByEdgeThenTriangle) {
   const Model s = testing::sphere_model(3, 20);
   const Tiles t = tiles_of(s);
-  const std::vector<HalfEdge> h = sorted_half_edges(t.tris, t.pos.size());
-  ASSERT_EQ(h.size(), 3 * t.tris.size());
-  for (std::size_t i = 1; i < h.size(); ++i)
-    EXPECT_TRUE(h[i - 1].key < h[i].key || (h[i - 1].key == h[i].key && h[i - 1].tri < h[i].tri)) << i;
-  for (const HalfEdge& x : h) {
-    const Tri& tri = t.tris[x.tri];
-    bool found = false;
+  const EdgeUseTable table(t.tris, t.pos.size());
+  ASSERT_EQ(table.size(), 3 * t.tris.size());
+  // Every triangle's every edge, once, in (p, q) order, each edge's uses by triangle.
+  std::vector<std::array<std::uint32_t, 4>> seen;  // p, q, triangle, forward
+  std::uint64_t last = 0;
+  bool first = true;
+  table.each_edge([&](std::uint32_t p, std::uint32_t q, std::span<const EdgeUseTable::Use> uses) {
+    EXPECT_LT(p, q);
+    const std::uint64_t key = (std::uint64_t{p} << 32) | q;
+    EXPECT_TRUE(first || last < key);
+    first = false;
+    last = key;
+    ASSERT_FALSE(uses.empty());
+    for (std::size_t i = 1; i < uses.size(); ++i) EXPECT_LT(uses[i - 1].tri(), uses[i].tri());
+    for (const EdgeUseTable::Use& u : uses) seen.push_back({p, q, u.tri(), u.forward() ? 1u : 0u});
+    const auto found = table.uses(q, p);  // either order
+    EXPECT_EQ(found.data(), uses.data());
+    EXPECT_EQ(found.size(), uses.size());
+  });
+  std::vector<std::array<std::uint32_t, 4>> want;
+  for (std::uint32_t i = 0; i < t.tris.size(); ++i)
     for (int e = 0; e < 3; ++e) {
-      const std::uint32_t p = tri.v[e], q = tri.v[(e + 1) % 3];
-      found |= x.key == ((std::uint64_t{std::min(p, q)} << 32) | std::max(p, q)) && x.forward == (p < q);
+      const std::uint32_t p = t.tris[i].v[e], q = t.tris[i].v[(e + 1) % 3];
+      want.push_back({std::min(p, q), std::max(p, q), i, p < q ? 1u : 0u});
     }
-    EXPECT_TRUE(found);
-  }
+  std::sort(seen.begin(), seen.end());
+  std::sort(want.begin(), want.end());
+  EXPECT_EQ(seen, want);
+  EXPECT_TRUE(table.uses(0, 0).empty());
+  EXPECT_TRUE(table.uses(0, static_cast<std::uint32_t>(t.pos.size()) + 5).empty());
 }
 
 TEST(EmbeddedSurface, WhatCouldMeetItselfIsRefused) {
