@@ -758,6 +758,9 @@ Selection classify_and_select(const Arrangement& a, const Expr& expr, const Opti
     report.touched_triangles += c.tris.size();
     for (std::uint32_t pi = 0; pi < c.pieces().size(); ++pi) jobs.push_back({ci, pi});
   }
+  // A face per piece kept and per input face kept whole, as a rule: room made once
+  // (pages are touched as used), not grown by doubling and copying.
+  out.reserve(jobs.size() + a.faces.size());
   const EdgeUses uses = edge_uses(a);
   const std::vector<std::uint32_t> ray_of = shared_rays(a, jobs, uses);
   // Clusters of many triangles (coplanar faces of many operands: a Menger sponge's
@@ -899,12 +902,6 @@ Selection classify_and_select(const Arrangement& a, const Expr& expr, const Opti
     poly.kind = verdict_of(t).kind;
     poly.mark = verdict_of(t).mark;
   };
-  auto edge_keys = [&](const std::vector<std::uint32_t>& loop) {
-    std::vector<std::uint32_t> keys(loop.size());
-    for (std::size_t k = 0; k < loop.size(); ++k)
-      keys[k] = a.find_edge_key(loop[k], loop[(k + 1) % loop.size()]);
-    return keys;
-  };
   for (const SoupFace& f : a.faces) {
     bool whole = !f.tris.empty();
     for (std::uint32_t t : f.tris)
@@ -935,8 +932,7 @@ Selection classify_and_select(const Arrangement& a, const Expr& expr, const Opti
       for (const auto l : a.loops_of(f)) {
         std::vector<std::uint32_t> loop(l.begin(), l.end());
         if (keep < 0) std::reverse(loop.begin(), loop.end());
-        poly.keys.push_back(edge_keys(loop));
-        poly.loops.push_back(std::move(loop));
+        poly.loops.push_back(std::move(loop));  // no keys: the input edges' (OutPoly)
       }
       out.push_back(std::move(poly));
       continue;
@@ -950,8 +946,7 @@ Selection classify_and_select(const Arrangement& a, const Expr& expr, const Opti
       set_verdict(poly, t);
       std::vector<std::uint32_t> loop(a.tris[t].v.begin(), a.tris[t].v.end());
       if (tri_keep[t] < 0) std::reverse(loop.begin(), loop.end());
-      poly.keys.push_back(edge_keys(loop));
-      poly.loops.push_back(std::move(loop));
+      poly.loops.push_back(std::move(loop));  // no keys: the input edges' (OutPoly)
       out.push_back(std::move(poly));
     }
   }

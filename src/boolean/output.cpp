@@ -823,7 +823,8 @@ Result<BooleanResult> build_result(Arrangement& a, Selection selection, const Ex
   const std::vector<std::uint32_t> canon = canonical_points(a, used);
   // In place (a face's loops and keys are rewritten, never copied: most faces go
   // through every step below unchanged).
-  for (OutPoly& p : polys)
+  for (OutPoly& p : polys) {
+    if (p.keys.empty()) continue;  // input vertices: their own representatives
     for (std::size_t l = 0; l < p.loops.size(); ++l) {
       auto& loop = p.loops[l];
       auto& keys = p.keys[l];
@@ -842,19 +843,27 @@ Result<BooleanResult> build_result(Arrangement& a, Selection selection, const Ex
       loop.resize(n);
       keys.resize(n);
     }
+  }
 
   // 2. No T-junctions.
   const LineClasses lc = line_classes(a, canon);
+  std::vector<std::uint32_t> derived;  // a loop's keys, where the poly keeps none
   for (OutPoly& p : polys) {
     for (std::size_t l = 0; l < p.loops.size(); ++l) {
       const auto& loop = p.loops[l];
-      if (std::all_of(p.keys[l].begin(), p.keys[l].end(), [](std::uint32_t k) { return k == kInvalidIndex; }))
+      if (p.keys.empty()) {
+        derived.resize(loop.size());
+        for (std::size_t i = 0; i < loop.size(); ++i)
+          derived[i] = a.find_edge_key(loop[i], loop[(i + 1) % loop.size()]);
+      }
+      const std::vector<std::uint32_t>& keys = p.keys.empty() ? derived : p.keys[l];
+      if (std::all_of(keys.begin(), keys.end(), [](std::uint32_t k) { return k == kInvalidIndex; }))
         continue;  // on no line of the arrangement: nothing to insert
       std::vector<std::uint32_t> out;
       for (std::size_t i = 0; i < loop.size(); ++i) {
         out.push_back(loop[i]);
-        if (p.keys[l][i] != kInvalidIndex)
-          insert_between(a, lc, a.line_root(p.keys[l][i]), loop[i], loop[(i + 1) % loop.size()], out);
+        if (keys[i] != kInvalidIndex)
+          insert_between(a, lc, a.line_root(keys[i]), loop[i], loop[(i + 1) % loop.size()], out);
       }
       p.loops[l] = std::move(out);
     }

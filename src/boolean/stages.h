@@ -26,6 +26,9 @@ enum class FaceKind : std::uint8_t {
 
 struct OutPoly {
   std::vector<std::vector<std::uint32_t>> loops;
+  // By loop, by edge; empty when the loops are an input face's or triangle's, whose
+  // edges' keys are Arrangement::find_edge_key of their ends (input vertices, which
+  // stay their own representatives): no lists for the faces nothing cut.
   std::vector<std::vector<std::uint32_t>> keys;
   std::uint32_t cluster = kInvalidIndex;  // its plane; kInvalidIndex for a non-planar face
   int normal_sign = 1;                    // +1: outward normal along the cluster's reference

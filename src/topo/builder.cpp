@@ -88,6 +88,7 @@ Result<BuildResult> build_mesh(Model& m, const MeshInput& in) {
   BuildResult out;
   out.group = ed.new_group(in.group_name);
 
+  ed.reserve(in.positions.size(), 0, in.faces.size());
   out.vertices.reserve(in.positions.size());
   for (const Vec3& p : in.positions) out.vertices.push_back(ed.new_vertex(out.group, p));
   for (int i = 0; i < in.volumes; ++i) out.volumes.push_back(ed.new_volume(out.group));
@@ -133,6 +134,7 @@ Result<BuildResult> build_mesh(Model& m, const MeshInput& in) {
   if (m.edge_slots() + groups.size() + overflow >= Model::kMaxEdges) {
     return Error{ErrorCode::kInvalidInput, "too many edges: " + std::to_string(groups.size())};
   }
+  ed.reserve(0, groups.size() + overflow, 0);
   std::vector<EdgeId> edge_of_group(groups.size());
   std::vector<std::uint32_t> edge_start(groups.size());
   for (std::size_t g = 0; g < groups.size(); ++g) {
@@ -150,6 +152,7 @@ Result<BuildResult> build_mesh(Model& m, const MeshInput& in) {
 
   // Faces, loops and uses, in input order.
   std::map<std::pair<int, int>, std::uint32_t> sides_index;
+  out.faces.reserve(in.faces.size());
   std::vector<EdgeUseId> use_of_slot(use_total);
   slot = 0;
   for (const MeshFace& f : in.faces) {

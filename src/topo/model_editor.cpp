@@ -98,6 +98,15 @@ GroupId ModelEditor::new_group(std::string name) {
   return GroupId(static_cast<std::uint32_t>(m_.groups_.size() - 1));
 }
 
+void ModelEditor::reserve(std::size_t vertices, std::size_t edges, std::size_t faces) {
+  m_.vertices_.reserve(m_.vertices_.size() + vertices);
+  m_.positions_.reserve(m_.positions_.size() + vertices);
+  m_.ends_.reserve(m_.ends_.size() + 2 * edges);
+  m_.uses_.reserve(m_.uses_.size() + 2 * edges);
+  m_.radial_.reserve(m_.radial_.size() + 2 * edges);
+  m_.faces_.reserve(m_.faces_.size() + faces);
+}
+
 VertexId ModelEditor::new_vertex(GroupId g, Vec3 p) {
   ++m_.live_[Model::kVertex];
   std::uint32_t i;

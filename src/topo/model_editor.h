@@ -40,6 +40,9 @@ class ModelEditor {
   FaceRec& rec(FaceId f) { return m_.faces_[f.value]; }
 
   // ---- creation (records come back initialised, not yet linked)
+  // Room for this many more vertices, edges and faces, made at once (a mesh being
+  // built) rather than by doubling: no copies, and no freed halves left behind.
+  void reserve(std::size_t vertices, std::size_t edges, std::size_t faces);
   GroupId new_group(std::string name);
   VertexId new_vertex(GroupId g, Vec3 p);
   void set_vertex_group(VertexId v, GroupId g);
