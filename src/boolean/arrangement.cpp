@@ -1049,7 +1049,7 @@ void Arrangement::split_wires() {
       // An isolated point on a triangle's edge becomes that edge's vertex.
       Box b;
       b.add(pos[w.p]);
-      bvh.query([&](const Box& x) { return x.overlaps(b); }, [&](std::uint32_t t) {
+      bvh.query([&](const auto& x) { return x.overlaps(b); }, [&](std::uint32_t t) {
         for (int e = 0; e < 3; ++e) on_edge(tris[t].v[e], tris[t].v[(e + 1) % 3], w.p);
       });
       wire_pieces.push_back(w);
@@ -1060,7 +1060,7 @@ void Arrangement::split_wires() {
     Box box;
     box.add(p);
     box.add(q);
-    bvh.query([&](const Box& x) { return x.overlaps(box); }, [&](std::uint32_t ti) {
+    bvh.query([&](const auto& x) { return x.overlaps(box); }, [&](std::uint32_t ti) {
       const Tri& t = tris[ti];
       const Vec3 a = pos[t.v[0]], b = pos[t.v[1]], c = pos[t.v[2]];
       const int sp = orient3d(a, b, c, p), sq = orient3d(a, b, c, q);
@@ -1101,7 +1101,7 @@ void Arrangement::split_wires() {
       }
     });
     // Other wires and points: an end or a point inside it, or a crossing in one plane.
-    wire_bvh.query([&](const Box& x) { return x.overlaps(box); }, [&](std::uint32_t oi) {
+    wire_bvh.query([&](const auto& x) { return x.overlaps(box); }, [&](std::uint32_t oi) {
       const WireSeg& o = wires[oi];
       if (&o == &w) return;
       const Vec3 a = pos[o.p], b = pos[o.q];

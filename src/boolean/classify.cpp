@@ -131,7 +131,7 @@ class RayCaster {
       x_[i] = Fp(x[i], e[i]);
     }
     const int ws = decide([&]<class T>() { return start.template get<T>().c[3]; });
-    auto accept = [&](const Box& b) {
+    auto accept = [&](const auto& b) {  // a Bvh FloatBox: no conversion
       return b.hi[k_] >= x[k_] - e[k_] && b.lo[i_] <= x[i_] + e[i_] && b.hi[i_] >= x[i_] - e[i_] &&
              b.lo[j_] <= x[j_] + e[j_] && b.hi[j_] >= x[j_] - e[j_];
     };

@@ -328,11 +328,11 @@ void split_at_vertices(const Arrangement& a, const std::vector<std::uint32_t>& c
             return;
           if (strictly_inside(x, y, v, ax)) found.push_back(v);
         };
-        a.bvh.query([&](const Box& b) { return b.overlaps(box); }, [&](std::uint32_t t) {
+        a.bvh.query([&](const auto& b) { return b.overlaps(box); }, [&](std::uint32_t t) {
           for (std::uint32_t v : a.tris[t].v) test(v);
         });
         if (!a.wires.empty())
-          a.wire_bvh.query([&](const Box& b) { return b.overlaps(box); }, [&](std::uint32_t w) {
+          a.wire_bvh.query([&](const auto& b) { return b.overlaps(box); }, [&](std::uint32_t w) {
             test(a.wires[w].p);
             test(a.wires[w].q);
           });
@@ -421,7 +421,7 @@ bool only_operand_near(const Arrangement& a, std::uint32_t x, std::uint32_t p, s
   }
   const Box box = site_box(a, p, q, whole);
   bool alone = true;
-  a.bvh.query([&](const Box& b) { return alone && b.overlaps(box); },
+  a.bvh.query([&](const auto& b) { return alone && b.overlaps(box); },
               [&](std::uint32_t t) {
                 if (x == kAnyOperand) x = a.tris[t].operand;
                 alone &= a.tris[t].operand == x;

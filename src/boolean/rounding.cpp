@@ -185,7 +185,7 @@ bool nudge_rounding(MeshInput& in, const std::vector<char>& inexact,
     const Bvh near_moved(near_boxes);
     auto meets_moved = [&](const Box& b) {
       bool hit = false;
-      near_moved.query([&](const Box& x) { return !hit && x.overlaps(b); }, [&](std::uint32_t) { hit = true; });
+      near_moved.query([&](const auto& x) { return !hit && x.overlaps(b); }, [&](std::uint32_t) { hit = true; });
       return hit;
     };
     std::vector<std::uint32_t> near_faces;

@@ -105,7 +105,7 @@ class TriangleBoxes {
 
  private:
   void collect(const Box& box, std::vector<std::uint32_t>& out) const {
-    bvh_.query([&](const Box& b) { return b.overlaps(box); }, [&](std::uint32_t k) { out.push_back(owner_[k]); });
+    bvh_.query([&](const auto& b) { return b.overlaps(box); }, [&](std::uint32_t k) { out.push_back(owner_[k]); });
   }
   template <class F>
   static void finish(std::vector<std::uint32_t>& found, F& f) {

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <random>
 #include <vector>
@@ -65,6 +66,47 @@ TEST(Bvh, PairsAreExactlyTheOverlappingPairsOutsideOneGroup) {
       EXPECT_EQ(whole, brute_force(c, use_groups)) << "trial " << trial << ", " << n << " boxes";
     }
   }
+}
+
+// Boxes whose corners are doubles no float holds, some a few double units apart: the
+// floats the tree keeps may make two of them meet that do not (a gap under a float's
+// unit), never part two that meet. Every box kept holds the box given.
+TEST(Bvh, FloatBoxesReportASupersetWithinAFloatsUnit) {
+  std::mt19937_64 rng(20261206);
+  std::uniform_real_distribution<double> at(-1000, 1000), size(0, 1e-3);
+  std::size_t extra = 0;
+  for (int trial = 0; trial < 50; ++trial) {
+    Case c;
+    for (int i = 0; i < 400; ++i) {
+      Box b;
+      Vec3 lo{at(rng), at(rng), at(rng)};
+      if (i > 0 && rng() % 2 == 0) {  // just past the last box's corner: a gap of a few units
+        lo = c.boxes.back().hi;
+        lo = {std::nextafter(lo.x, 1e300), std::nextafter(lo.y, 1e300), std::nextafter(lo.z, 1e300)};
+      }
+      b.add(lo);
+      b.add(lo + Vec3{size(rng), size(rng), size(rng)});
+      c.boxes.push_back(b);
+    }
+    const Bvh tree(c.boxes);
+    for (std::uint32_t i = 0; i < c.boxes.size(); ++i) {
+      const Box kept = tree.box(i);
+      for (int k = 0; k < 3; ++k) {
+        EXPECT_LE(kept.lo[k], c.boxes[i].lo[k]);
+        EXPECT_GE(kept.hi[k], c.boxes[i].hi[k]);
+        EXPECT_LE(c.boxes[i].lo[k] - kept.lo[k], std::abs(c.boxes[i].lo[k]) * 0x1p-23);
+        EXPECT_LE(kept.hi[k] - c.boxes[i].hi[k], std::abs(c.boxes[i].hi[k]) * 0x1p-23);
+      }
+    }
+    std::vector<std::array<std::uint32_t, 2>> found;
+    tree.pairs([&](std::uint32_t i, std::uint32_t j) { found.push_back({i, j}); });
+    std::sort(found.begin(), found.end());
+    const auto exact = brute_force(c, false);
+    EXPECT_TRUE(std::includes(found.begin(), found.end(), exact.begin(), exact.end())) << "trial " << trial;
+    for (auto [i, j] : found) EXPECT_TRUE(tree.box(i).overlaps(tree.box(j)));
+    extra += found.size() - exact.size();
+  }
+  EXPECT_GT(extra, 0u) << "the gaps under a float's unit were meant to make some";
 }
 
 TEST(Bvh, OneGroupAloneHasNoPairs) {

@@ -1,7 +1,6 @@
 // A bounding-volume hierarchy over axis-aligned boxes: median splits on the longest
-// axis, leaves of up to four boxes. Boxes of triangles with double vertices are
-// exact, so the pairs and the ray candidates it reports are a superset of the ones
-// that can meet; the exact tests come after. Building takes O(n log n); the tree is
+// axis, leaves of up to four boxes. The pairs and the ray candidates it reports are a
+// superset of the ones that can meet; the exact tests come after. Building takes O(n log n); the tree is
 // balanced whatever the boxes (equal boxes included), so a query descends O(log n)
 // levels. Used by boolean/ (the arrangement's candidate pairs) and io/ (self-
 // intersections, nesting of shells).
@@ -10,16 +9,19 @@
 // triangles of a surface known to be embedded): pairs() skips a pair of boxes of one
 // group, and whole subtrees, or pairs of subtrees, that hold one group alone.
 //
-// The nodes' boxes are floats rounded outward (40 bytes a node, not 72; a tree of a
-// million triangles is 25 MB smaller): a node may be entered that doubles would have
-// skipped, never the reverse. The boxes themselves stay doubles, and every pair and
-// query answer is tested on them, so what is reported does not change.
+// Boxes are kept as floats rounded outward (24 bytes, not 48; nodes of 40 bytes, not
+// 72): a box may meet one that doubles would have kept apart, never the reverse, so
+// what is reported is a superset still, by at most a float's unit in the last place
+// of the coordinates (2^-24 of them; a model whose features are smaller than that
+// beside its distance from the origin gets more candidates, never fewer).
 #pragma once
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <type_traits>
 #include <vector>
 
 #include "cellforge/geom/vec.h"
@@ -42,6 +44,48 @@ struct Box {
   }
 };
 
+// A box in floats, rounded outward from a Box (Bvh's storage).
+struct FloatBox {
+  std::array<float, 3> lo{}, hi{};
+  // The float next below (above) f, f finite or infinite: one step of its bits.
+  static float below(float f) {
+    if (f == 0) return -std::numeric_limits<float>::denorm_min();
+    const auto bits = std::bit_cast<std::uint32_t>(f);
+    return std::bit_cast<float>(f > 0 ? bits - 1 : bits + 1);
+  }
+  static float above(float f) {
+    if (f == 0) return std::numeric_limits<float>::denorm_min();
+    const auto bits = std::bit_cast<std::uint32_t>(f);
+    return std::bit_cast<float>(f > 0 ? bits + 1 : bits - 1);
+  }
+  static FloatBox around(const Box& b) {
+    FloatBox f;
+    const double l[3] = {b.lo.x, b.lo.y, b.lo.z}, h[3] = {b.hi.x, b.hi.y, b.hi.z};
+    for (int k = 0; k < 3; ++k) {
+      f.lo[k] = static_cast<float>(l[k]);
+      if (static_cast<double>(f.lo[k]) > l[k]) f.lo[k] = below(f.lo[k]);
+      f.hi[k] = static_cast<float>(h[k]);
+      if (static_cast<double>(f.hi[k]) < h[k]) f.hi[k] = above(f.hi[k]);
+    }
+    return f;
+  }
+  Box box() const { return {{lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]}}; }
+  bool overlaps(const Box& b) const {
+    return lo[0] <= b.hi.x && b.lo.x <= hi[0] && lo[1] <= b.hi.y && b.lo.y <= hi[1] && lo[2] <= b.hi.z &&
+           b.lo.z <= hi[2];
+  }
+  bool overlaps(const FloatBox& o) const {
+    return lo[0] <= o.hi[0] && o.lo[0] <= hi[0] && lo[1] <= o.hi[1] && o.lo[1] <= hi[1] && lo[2] <= o.hi[2] &&
+           o.lo[2] <= hi[2];
+  }
+  void add(const FloatBox& o) {
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = std::min(lo[k], o.lo[k]);
+      hi[k] = std::max(hi[k], o.hi[k]);
+    }
+  }
+};
+
 class Bvh {
  public:
   Bvh() = default;
@@ -50,20 +94,24 @@ class Bvh {
 
   explicit Bvh(std::vector<Box> boxes) : Bvh(std::move(boxes), {}) {}
   // groups[i] is box i's group or kNoGroup; empty: no groups.
-  Bvh(std::vector<Box> boxes, std::vector<std::uint32_t> groups)
-      : boxes_(std::move(boxes)), groups_(std::move(groups)) {
+  Bvh(std::vector<Box> boxes, std::vector<std::uint32_t> groups) : groups_(std::move(groups)) {
     // The split keys (twice the centres: lo + hi) travel with the box ids, so that the
     // partitions read them in order rather than through the ids.
-    std::vector<Item> items(boxes_.size());
-    for (std::size_t i = 0; i < boxes_.size(); ++i)
-      items[i] = {boxes_[i].lo + boxes_[i].hi, static_cast<std::uint32_t>(i)};
+    std::vector<Item> items(boxes.size());
+    boxes_.resize(boxes.size());
+    for (std::size_t i = 0; i < boxes.size(); ++i) {
+      items[i] = {boxes[i].lo + boxes[i].hi, static_cast<std::uint32_t>(i)};
+      boxes_[i] = FloatBox::around(boxes[i]);
+    }
+    std::vector<Box>().swap(boxes);
     nodes_.reserve(node_count(static_cast<std::uint32_t>(items.size())));
     if (!items.empty()) build(0, static_cast<std::uint32_t>(items.size()), items);
     order_.resize(items.size());
     for (std::size_t k = 0; k < items.size(); ++k) order_[k] = items[k].id;
   }
 
-  const Box& box(std::uint32_t i) const { return boxes_[i]; }
+  // Box i as kept: holding the box given, within a float's unit in the last place.
+  Box box(std::uint32_t i) const { return boxes_[i].box(); }
 
   // Calls f(i, j) once for every pair i < j of overlapping boxes not in one group.
   template <class F>
@@ -126,9 +174,20 @@ class Bvh {
       cross(piece.a, piece.b, f);
     }
   }
-  // Calls f(i) for every box that `accept` lets through (accept tests a Box).
+  // Calls f(i) for every box that `accept` lets through (accept tests a Box, or,
+  // when it takes one, the FloatBox as kept: no conversion a node).
   template <class Accept, class F>
   void query(Accept&& accept, F&& f) const {
+    if constexpr (std::is_invocable_v<Accept&, const FloatBox&>) {
+      query_kept(accept, f);
+    } else {
+      query_kept([&](const FloatBox& b) { return accept(b.box()); }, f);
+    }
+  }
+
+ private:
+  template <class Accept, class F>
+  void query_kept(Accept&& accept, F&& f) const {
     if (nodes_.empty()) return;
     std::uint32_t stack[128];
     int top = 0;
@@ -136,7 +195,7 @@ class Bvh {
     while (top > 0) {
       const std::uint32_t id = stack[--top];
       const Node& n = nodes_[id];
-      if (!accept(n.box())) continue;
+      if (!accept(n.box)) continue;
       if (n.leaf()) {
         for (std::uint32_t k = n.begin; k < n.end; ++k)
           if (accept(boxes_[order_[k]])) f(order_[k]);
@@ -147,37 +206,17 @@ class Bvh {
     }
   }
 
- private:
   // A node's group: the one all its boxes are in, else kMixed (kNoGroup when all
   // are in none).
   static constexpr std::uint32_t kMixed = 0xfffffffeu;
   // Nodes in preorder: an inner node's left child is the next node.
   struct Node {
-    std::array<float, 3> lo, hi;       // its boxes' box, rounded outward
+    FloatBox box;                      // its boxes' box
     std::uint32_t begin = 0, end = 0;  // its boxes: order_[begin] .. order_[end - 1]
     std::uint32_t right = 0;           // the right child; 0 for a leaf
     std::uint32_t group = kNoGroup;
     bool leaf() const { return right == 0; }
-    Box box() const { return {{lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]}}; }
-    bool overlaps(const Node& o) const {
-      return lo[0] <= o.hi[0] && o.lo[0] <= hi[0] && lo[1] <= o.hi[1] && o.lo[1] <= hi[1] && lo[2] <= o.hi[2] &&
-             o.lo[2] <= hi[2];
-    }
-    void set(const Box& b) {
-      const double l[3] = {b.lo.x, b.lo.y, b.lo.z}, h[3] = {b.hi.x, b.hi.y, b.hi.z};
-      for (int k = 0; k < 3; ++k) {
-        lo[k] = static_cast<float>(l[k]);
-        if (static_cast<double>(lo[k]) > l[k]) lo[k] = std::nextafter(lo[k], -std::numeric_limits<float>::infinity());
-        hi[k] = static_cast<float>(h[k]);
-        if (static_cast<double>(hi[k]) < h[k]) hi[k] = std::nextafter(hi[k], std::numeric_limits<float>::infinity());
-      }
-    }
-    void set(const Node& a, const Node& b) {
-      for (int k = 0; k < 3; ++k) {
-        lo[k] = std::min(a.lo[k], b.lo[k]);
-        hi[k] = std::max(a.hi[k], b.hi[k]);
-      }
-    }
+    bool overlaps(const Node& o) const { return box.overlaps(o.box); }
   };
   // The nodes build() makes for n boxes.
   static std::size_t node_count(std::uint32_t n) {
@@ -201,13 +240,13 @@ class Bvh {
     nodes_[id].begin = begin;
     nodes_[id].end = end;
     if (end - begin <= 4) {
-      Box box;
+      FloatBox box = boxes_[items[begin].id];
       std::uint32_t group = group_of(items[begin].id);
       for (std::uint32_t k = begin; k < end; ++k) {
         box.add(boxes_[items[k].id]);
         if (group_of(items[k].id) != group) group = kMixed;
       }
-      nodes_[id].set(box);
+      nodes_[id].box = box;
       nodes_[id].group = group;
       return id;
     }
@@ -222,7 +261,8 @@ class Bvh {
                      [axis](const Item& a, const Item& b) { return a.twice_centre[axis] < b.twice_centre[axis]; });
     const std::uint32_t left = build(begin, mid, items);
     const std::uint32_t right = build(mid, end, items);
-    nodes_[id].set(nodes_[left], nodes_[right]);
+    nodes_[id].box = nodes_[left].box;
+    nodes_[id].box.add(nodes_[right].box);
     nodes_[id].group = nodes_[left].group == nodes_[right].group ? nodes_[left].group : kMixed;
     nodes_[id].right = right;
     return id;
@@ -268,7 +308,7 @@ class Bvh {
     if (boxes_[i].overlaps(boxes_[j])) f(std::min(i, j), std::max(i, j));
   }
 
-  std::vector<Box> boxes_;
+  std::vector<FloatBox> boxes_;
   std::vector<std::uint32_t> groups_;
   std::vector<std::uint32_t> order_;
   std::vector<Node> nodes_;
