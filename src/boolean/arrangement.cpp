@@ -468,7 +468,12 @@ std::uint32_t Arrangement::fresh_key() {
 
 std::uint32_t Arrangement::edge_key(std::uint32_t p, std::uint32_t q) {
   auto [it, fresh] = key_ids.try_emplace(kEdgeTag | ordered(p, q), 0);
-  if (fresh) it->second = fresh_key();
+  if (fresh) {
+    it->second = fresh_key();
+    if (has_edge_key.size() < pos.size()) has_edge_key.resize(pos.size(), 0);
+    for (std::uint32_t v : {p, q})
+      if (v < has_edge_key.size()) has_edge_key[v] = 1;
+  }
   return it->second;
 }
 
@@ -497,8 +502,11 @@ bool Arrangement::is_contact_edge(std::uint32_t p, std::uint32_t q) const {
 }
 
 std::uint32_t Arrangement::find_edge_key(std::uint32_t p, std::uint32_t q) const {
-  auto it = key_ids.find(kEdgeTag | ordered(p, q));
-  return it == key_ids.end() ? kInvalidIndex : it->second;
+  if ((p < has_edge_key.size() && !has_edge_key[p]) || (q < has_edge_key.size() && !has_edge_key[q]) ||
+      (has_edge_key.empty() && p < pos.size() && q < pos.size()))
+    return kInvalidIndex;
+  const std::uint32_t* key = key_ids.find(kEdgeTag | ordered(p, q));
+  return key ? *key : kInvalidIndex;
 }
 
 std::uint32_t Arrangement::pair_key(std::uint32_t c1, std::uint32_t c2) {

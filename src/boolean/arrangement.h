@@ -470,7 +470,10 @@ class Arrangement {
   std::uint32_t line_root(std::uint32_t key);
   void line_union(std::uint32_t a, std::uint32_t b);
   std::uint32_t find_edge_key(std::uint32_t p, std::uint32_t q) const;  // kInvalid if none
-  std::unordered_map<std::uint64_t, std::uint32_t> key_ids;
+  FlatMap<std::uint64_t, std::uint32_t> key_ids;
+  // By input vertex: whether an edge key names an edge at it (most have none, and
+  // find_edge_key then answers without a lookup).
+  std::vector<char> has_edge_key;
   std::vector<std::uint32_t> key_parent;
 
   std::size_t pairs_tested = 0, pairs_hit = 0;

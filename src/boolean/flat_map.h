@@ -39,6 +39,11 @@ class FlatMap {
   V& operator[](K key) { return try_emplace(key).first->second; }
 
   std::size_t count(K key) const { return find_slot(key) != kNone; }
+  // The value at key; nullptr when there is none.
+  const V* find(K key) const {
+    const std::size_t i = find_slot(key);
+    return i == kNone ? nullptr : &slots_[i].second;
+  }
 
   // Backward-shift deletion: the entries after the hole that would not be found from
   // their home slot across it move into it.
