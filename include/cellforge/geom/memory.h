@@ -24,10 +24,14 @@ namespace cellforge::inline geom {
 void prefer_huge_pages(char** argv);
 
 // Keeps memory that the program frees for its own later allocations instead of giving
-// it back to the system (glibc's mallopt: no separate mapping below 1 GiB, no trimming
-// of the heap's top below 1 GiB): a large Boolean allocates and frees its arrays stage
-// by stage, and the next stage then reuses pages already faulted in. For a program
-// that runs one large job, not for a long-lived one whose memory use falls for good.
+// it back to the system (glibc's mallopt: no trimming of the heap's top below 1 GiB,
+// blocks below 8 MiB from the heap): a large Boolean allocates and frees its arrays
+// stage by stage, and the next stage then reuses pages already faulted in. Blocks of
+// 8 MiB and more get mappings of their own, returned when freed: kept in the heap, a
+// big array freed early left a hole that later arrays of other sizes did not fit, and
+// the peak grew by it (sphere - sphere fn 1024: 593 MB with every block in the heap,
+// 523 MB so). For a program that runs one large job, not for a long-lived one whose
+// memory use falls for good.
 void keep_freed_memory();
 
 // Puts back the GLIBC_TUNABLES that the program had before prefer_huge_pages, for a
