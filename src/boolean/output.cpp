@@ -803,23 +803,36 @@ Result<BooleanResult> build_result(Arrangement& a, Selection selection, const Ex
   const int threads = options.threads;
   std::vector<OutPoly>& polys = selection.polys;
   if (options.keep_lower_dim) a.find_alone_vertices();  // for only_operand_near
-  // 1. One id per exact position, among the points a face or a line holds.
-  std::vector<std::uint32_t> used;
+  // 1. One id per exact position, among the points a face or a line holds. An input
+  // vertex whose triangles are all in clusters nothing cut, came near no other
+  // operand's and belong to operands known to be embedded equals no other point: an
+  // implicit point there would lie on a triangle whose box holds the vertex, one of
+  // another operand (then a pair, and near_other) or, the surface being embedded, one
+  // at the vertex (then cut). It is its own representative, not looked up.
+  const std::size_t total = a.pos.size() + a.points.size();
+  std::vector<char> held(total, 0);
   for (const OutPoly& p : polys)
-    for (const auto& loop : p.loops) used.insert(used.end(), loop.begin(), loop.end());
-  for (const OutSide& side : selection.sides) {
-    used.push_back(side.p);
-    used.push_back(side.q);
-  }
-  for (const WireSeg& w : a.wire_pieces) {
-    used.push_back(w.p);
-    used.push_back(w.q);
-  }
+    for (const auto& loop : p.loops)
+      for (std::uint32_t v : loop) held[v] = 1;
+  for (const OutSide& side : selection.sides) held[side.p] = held[side.q] = 1;
+  for (const WireSeg& w : a.wire_pieces) held[w.p] = held[w.q] = 1;
   for (const Cluster& c : a.clusters)
-    for (const Line& l : c.lines()) used.insert(used.end(), l.points.begin(), l.points.end());
-  for (auto [key, p] : a.edge_points) used.push_back(p);
-  std::sort(used.begin(), used.end());
-  used.erase(std::unique(used.begin(), used.end()), used.end());
+    for (const Line& l : c.lines())
+      for (std::uint32_t v : l.points) held[v] = 1;
+  for (auto [key, p] : a.edge_points) held[p] = 1;
+  {
+    std::vector<char> safe(a.pos.size(), 2);  // 2: no triangle seen at it yet
+    for (std::uint32_t t = 0; t < a.tris.size(); ++t) {
+      const bool ok = !a.clusters[a.cluster_of[t]].touched && !a.near_other[t] && a.embedded[a.tris[t].operand];
+      for (std::uint32_t v : a.tris[t].v) safe[v] = static_cast<char>(ok && safe[v] != 0);
+    }
+    for (std::size_t v = 0; v < a.pos.size(); ++v)
+      if (safe[v] == 1) held[v] = 0;
+  }
+  std::vector<std::uint32_t> used;  // increasing
+  for (std::uint32_t v = 0; v < total; ++v)
+    if (held[v]) used.push_back(v);
+  std::vector<char>().swap(held);
   const std::vector<std::uint32_t> canon = canonical_points(a, used);
   // In place (a face's loops and keys are rewritten, never copied: most faces go
   // through every step below unchanged).
@@ -1005,23 +1018,30 @@ Result<BooleanResult> build_result(Arrangement& a, Selection selection, const Ex
 
   // Collinear edges at a vertex of two neighbours merge.
   {
-    std::vector<std::pair<std::uint32_t, std::uint32_t>> nb;
-    std::size_t sides = 0;
-    for (const OutPoly& p : polys)
-      for (const auto& loop : p.loops) sides += loop.size();
-    nb.reserve(2 * sides);  // not grown by doubling: the biggest list of this stage
-    for (const OutPoly& p : polys)
-      for (const auto& loop : p.loops)
-        for (std::size_t i = 0; i < loop.size(); ++i) {
-          const std::uint32_t x = loop[i], y = loop[(i + 1) % loop.size()];
-          nb.push_back({x, y});
-          nb.push_back({y, x});
-        }
-    std::sort(nb.begin(), nb.end());
-    nb.erase(std::unique(nb.begin(), nb.end()), nb.end());
+    // Each point's neighbours along the faces' edges, both ways: rows of one array,
+    // counted into place (a row is a vertex's few edges; sorted where read).
+    const std::size_t total = a.pos.size() + a.points.size();
+    std::vector<std::uint32_t> nb_begin(total + 1, 0), nb;
+    auto each_side = [&](auto&& f) {
+      for (const OutPoly& p : polys)
+        for (const auto& loop : p.loops)
+          for (std::size_t i = 0; i < loop.size(); ++i) f(loop[i], loop[(i + 1) % loop.size()]);
+    };
+    each_side([&](std::uint32_t x, std::uint32_t y) {
+      ++nb_begin[x + 1];
+      ++nb_begin[y + 1];
+    });
+    for (std::size_t i = 0; i < total; ++i) nb_begin[i + 1] += nb_begin[i];
+    nb.resize(nb_begin[total]);
+    {
+      std::vector<std::uint32_t> at(nb_begin.begin(), nb_begin.end() - 1);
+      each_side([&](std::uint32_t x, std::uint32_t y) {
+        nb[at[x]++] = y;
+        nb[at[y]++] = x;
+      });
+    }
     // Three points of one recorded line are collinear without arithmetic.
     // Point -> line roots, as ranges of one array (roots ascending).
-    const std::size_t total = a.pos.size() + a.points.size();
     std::vector<std::uint32_t> at_begin(total + 1, 0), at_roots(lc.pts.size());
     for (std::uint32_t q : lc.pts) ++at_begin[q + 1];
     for (std::size_t i = 0; i < total; ++i) at_begin[i + 1] += at_begin[i];
@@ -1040,35 +1060,35 @@ Result<BooleanResult> build_result(Arrangement& a, Selection selection, const Ex
           return true;
       return false;
     };
+    // A point with two neighbours, all three on one line, is dropped: (point, its
+    // neighbours).
     std::vector<char> drop(total, 0);
-    bool any_drop = false;
-    for (std::size_t i = 0; i < nb.size();) {
-      std::size_t j = i;
-      while (j < nb.size() && nb[j].first == nb[i].first) ++j;
-      if (j - i == 2 && !lower.ends.count(nb[i].first) &&
-          (on_one_line(nb[i].second, nb[i].first, nb[i + 1].second) ||
-           a.collinear3(nb[i].second, nb[i].first, nb[i + 1].second)))
-        drop[nb[i].first] = any_drop = true;
-      i = j;
+    std::vector<std::array<std::uint32_t, 3>> dropped;
+    for (std::uint32_t v = 0; v < total; ++v) {
+      std::uint32_t* b = nb.data() + nb_begin[v];
+      std::uint32_t* e = nb.data() + nb_begin[v + 1];
+      if (e - b < 2) continue;
+      std::sort(b, e);
+      e = std::unique(b, e);
+      if (e - b == 2 && !lower.ends.count(v) && (on_one_line(b[0], v, b[1]) || a.collinear3(b[0], v, b[1]))) {
+        drop[v] = 1;
+        dropped.push_back({v, b[0], b[1]});
+      }
     }
     // Non-regularized: only where the set is the same on both edges and the vertex.
-    if (options.keep_lower_dim && any_drop) {
+    if (options.keep_lower_dim && !dropped.empty()) {
       std::vector<std::uint32_t> candidates;
       std::vector<std::array<std::uint32_t, 2>> sites;
-      for (std::size_t i = 0; i < nb.size();) {
-        std::size_t j = i;
-        while (j < nb.size() && nb[j].first == nb[i].first) ++j;
+      for (const auto& [v, x, y] : dropped) {
         // The vertex and both edges with one operand's elements alone near each: all
         // three have the verdict of the faces between them.
-        const std::uint32_t v = nb[i].first, x = nb[i].second, y = nb[i + 1].second;
-        if (drop[v] && !(only_operand_near(a, kAnyOperand, v, v) && only_operand_near(a, kAnyOperand, x, v) &&
-                         only_operand_near(a, kAnyOperand, v, y))) {
-          candidates.push_back(nb[i].first);
-          sites.push_back({nb[i].second, nb[i].first});
-          sites.push_back({nb[i].first, nb[i + 1].second});
-          sites.push_back({nb[i].first, nb[i].first});
+        if (!(only_operand_near(a, kAnyOperand, v, v) && only_operand_near(a, kAnyOperand, x, v) &&
+              only_operand_near(a, kAnyOperand, v, y))) {
+          candidates.push_back(v);
+          sites.push_back({x, v});
+          sites.push_back({v, y});
+          sites.push_back({v, v});
         }
-        i = j;
       }
       const std::vector<SiteVerdict> v = classify_sites(a, expr, sites, threads);
       for (std::size_t k = 0; k < candidates.size(); ++k)
