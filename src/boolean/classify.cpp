@@ -882,15 +882,12 @@ Selection classify_and_select(const Arrangement& a, const Expr& expr, const Opti
     on.push_back(rt.operand);
     return std::optional<RepPoint>(RepPoint{a.cluster_of[roots[k]], {rt.v[0], rt.v[1], rt.v[2]}});
   });
-  std::vector<int> patch_keep(a.tris.size(), 0);
-  std::vector<std::uint32_t> patch_of(a.tris.size(), kInvalidIndex);
-  for (std::size_t k = 0; k < roots.size(); ++k) {
-    patch_keep[roots[k]] = patch[k].keep;
-    patch_of[roots[k]] = static_cast<std::uint32_t>(k);
-  }
-  std::vector<int> tri_keep(a.tris.size(), 0);
+  std::vector<char>().swap(is_root);
+  std::vector<std::uint32_t> patch_of(a.tris.size(), kInvalidIndex);  // by root
+  for (std::size_t k = 0; k < roots.size(); ++k) patch_of[roots[k]] = static_cast<std::uint32_t>(k);
+  std::vector<std::int8_t> tri_keep(a.tris.size(), 0);
   for (std::uint32_t t = 0; t < a.tris.size(); ++t)
-    if (untouched(t)) tri_keep[t] = patch_keep[patches.find(t)];
+    if (untouched(t)) tri_keep[t] = static_cast<std::int8_t>(patch[patch_of[patches.find(t)]].keep);
   // The whole verdict on an untouched triangle, and whether two agree.
   auto verdict_of = [&](std::uint32_t t) -> const Verdict& { return patch[patch_of[patches.find(t)]]; };
   auto same_verdict = [&](std::uint32_t t, std::uint32_t u) {
