@@ -1144,15 +1144,18 @@ void Arrangement::split_wires() {
   }
 }
 
+void Arrangement::release_loops() {
+  loop_table.clear();
+  for (SoupFace& f : faces) f.loop_count = 0;
+}
+
 void Arrangement::release_pieces(bool keep_tree) {
   for (Cluster& c : clusters) {
     c.pieces().release();
     c.constraints().release();
     c.touch_points().release();
   }
-  loop_table.clear();
   if (!keep_tree) edge_uses.clear();
-  for (SoupFace& f : faces) f.loop_count = 0;
   lpi_ids_ = {};
   std::vector<std::uint32_t>().swap(quad_other);
   std::vector<std::int8_t>().swap(quad_side);

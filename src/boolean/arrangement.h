@@ -399,10 +399,11 @@ class Arrangement {
   // pass through a vertex (wire_pieces); points on input edges are recorded there.
   void split_wires();
   // Frees what only stages 1 to 4 read (the pieces, the constraints, the triangles'
-  // boxes and tree, the input faces' loops), before the result is built; with
-  // keep_tree, the triangles' boxes and tree and their edge uses stay (for
-  // classify_sites and only_operand_near).
+  // boxes and tree), before the result is built; with keep_tree, the triangles' boxes
+  // and tree and their edge uses stay (for classify_sites and only_operand_near).
   void release_pieces(bool keep_tree = false);
+  // Frees the input faces' loops, once the result's faces that copy them are made.
+  void release_loops();
 
   // ---- data
   std::vector<Vec3> pos;

@@ -926,11 +926,7 @@ Selection classify_and_select(const Arrangement& a, const Expr& expr, const Opti
       poly.normal_sign = keep;
       set_verdict(poly, f.tris[0]);
       if (f.planar) poly.cluster = a.cluster_of[f.tris[0]];
-      for (const auto l : a.loops_of(f)) {
-        std::vector<std::uint32_t> loop(l.begin(), l.end());
-        if (keep < 0) std::reverse(loop.begin(), loop.end());
-        poly.loops.push_back(std::move(loop));  // no keys: the input edges' (OutPoly)
-      }
+      poly.source = LoopSource::kFace;  // loops made later; no keys: the input edges'
       out.push_back(std::move(poly));
       continue;
     }
@@ -941,9 +937,7 @@ Selection classify_and_select(const Arrangement& a, const Expr& expr, const Opti
       poly.cluster = a.cluster_of[t];
       poly.normal_sign = tri_keep[t];
       set_verdict(poly, t);
-      std::vector<std::uint32_t> loop(a.tris[t].v.begin(), a.tris[t].v.end());
-      if (tri_keep[t] < 0) std::reverse(loop.begin(), loop.end());
-      poly.loops.push_back(std::move(loop));  // no keys: the input edges' (OutPoly)
+      poly.source = LoopSource::kTriangle;  // loops made later; no keys: the input edges'
       out.push_back(std::move(poly));
     }
   }

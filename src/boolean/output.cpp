@@ -803,6 +803,21 @@ Result<BooleanResult> build_result(Arrangement& a, Selection selection, const Ex
   const int threads = options.threads;
   std::vector<OutPoly>& polys = selection.polys;
   if (options.keep_lower_dim) a.find_alone_vertices();  // for only_operand_near
+  // 0. The loops of the faces nothing cut, copied from the input now that the pieces
+  // are freed (LoopSource).
+  for (OutPoly& p : polys) {
+    if (p.source == LoopSource::kFace) {
+      for (const auto l : a.loops_of(a.faces[a.tris[p.tri].input_face])) p.loops.emplace_back(l.begin(), l.end());
+    } else if (p.source == LoopSource::kTriangle) {
+      p.loops.emplace_back(a.tris[p.tri].v.begin(), a.tris[p.tri].v.end());
+    } else {
+      continue;
+    }
+    if (p.normal_sign < 0)
+      for (auto& loop : p.loops) std::reverse(loop.begin(), loop.end());
+    p.source = LoopSource::kMade;
+  }
+  a.release_loops();
   // 1. One id per exact position, among the points a face or a line holds. An input
   // vertex whose triangles are all in clusters nothing cut, came near no other
   // operand's and belong to operands known to be embedded equals no other point: an

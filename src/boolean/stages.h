@@ -24,6 +24,12 @@ enum class FaceKind : std::uint8_t {
   kInner,     // the set on both sides: between two cells (Options::cells), or a cut
 };
 
+// Where an OutPoly's loops are: made (in `loops`), or still those of input face
+// faces[tris[tri].input_face] or of input triangle tri, reversed when normal_sign < 0,
+// to be made by build_result once the arrangement's pieces are freed (the selection
+// then holds no lists for the faces nothing cut while the classification peaks).
+enum class LoopSource : std::uint8_t { kMade, kFace, kTriangle };
+
 struct OutPoly {
   std::vector<std::vector<std::uint32_t>> loops;
   // By loop, by edge; empty when the loops are an input face's or triangle's, whose
@@ -35,6 +41,7 @@ struct OutPoly {
   std::uint32_t tri = 0;                  // the input triangle it lies on (provenance)
   FaceKind kind = FaceKind::kBoundary;
   bool mark = true;                       // whether the face's own points are in the set
+  LoopSource source = LoopSource::kMade;
 };
 
 // An edge of the arrangement's faces (a piece's side, an untouched triangle's edge)
