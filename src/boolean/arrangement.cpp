@@ -199,7 +199,7 @@ int Arrangement::w2_sign(const Cluster& c, std::uint32_t p) const {
 
 std::span<const std::uint32_t> Arrangement::plane_vertices(const Tri& t) const {
   const SoupFace& f = faces[t.input_face];
-  if (f.planar && f.quad[0] != SoupFace::kNoQuad) return f.quad;
+  if (f.planar && f.quad) return loops_of(f)[0];  // the loops stay while this is asked
   return t.v;
 }
 
@@ -840,17 +840,18 @@ void Arrangement::intersect(int threads) {
   quad_other.assign(tris.size(), kInvalidIndex);
   quad_side.assign(tris.size(), 0);
   for (const SoupFace& f : faces) {
-    if (f.quad[0] == SoupFace::kNoQuad) continue;
+    if (!f.quad) continue;
+    const auto quad = loops_of(f)[0];
     for (std::uint32_t t : f.tris) {
       const Tri& x = tris[t];
       std::uint32_t w = kInvalidIndex;
-      for (std::uint32_t q : f.quad)
+      for (std::uint32_t q : quad)
         if (q != x.v[0] && q != x.v[1] && q != x.v[2]) w = q;
       const std::uint32_t order[4] = {x.v[0], x.v[1], x.v[2], w};
       int at[4], found = 0;
       for (int i = 0; i < 4; ++i)
         for (int j = 0; j < 4; ++j)
-          if (order[i] == f.quad[j]) {
+          if (order[i] == quad[j]) {
             at[i] = j;
             ++found;
           }

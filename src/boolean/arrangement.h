@@ -38,11 +38,11 @@
 
 namespace cellforge::boolean {
 
+// 20 bytes: the operand model's face it triangulates is faces[input_face].face.
 struct Tri {
   std::array<std::uint32_t, 3> v;  // input vertices, counterclockwise seen from outside
   std::uint32_t operand = 0;
-  std::uint32_t face = 0;  // the operand model's face it triangulates
-  std::uint32_t input_face = 0;  // index into Soup::faces
+  std::uint32_t input_face = 0;  // index into Arrangement::faces
 };
 
 // A face's tiles: the consecutive soup triangles first, first + 1, ... (a face's
@@ -152,12 +152,11 @@ struct SoupFace {
   // tiles meet only in their shared edges and corners, so no pair of them is tested
   // (they are joined as one plane instead).
   bool convex = false;
-  // A face of one loop of four vertices (a quad of a faceted curved primitive): the
-  // loop, and the sign of orient3d over it in that order, so that any tile's test of
-  // the fourth vertex is a permutation of it (sides_of).
-  std::array<std::uint32_t, 4> quad{kNoQuad, kNoQuad, kNoQuad, kNoQuad};
+  // A face of one loop of four vertices (a quad of a faceted curved primitive; the
+  // loop is loops_of(f)[0]), and the sign of orient3d over that loop in its order, so
+  // that any tile's test of the fourth vertex is a permutation of it (sides_of).
+  bool quad = false;
   std::int8_t fold = 0;
-  static constexpr std::uint32_t kNoQuad = 0xffffffffu;
 };
 
 enum class LineKind : std::uint8_t { kThrough, kTrace, kAxisU, kAxisV };

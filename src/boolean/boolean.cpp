@@ -416,7 +416,7 @@ Result<Arrangement> make_soup(std::span<const Model* const> operands, int thread
       const FaceLoops face_loops{&loops, sf.first_loop, sf.loop_count};
       if (!covers_loops(face_loops, tiles)) tiles = fan_tiles(face_loops);
       for (const auto& t : tiles) {
-        const Tri tri{t, k, f.value, sfi};
+        const Tri tri{t, k, sfi};
         if (collinear3d(pos[tri.v[0]], pos[tri.v[1]], pos[tri.v[2]])) continue;
         sf.tris.push_back(static_cast<std::uint32_t>(tris.size()));
         tris.push_back(tri);
@@ -441,7 +441,7 @@ Result<Arrangement> make_soup(std::span<const Model* const> operands, int thread
       const FaceLoops f_loops{&loops, f.first_loop, f.loop_count};
       if (f_loops.size() == 1 && f_loops[0].size() == 4) {
         const auto q = f_loops[0];
-        std::copy(q.begin(), q.end(), f.quad.begin());
+        f.quad = true;
         f.fold = static_cast<std::int8_t>(orient3d(pos[q[0]], pos[q[1]], pos[q[2]], pos[q[3]]));
         f.planar = f.fold == 0;
         continue;

@@ -611,7 +611,7 @@ bool same_plane(const Arrangement& a, const OutPoly& x, const OutPoly& y) {
   // tiles of a quad that is not are not.
   const SoupFace& fx = a.faces[rx.input_face];
   const bool one_face = rx.input_face == ry.input_face;
-  if (one_face && !fx.planar && fx.quad[0] != SoupFace::kNoQuad) return false;
+  if (one_face && !fx.planar && fx.quad) return false;
   if (!one_face || !fx.planar) {
     const Vec3 p0 = a.pos[rx.v[0]], p1 = a.pos[rx.v[1]], p2 = a.pos[rx.v[2]];
     for (std::uint32_t v : ry.v)
@@ -817,7 +817,9 @@ Result<BooleanResult> build_result(Arrangement& a, Selection selection, const Ex
       for (auto& loop : p.loops) std::reverse(loop.begin(), loop.end());
     p.source = LoopSource::kMade;
   }
-  a.release_loops();
+  // A non-regularized result casts rays below, which read the planar quads' loops
+  // (Arrangement::plane_vertices).
+  if (!options.keep_lower_dim) a.release_loops();
   // 1. One id per exact position, among the points a face or a line holds. An input
   // vertex whose triangles are all in clusters nothing cut, came near no other
   // operand's and belong to operands known to be embedded equals no other point: an
@@ -1318,7 +1320,7 @@ Result<BooleanResult> build_result(Arrangement& a, Selection selection, const Ex
     const Tri& ref = a.tris[c.ref];
     FaceSource s;
     s.operand = static_cast<int>(t.operand);
-    s.face = t.face;
+    s.face = a.faces[t.input_face].face;
     s.reversed = (p.normal_sign * a.tri_sign(c, p.tri) < 0) != a.faces[t.input_face].flipped;
     s.plane = {a.pos[ref.v[0]], a.pos[ref.v[1]], a.pos[ref.v[2]]};
     by_id[built->faces[f].value] = s;

@@ -37,7 +37,7 @@ Tiles tiles_of(const Model& m) {
   std::uint32_t face = 0;
   for (FaceId f : m.faces()) {
     for (const auto& tri : io::triangulate_face(m, f)) {
-      Tri x{{id[tri[0].value], id[tri[1].value], id[tri[2].value]}, 0, f.value, face};
+      Tri x{{id[tri[0].value], id[tri[1].value], id[tri[2].value]}, 0, face};
       if (m.front_volume(f).is_valid()) std::swap(x.v[1], x.v[2]);  // outward
       t.tris.push_back(x);
     }
@@ -53,7 +53,7 @@ bool embedded(const Tiles& t) {
 
 Tiles from(std::vector<Vec3> pos, std::vector<std::array<std::uint32_t, 3>> tris) {
   Tiles t{std::move(pos), {}};
-  for (std::uint32_t i = 0; i < tris.size(); ++i) t.tris.push_back({tris[i], 0, i, i});
+  for (std::uint32_t i = 0; i < tris.size(); ++i) t.tris.push_back({tris[i], 0, i});
   return t;
 }
 
