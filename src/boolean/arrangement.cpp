@@ -908,10 +908,10 @@ void Arrangement::intersect(int threads) {
       clusters.emplace_back();
     }
     cluster_of[t] = cluster_of[r];
-    clusters[cluster_of[t]].tris.push_back(t);
+    clusters[cluster_of[t]].add_tri(t);
   }
   for (Cluster& c : clusters) {
-    c.ref = c.tris[0];
+    c.ref = c.tris()[0];
     const Tri& r = tris[c.ref];
     const Vec3 p0 = pos[r.v[0]], p1 = pos[r.v[1]], p2 = pos[r.v[2]];
     c.k = dominant_axis(cross(p1 - p0, p2 - p0));
@@ -922,7 +922,7 @@ void Arrangement::intersect(int threads) {
         c.nk_sign = orient2d_projected(p0, p1, p2, k);
       }
     }
-    c.touched = c.tris.size() > 1;
+    c.touched = c.tris().size() > 1;
   }
   // A plane's clusters take the cluster of its smallest triangle (whatever the
   // order of the joins was).
@@ -1185,7 +1185,7 @@ void Arrangement::mark_open_edges(const Cluster& c) {
     int e;
   };
   std::vector<TileEdge> tile_edges;
-  for (std::uint32_t t : c.tris)
+  for (std::uint32_t t : c.tris())
     if (faces[tris[t].input_face].planar)
       for (int e = 0; e < 3; ++e)
         tile_edges.push_back({ordered(tris[t].v[e], tris[t].v[(e + 1) % 3]), tris[t].input_face, t, e});
@@ -1227,8 +1227,8 @@ void Arrangement::split_cluster(std::uint32_t ci) {
     auto operator<=>(const Segment&) const = default;
   };
   std::vector<Segment> segments;
-  if (c.tris.size() == 1) {
-    const Tri& t = tris[c.tris[0]];
+  if (c.tris().size() == 1) {
+    const Tri& t = tris[c.tris()[0]];
     std::array<std::uint32_t, 3> v = t.v;
     if (orient2d_projected(pos[v[0]], pos[v[1]], pos[v[2]], k) < 0) std::swap(v[1], v[2]);
     Piece p;
@@ -1242,7 +1242,7 @@ void Arrangement::split_cluster(std::uint32_t ci) {
     c.pieces().push_back(std::move(p));
   } else {
     double lo[2] = {1e308, 1e308}, hi[2] = {-1e308, -1e308};
-    for (std::uint32_t t : c.tris) {
+    for (std::uint32_t t : c.tris()) {
       for (std::uint32_t v : tris[t].v) {
         lo[0] = std::min(lo[0], pos[v][i]);
         hi[0] = std::max(hi[0], pos[v][i]);
@@ -1267,7 +1267,7 @@ void Arrangement::split_cluster(std::uint32_t ci) {
     }
     c.pieces().push_back(std::move(p));
     mark_open_edges(c);
-    for (std::uint32_t t : c.tris)
+    for (std::uint32_t t : c.tris())
       for (int e = 0; e < 3; ++e) {
         if (open_edges[t] & (1u << e)) continue;
         const std::uint32_t a = tris[t].v[e], b = tris[t].v[(e + 1) % 3];
@@ -1395,7 +1395,7 @@ void Arrangement::split_cluster(std::uint32_t ci) {
   // its bottom ring, the cap in the plate's cluster: every ring vertex touches).
   // (Segments of two lines end there, so the second's cut meets the first's line at it.)
   std::vector<std::uint32_t> corners;
-  if (!c.touch_points().empty() && c.tris.size() > 1) {
+  if (!c.touch_points().empty() && c.tris().size() > 1) {
     std::vector<std::pair<std::uint32_t, std::uint32_t>> ends;  // point, line
     for (const Segment& sg : segments) {
       ends.push_back({sg.p, sg.line});

@@ -208,6 +208,7 @@ struct Constraint {
 // What a cut cluster holds. Most clusters (one per input triangle) are near nothing and
 // hold none of it: one pointer for all four lists, made on the first push_back.
 struct ClusterCuts {
+  std::vector<std::uint32_t> tris;  // the cluster's triangles, when it has several
   std::vector<Constraint> constraints;
   std::vector<std::uint32_t> touch_points;  // input vertices touching it inside
   std::vector<Line> lines;
@@ -247,29 +248,22 @@ class CutList {
   Block* block_;
 };
 
-// A cluster's triangles: one, the common case, held in place.
-class ClusterTris {
- public:
-  void push_back(std::uint32_t t) {
-    if (n_ == 1) many_ = std::make_unique<std::vector<std::uint32_t>>(1, one_);
-    if (n_ == 0) one_ = t;
-    if (many_) many_->push_back(t);
-    ++n_;
-  }
-  const std::uint32_t* begin() const { return n_ <= 1 ? &one_ : many_->data(); }
-  const std::uint32_t* end() const { return begin() + n_; }
-  std::size_t size() const { return n_; }
-  bool empty() const { return n_ == 0; }
-  std::uint32_t operator[](std::size_t i) const { return begin()[i]; }
-
- private:
-  std::uint32_t one_ = 0, n_ = 0;
-  std::unique_ptr<std::vector<std::uint32_t>> many_;
-};
-
-// 32 bytes a cluster (a million triangles: as many clusters).
+// 24 bytes a cluster (a million triangles: as many clusters).
 struct Cluster {
-  ClusterTris tris;
+  // Its triangles: one, the common case, held in place; several in the block.
+  std::span<const std::uint32_t> tris() const {
+    return n_tris_ <= 1 ? std::span<const std::uint32_t>(&first_tri_, n_tris_) : std::span<const std::uint32_t>(cuts->tris);
+  }
+  void add_tri(std::uint32_t t) {
+    if (n_tris_ == 0) {
+      first_tri_ = t;
+    } else {
+      if (!cuts) cuts = std::make_unique<ClusterCuts>();
+      if (cuts->tris.empty()) cuts->tris.push_back(first_tri_);
+      cuts->tris.push_back(t);
+    }
+    ++n_tris_;
+  }
   std::uint32_t ref = 0;     // reference triangle (its plane)
   std::int8_t k = 2;         // dominant axis of the reference normal
   std::int8_t nk_sign = 1;   // sign of the reference normal's component k
@@ -294,6 +288,9 @@ struct Cluster {
   ConstList<Line, &ClusterCuts::lines> lines() const { return ConstList<Line, &ClusterCuts::lines>(cuts); }
   List<Piece, &ClusterCuts::pieces> pieces() { return List<Piece, &ClusterCuts::pieces>(cuts); }
   ConstList<Piece, &ClusterCuts::pieces> pieces() const { return ConstList<Piece, &ClusterCuts::pieces>(cuts); }
+
+ private:
+  std::uint32_t first_tri_ = 0, n_tris_ = 0;
 };
 
 // A point strictly inside a piece: the centroid of three of its vertices that do

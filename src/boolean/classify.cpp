@@ -545,7 +545,7 @@ struct AxisLineSegments {
       edge_values[d].clear();
       near[d].clear();
       widest[d] = 0;
-      for (std::uint32_t t : c.tris)
+      for (std::uint32_t t : c.tris())
         for (int v = 0; v < 3; ++v) {
           const double x = a.pos[a.tris[t].v[v]][axis];
           if (x == a.pos[a.tris[t].v[(v + 1) % 3]][axis]) edge_values[d].push_back(x);
@@ -592,7 +592,7 @@ std::vector<std::uint32_t> shared_rays(const Arrangement& a, const std::vector<s
   std::sort(keys_with_vertex.begin(), keys_with_vertex.end());
   const auto cut_alone = [&](std::uint32_t t) {
     const Cluster& c = a.clusters[a.cluster_of[t]];
-    return c.touched && c.tris.size() == 1;
+    return c.touched && c.tris().size() == 1;
   };
   std::vector<std::uint64_t> good;  // edges across which groups may form
   uses.edges.each_edge([&](std::uint32_t p, std::uint32_t q, std::span<const EdgeUseTable::Use> at) {
@@ -614,7 +614,7 @@ std::vector<std::uint32_t> shared_rays(const Arrangement& a, const std::vector<s
   std::vector<Side> sides;
   for (std::uint32_t k = 0; k < jobs.size(); ++k) {
     const Cluster& c = a.clusters[jobs[k][0]];
-    if (c.tris.size() != 1) continue;
+    if (c.tris().size() != 1) continue;
     const Piece& piece = c.pieces()[jobs[k][1]];
     for (std::size_t e = 0; e < piece.pts.size(); ++e) {
       const Line& l = c.lines()[piece.lines[e]];
@@ -755,7 +755,7 @@ Selection classify_and_select(const Arrangement& a, const Expr& expr, const Opti
   for (std::uint32_t ci = 0; ci < a.clusters.size(); ++ci) {
     const Cluster& c = a.clusters[ci];
     if (!c.touched) continue;
-    report.touched_triangles += c.tris.size();
+    report.touched_triangles += c.tris().size();
     for (std::uint32_t pi = 0; pi < c.pieces().size(); ++pi) jobs.push_back({ci, pi});
   }
   // A face per piece kept and per input face kept whole, as a rule: room made once
@@ -769,25 +769,25 @@ Selection classify_and_select(const Arrangement& a, const Expr& expr, const Opti
   std::vector<std::unique_ptr<Bvh>> cluster_tree(a.clusters.size());
   for (std::uint32_t ci = 0; ci < a.clusters.size(); ++ci) {
     const Cluster& c = a.clusters[ci];
-    if (!c.touched || c.tris.size() <= 8) continue;
+    if (!c.touched || c.tris().size() <= 8) continue;
     std::vector<Box> boxes;
-    boxes.reserve(c.tris.size());
-    for (std::uint32_t t : c.tris) boxes.push_back(a.bvh.box(t));
+    boxes.reserve(c.tris().size());
+    for (std::uint32_t t : c.tris()) boxes.push_back(a.bvh.box(t));
     cluster_tree[ci] = std::make_unique<Bvh>(std::move(boxes));
   }
   std::vector<Verdict> pieces = classify(jobs.size(), [&](std::size_t k, std::uint32_t& source,
                                                            std::vector<std::uint32_t>& on) {
     const auto [ci, pi] = jobs[k];
     const Cluster& c = a.clusters[ci];
-    if (c.tris.size() == 1) {
-      source = c.tris[0];
+    if (c.tris().size() == 1) {
+      source = c.tris()[0];
       on.push_back(a.tris[source].operand);
       if (ray_of[k] != k) return std::optional<RepPoint>();  // its group's ray decides
       return std::optional<RepPoint>(rep_of(a, ci, c.pieces()[pi]));
     }
     const RepPoint r = rep_of(a, ci, c.pieces()[pi]);
     int source_sign = 0;
-    std::vector<std::uint32_t> candidates;  // indices into c.tris, in order
+    std::vector<std::uint32_t> candidates;  // indices into c.tris(), in order
     if (cluster_tree[ci]) {
       Box near;
       for (std::uint32_t q : r.p) {
@@ -800,18 +800,18 @@ Selection classify_and_select(const Arrangement& a, const Expr& expr, const Opti
                               [&](std::uint32_t t) { candidates.push_back(t); });
       std::sort(candidates.begin(), candidates.end());
     } else {
-      candidates.resize(c.tris.size());
+      candidates.resize(c.tris().size());
       std::iota(candidates.begin(), candidates.end(), 0u);
     }
     const H3<Fp> xf = a.rep3<Fp>(r);
     const int ws = decide([&]<class T>() { return a.rep3<T>(r).c[3]; });
     for (std::uint32_t t : candidates) {
-      if (!covers(a, c.tris[t], r, xf, ws)) continue;
-      on.push_back(a.tris[c.tris[t]].operand);
+      if (!covers(a, c.tris()[t], r, xf, ws)) continue;
+      on.push_back(a.tris[c.tris()[t]].operand);
       if (source == kInvalidIndex || source_sign < 0) {
-        const int sign = a.tri_sign(c, c.tris[t]);
+        const int sign = a.tri_sign(c, c.tris()[t]);
         if (source == kInvalidIndex || sign > 0) {
-          source = c.tris[t];
+          source = c.tris()[t];
           source_sign = sign;
         }
       }

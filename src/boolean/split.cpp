@@ -151,7 +151,7 @@ bool Arrangement::split_cluster_graph(std::uint32_t ci, SplitScratch& scratch) {
   scratch.clear();
   Cluster& c = clusters[ci];
   const int k = c.k, iu = (k + 1) % 3;
-  if (c.tris.size() > 1) mark_open_edges(c);
+  if (c.tris().size() > 1) mark_open_edges(c);
 
   // ---- lines and the crossing points of pairs of them
   auto& through = scratch.through;  // edge key -> line
@@ -189,7 +189,7 @@ bool Arrangement::split_cluster_graph(std::uint32_t ci, SplitScratch& scratch) {
   // ---- the segments
   using Segment = SplitScratch::Segment;
   auto& segments = scratch.segments;
-  for (std::uint32_t t : c.tris)
+  for (std::uint32_t t : c.tris())
     for (int e = 0; e < 3; ++e) {
       if (open_edges[t] & (1u << e)) continue;
       const std::uint32_t a = tris[t].v[e], b = tris[t].v[(e + 1) % 3];
