@@ -531,7 +531,7 @@ void Arrangement::line_union(std::uint32_t a, std::uint32_t b) {
 Arrangement::Arrangement(std::vector<Vec3> positions, std::vector<Tri> triangles,
                          std::vector<SoupFace> soup_faces, LoopTable loops, std::uint32_t n_operands,
                          std::vector<WireSeg> wire_list, std::vector<char> embedded_operands,
-                         std::vector<std::array<std::uint32_t, 2>> joins, EdgeUseTable edges)
+                         std::vector<std::array<std::uint32_t, 2>> joins, EdgeUseTable edges, int threads)
     : pos(std::move(positions)),
       tris(std::move(triangles)),
       faces(std::move(soup_faces)),
@@ -542,13 +542,17 @@ Arrangement::Arrangement(std::vector<Vec3> positions, std::vector<Tri> triangles
       plane_joins(std::move(joins)),
       edge_uses(std::move(edges)) {
   embedded.resize(operands, 0);
-  std::vector<Box> boxes(tris.size());
+  std::vector<FloatBox> boxes(tris.size());
   std::vector<std::uint32_t> groups(tris.size(), Bvh::kNoGroup);  // an embedded operand's
-  for (std::size_t t = 0; t < tris.size(); ++t) {
-    for (std::uint32_t v : tris[t].v) boxes[t].add(pos[v]);
-    if (embedded[tris[t].operand]) groups[t] = tris[t].operand;
-  }
-  bvh = Bvh(std::move(boxes), std::move(groups));
+  parallel_ranges<char>(tris.size(), threads, [&](std::size_t lo, std::size_t hi, char&) {
+    for (std::size_t t = lo; t < hi; ++t) {
+      Box b;
+      for (std::uint32_t v : tris[t].v) b.add(pos[v]);
+      boxes[t] = FloatBox::around(b);
+      if (embedded[tris[t].operand]) groups[t] = tris[t].operand;
+    }
+  });
+  bvh = Bvh(std::move(boxes), std::move(groups), threads);
   wire_boxes.resize(wires.size());
   for (std::size_t w = 0; w < wires.size(); ++w) {
     wire_boxes[w].add(pos[wires[w].p]);

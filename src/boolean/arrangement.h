@@ -376,11 +376,11 @@ class Arrangement {
   // embedded: by operand, whether its own triangles are known to meet only in the
   // corners and edges they share (embedded_operands), so that no pair of them is
   // tested; plane_joins: pairs of those triangles that lie in one plane; edges: the
-  // triangles' edge uses.
+  // triangles' edge uses. The tree of the triangles' boxes is built on `threads`.
   Arrangement(std::vector<Vec3> positions, std::vector<Tri> tris, std::vector<SoupFace> faces,
               LoopTable loops, std::uint32_t operands, std::vector<WireSeg> wires,
               std::vector<char> embedded, std::vector<std::array<std::uint32_t, 2>> plane_joins,
-              EdgeUseTable edges);
+              EdgeUseTable edges, int threads = 1);
 
   // Stage 1: candidate pairs, exact tests, clusters and their constraints.
   // Stage 1 on `threads` threads (0: all); the same result at any count.

@@ -461,7 +461,7 @@ Result<Arrangement> make_soup(std::span<const Model* const> operands, int thread
   std::vector<char> embedded = embedded_operands(pos, tris, edges, closed_only, threads, plane_joins);
   return Arrangement(std::move(pos), std::move(tris), std::move(faces), std::move(loops),
                      static_cast<std::uint32_t>(operands.size()), std::move(wires),
-                     std::move(embedded), std::move(plane_joins), std::move(edges));
+                     std::move(embedded), std::move(plane_joins), std::move(edges), thread_count(threads));
 }
 
 // ---------------------------------------------------------------- the rounding check

@@ -109,6 +109,33 @@ TEST(Bvh, FloatBoxesReportASupersetWithinAFloatsUnit) {
   EXPECT_GT(extra, 0u) << "the gaps under a float's unit were meant to make some";
 }
 
+// The tree built on several threads is the one built on one: the same pairs, in the
+// same order (the Boolean's events are applied in that order).
+TEST(Bvh, ThreadsBuildTheSameTree) {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> at(0, 1000), size(0, 8);
+  Case c;  // above the size that splits the build, a few neighbours each
+  for (int i = 0; i < 70000; ++i) {
+    Box b;
+    const Vec3 lo{at(rng), at(rng), at(rng)};
+    b.add(lo);
+    b.add(lo + Vec3{size(rng), size(rng), size(rng)});
+    c.boxes.push_back(b);
+    c.groups.push_back(rng() % 3 == 0 ? Bvh::kNoGroup : static_cast<std::uint32_t>(rng() % 3));
+  }
+  std::vector<FloatBox> boxes;
+  for (const Box& b : c.boxes) boxes.push_back(FloatBox::around(b));
+  auto pairs_of = [&](int threads) {
+    std::vector<std::array<std::uint32_t, 2>> out;
+    Bvh(boxes, c.groups, threads).pairs([&](std::uint32_t i, std::uint32_t j) { out.push_back({i, j}); });
+    return out;
+  };
+  const auto one = pairs_of(1);
+  EXPECT_FALSE(one.empty());
+  EXPECT_EQ(pairs_of(2), one);
+  EXPECT_EQ(pairs_of(4), one);
+}
+
 TEST(Bvh, OneGroupAloneHasNoPairs) {
   std::mt19937_64 rng(7);
   Case c = random_case(rng, 500, 1);

@@ -23,6 +23,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <thread>
 #include <type_traits>
 #include <vector>
 
@@ -96,19 +97,21 @@ class Bvh {
 
   explicit Bvh(std::vector<Box> boxes) : Bvh(std::move(boxes), {}) {}
   // groups[i] is box i's group or kNoGroup; empty: no groups.
-  Bvh(std::vector<Box> boxes, std::vector<std::uint32_t> groups) : groups_(std::move(groups)) {
+  Bvh(const std::vector<Box>& boxes, std::vector<std::uint32_t> groups)
+      : Bvh(rounded(boxes), std::move(groups)) {}
+  // The boxes rounded already (FloatBox::around), built on up to `threads` threads
+  // (the tree the same at any count: its two halves are built apart below the top).
+  Bvh(std::vector<FloatBox> boxes, std::vector<std::uint32_t> groups, int threads = 1)
+      : boxes_(std::move(boxes)), groups_(std::move(groups)) {
     // The split keys (twice the centres: lo + hi) travel with the box ids, so that the
     // partitions read them in order rather than through the ids.
-    std::vector<Item> items(boxes.size());
-    boxes_.resize(boxes.size());
-    for (std::size_t i = 0; i < boxes.size(); ++i) {
-      const Vec3 c = boxes[i].lo + boxes[i].hi;
-      items[i] = {{static_cast<float>(c.x), static_cast<float>(c.y), static_cast<float>(c.z)}, static_cast<std::uint32_t>(i)};
-      boxes_[i] = FloatBox::around(boxes[i]);
+    std::vector<Item> items(boxes_.size());
+    for (std::size_t i = 0; i < boxes_.size(); ++i) {
+      const FloatBox& b = boxes_[i];
+      items[i] = {{b.lo[0] + b.hi[0], b.lo[1] + b.hi[1], b.lo[2] + b.hi[2]}, static_cast<std::uint32_t>(i)};
     }
-    std::vector<Box>().swap(boxes);
-    nodes_.reserve(node_count(static_cast<std::uint32_t>(items.size())));
-    if (!items.empty()) build(0, static_cast<std::uint32_t>(items.size()), items);
+    nodes_.resize(node_count(static_cast<std::uint32_t>(items.size())));
+    if (!items.empty()) build(0, 0, static_cast<std::uint32_t>(items.size()), items, threads);
     order_.resize(items.size());
     for (std::size_t k = 0; k < items.size(); ++k) order_[k] = items[k].id;
   }
@@ -237,9 +240,14 @@ class Bvh {
     std::array<float, 3> twice_centre;
     std::uint32_t id;
   };
-  std::uint32_t build(std::uint32_t begin, std::uint32_t end, std::vector<Item>& items) {
-    const auto id = static_cast<std::uint32_t>(nodes_.size());
-    nodes_.push_back({});
+  static std::vector<FloatBox> rounded(const std::vector<Box>& boxes) {
+    std::vector<FloatBox> out(boxes.size());
+    for (std::size_t i = 0; i < boxes.size(); ++i) out[i] = FloatBox::around(boxes[i]);
+    return out;
+  }
+  // Node `id` over items [begin, end), its subtree in preorder from id; the right
+  // subtree on a thread of its own while `threads` allows (the same nodes either way).
+  void build(std::uint32_t id, std::uint32_t begin, std::uint32_t end, std::vector<Item>& items, int threads) {
     nodes_[id].begin = begin;
     nodes_[id].end = end;
     if (end - begin <= 8) {
@@ -251,7 +259,7 @@ class Bvh {
       }
       nodes_[id].box = box;
       nodes_[id].group = group;
-      return id;
+      return;
     }
     // Split at the median centre along the axis the centres spread most on (twice the
     // centres, in floats: only the tree's shape depends on them, never what it
@@ -267,13 +275,20 @@ class Bvh {
     const std::uint32_t mid = begin + (end - begin) / 2;
     std::nth_element(items.begin() + begin, items.begin() + mid, items.begin() + end,
                      [axis](const Item& a, const Item& b) { return a.twice_centre[axis] < b.twice_centre[axis]; });
-    const std::uint32_t left = build(begin, mid, items);
-    const std::uint32_t right = build(mid, end, items);
+    const std::uint32_t left = id + 1;
+    const auto right = static_cast<std::uint32_t>(left + node_count(mid - begin));
+    if (threads > 1 && end - begin >= (1u << 15)) {
+      std::thread other([&, right, mid, end, threads] { build(right, mid, end, items, threads / 2); });
+      build(left, begin, mid, items, threads - threads / 2);
+      other.join();
+    } else {
+      build(left, begin, mid, items, 1);
+      build(right, mid, end, items, 1);
+    }
     nodes_[id].box = nodes_[left].box;
     nodes_[id].box.add(nodes_[right].box);
     nodes_[id].group = nodes_[left].group == nodes_[right].group ? nodes_[left].group : kMixed;
     nodes_[id].right = right;
-    return id;
   }
 
   template <class F>
