@@ -488,7 +488,7 @@ std::size_t rounding_crossings(const Model& m, const std::vector<bool>& rounded,
     }
   // Each triangle with a moved vertex against every triangle its boxes meet (a pair of
   // two moved ones once), so that a part whose vertices are all doubles costs nothing.
-  const TriangleBoxes index(corners);
+  const TriangleBoxes index(corners, thread_count(threads));
   std::vector<std::size_t> counts = parallel_ranges<std::size_t>(tris.size(), threads, [&](std::size_t lo, std::size_t hi, std::size_t& count) {
   std::vector<std::uint32_t> scratch;
   for (std::uint32_t i = static_cast<std::uint32_t>(lo); i < hi; ++i) {

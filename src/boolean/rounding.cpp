@@ -13,6 +13,7 @@
 // the test is exact (geom::triangles_meet), and the rounding check after building
 // (boolean.cpp) counts what remains.
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <numeric>
 #include <unordered_map>
@@ -73,8 +74,12 @@ bool meet(const MeshInput& in, const Tri3& x, const Tri3& y) {
 // Boxes grown by 16 units in the last place (twice the farthest move), so that the
 // tree built before a vertex moves still finds what the moved triangles meet.
 Box grown(Box b) {
+  // 16 units in the last place of the larger magnitude: 2^(exponent - 52 + 4), made
+  // from the exponent's bits (no libm call; a million boxes a check).
   const auto margin = [](double lo, double hi) {
-    return 16 * std::ldexp(1.0, std::ilogb(std::max({std::abs(lo), std::abs(hi), 1e-300})) - 52);
+    const double x = std::max({std::abs(lo), std::abs(hi), 1e-300});
+    const std::uint64_t e = (std::bit_cast<std::uint64_t>(x) >> 52) & 0x7ff;  // biased
+    return e > 48 ? std::bit_cast<double>((e - 48) << 52) : 16 * std::ldexp(1.0, static_cast<int>(e) - 1023 - 52);
   };
   const Vec3 m{margin(b.lo.x, b.hi.x), margin(b.lo.y, b.hi.y), margin(b.lo.z, b.hi.z)};
   b.lo = b.lo - m;
@@ -84,7 +89,7 @@ Box grown(Box b) {
 
 }  // namespace
 
-TriangleBoxes::TriangleBoxes(const std::vector<std::array<Vec3, 3>>& tris) {
+TriangleBoxes::TriangleBoxes(const std::vector<std::array<Vec3, 3>>& tris, int threads) {
   const auto extent = [](const Box& b) { return std::max({b.hi.x - b.lo.x, b.hi.y - b.lo.y, b.hi.z - b.lo.z}); };
   const auto box_of3 = [](const Vec3& a, const Vec3& b, const Vec3& c) {
     Box x;
@@ -138,7 +143,7 @@ TriangleBoxes::TriangleBoxes(const std::vector<std::array<Vec3, 3>>& tris) {
     }
   }
   begin_.push_back(static_cast<std::uint32_t>(boxes_.size()));
-  bvh_ = Bvh(boxes_);
+  bvh_ = Bvh(boxes_, {}, threads);
 }
 
 bool nudge_rounding(MeshInput& in, const std::vector<char>& inexact,
@@ -212,7 +217,7 @@ bool nudge_rounding(MeshInput& in, const std::vector<char>& inexact,
       for (int k = 0; k < 3; ++k) corners[i][k] = in.positions[tris[i][k]];
       for (std::uint32_t v : tris[i]) moved[i] |= inexact[v];
     }
-    const TriangleBoxes index(corners);
+    const TriangleBoxes index(corners, thread_count(threads));
     // The inexact vertices of crossing pairs.
     auto found = parallel_ranges<std::vector<std::uint32_t>>(
         tris.size(), threads, [&](std::size_t lo, std::size_t hi, std::vector<std::uint32_t>& out) {

@@ -94,7 +94,8 @@ Result<BooleanResult> build_result(Arrangement& a, Selection selection, const Ex
 // pieces' corners are rounded).
 class TriangleBoxes {
  public:
-  explicit TriangleBoxes(const std::vector<std::array<Vec3, 3>>& tris);
+  // The tree built on `threads` (the same at any count).
+  explicit TriangleBoxes(const std::vector<std::array<Vec3, 3>>& tris, int threads = 1);
   // Calls f(j) once for each triangle j with a box meeting one of triangle i's.
   template <class F>
   void near(std::uint32_t i, std::vector<std::uint32_t>& scratch, F&& f) const {

@@ -37,30 +37,31 @@ Status check_input(const MeshInput& in) {
   }
   for (std::size_t fi = 0; fi < in.faces.size(); ++fi) {
     const MeshFace& f = in.faces[fi];
-    const std::string where = "face " + std::to_string(fi);
-    if (f.loops.empty()) return Error{ErrorCode::kInvalidInput, where + " has no loop"};
+    // The place, spelled out only for an error (a mesh of a million faces has none).
+    const auto where = [fi] { return "face " + std::to_string(fi); };
+    if (f.loops.empty()) return Error{ErrorCode::kInvalidInput, where() + " has no loop"};
     for (int side : {f.front, f.back}) {
       if (side < -1 || side >= in.volumes) {
-        return Error{ErrorCode::kInvalidInput, where + " names volume " + std::to_string(side) +
+        return Error{ErrorCode::kInvalidInput, where() + " names volume " + std::to_string(side) +
                                                    " but there are " + std::to_string(in.volumes)};
       }
     }
     for (std::size_t li = 0; li < f.loops.size(); ++li) {
       const auto& loop = f.loops[li];
-      const std::string at = where + " loop " + std::to_string(li);
+      const auto at = [&] { return where() + " loop " + std::to_string(li); };
       if (loop.size() < 3) {
         return Error{ErrorCode::kInvalidInput,
-                     at + " has " + std::to_string(loop.size()) + " vertices (at least 3)"};
+                     at() + " has " + std::to_string(loop.size()) + " vertices (at least 3)"};
       }
       for (std::size_t k = 0; k < loop.size(); ++k) {
         if (loop[k] >= n) {
-          return Error{ErrorCode::kInvalidInput, at + " index " + std::to_string(loop[k]) +
+          return Error{ErrorCode::kInvalidInput, at() + " index " + std::to_string(loop[k]) +
                                                      " is out of range (" + std::to_string(n) +
                                                      " vertices)"};
         }
         if (loop[k] == loop[(k + 1) % loop.size()]) {
           return Error{ErrorCode::kInvalidInput,
-                       at + " repeats vertex " + std::to_string(loop[k]) + " consecutively"};
+                       at() + " repeats vertex " + std::to_string(loop[k]) + " consecutively"};
         }
       }
     }
@@ -115,8 +116,28 @@ Result<BuildResult> build_mesh(Model& m, const MeshInput& in) {
     }
   }
   for (const auto& w : in.wires) sides.push_back({pair_key(w[0], w[1]), w[0], kInvalidIndex});
-  std::stable_sort(sides.begin(), sides.end(),
-                   [](const Side& x, const Side& y) { return x.key < y.key; });
+  // By key, stably: counted into rows by the smaller vertex (a pass each way, no
+  // comparisons), then each row's few sides ordered in place.
+  {
+    const std::size_t n = in.positions.size();
+    std::vector<std::uint32_t> start(n + 1, 0);
+    for (const Side& x : sides) ++start[(x.key >> 32) + 1];
+    for (std::size_t v = 0; v < n; ++v) start[v + 1] += start[v];
+    std::vector<Side> sorted(sides.size());
+    for (const Side& x : sides) sorted[start[x.key >> 32]++] = x;  // start[v]: row v's end now
+    const auto by_key = [](const Side& x, const Side& y) { return x.key < y.key; };
+    for (std::size_t v = 0, b = 0; v < n; b = start[v++]) {
+      Side* first = sorted.data() + b;
+      Side* last = sorted.data() + start[v];
+      if (last - first > 32) {
+        std::stable_sort(first, last, by_key);
+        continue;
+      }
+      for (Side* x = first + 1; x < last; ++x)
+        for (Side* y = x; y > first && by_key(*y, *(y - 1)); --y) std::swap(*y, *(y - 1));
+    }
+    sides.swap(sorted);
+  }
 
   // One edge per key, oriented like its first side; each use learns its edge.
   std::vector<EdgeId> edge_of_slot(use_total);

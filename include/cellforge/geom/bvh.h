@@ -97,8 +97,8 @@ class Bvh {
 
   explicit Bvh(std::vector<Box> boxes) : Bvh(std::move(boxes), {}) {}
   // groups[i] is box i's group or kNoGroup; empty: no groups.
-  Bvh(const std::vector<Box>& boxes, std::vector<std::uint32_t> groups)
-      : Bvh(rounded(boxes), std::move(groups)) {}
+  Bvh(const std::vector<Box>& boxes, std::vector<std::uint32_t> groups, int threads = 1)
+      : Bvh(rounded(boxes), std::move(groups), threads) {}
   // The boxes rounded already (FloatBox::around), built on up to `threads` threads
   // (the tree the same at any count: its two halves are built apart below the top).
   Bvh(std::vector<FloatBox> boxes, std::vector<std::uint32_t> groups, int threads = 1)
