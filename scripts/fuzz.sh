@@ -2,7 +2,9 @@
 # Builds the libFuzzer targets (tests/fuzz/fuzz_read.cpp, one binary per file format
 # of io/; tests/fuzz/fuzz_scad.cpp for the OpenSCAD language of csg/) with clang,
 # AddressSanitizer and UndefinedBehaviorSanitizer, and runs each for FUZZ_SECONDS
-# (default 30) on a copy of its seed corpus (tests/data/*.FORMAT; tests/scad/ for scad).
+# (default 30) on a copy of its seed corpus (tests/data/*.FORMAT; tests/scad/ for scad;
+# and tests/fuzz/found/*.FORMAT, the inputs that made a fuzzer fail once, so that every
+# run tries them first).
 # A crash, a sanitizer report, a leak or a timeout fails the script; the input
 # that caused it is kept in $FUZZ_BUILD/crashes/<format>/.
 #
@@ -45,6 +47,7 @@ for fmt in $FORMATS; do
   crashes=$OUT/crashes/$fmt
   mkdir -p "$corpus" "$crashes"
   cp "$ROOT"/tests/data/*."$fmt" "$corpus"/ 2>/dev/null || true
+  cp "$ROOT"/tests/fuzz/found/*."$fmt" "$corpus"/ 2>/dev/null || true
   [ "$fmt" = scad ] && cp "$ROOT"/tests/scad/*.scad "$ROOT"/tests/scad/lib/*.scad "$corpus"/
   echo "fuzz.sh: $fmt for ${SECONDS_EACH}s on $(ls "$corpus" | wc -l) inputs"
   if ! ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 \

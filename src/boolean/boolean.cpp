@@ -244,6 +244,7 @@ EdgeUseTable::EdgeUseTable(std::span<const Tri> tris, std::size_t n_points)
 void EdgeUseTable::sort_rows() {
   const auto by_q = [](const Use& x, const Use& y) { return x.q < y.q; };
   for (std::size_t v = 0; v + 1 < start_.size(); ++v) {
+    if (start_[v + 1] - start_[v] < 2) continue;
     Use* b = uses_.data() + start_[v];
     Use* e = uses_.data() + start_[v + 1];
     if (e - b > 32) {

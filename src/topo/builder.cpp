@@ -127,6 +127,7 @@ Result<BuildResult> build_mesh(Model& m, const MeshInput& in) {
     for (const Side& x : sides) sorted[start[x.key >> 32]++] = x;  // start[v]: row v's end now
     const auto by_key = [](const Side& x, const Side& y) { return x.key < y.key; };
     for (std::size_t v = 0, b = 0; v < n; b = start[v++]) {
+      if (start[v] - b < 2) continue;
       Side* first = sorted.data() + b;
       Side* last = sorted.data() + start[v];
       if (last - first > 32) {

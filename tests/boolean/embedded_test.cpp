@@ -148,6 +148,10 @@ TEST(EmbeddedSurface, EdgeUsesAreGroupedByEdgeThenTriangle) {
   EXPECT_EQ(seen, want);
   EXPECT_TRUE(table.uses(0, 0).empty());
   EXPECT_TRUE(table.uses(0, static_cast<std::uint32_t>(t.pos.size()) + 5).empty());
+  // No triangles: every row empty (run under UBSan by ./test.sh).
+  const EdgeUseTable none(std::span<const Tri>{}, 5);
+  EXPECT_EQ(none.size(), 0u);
+  none.each_edge([](std::uint32_t, std::uint32_t, std::span<const EdgeUseTable::Use>) { ADD_FAILURE(); });
 }
 
 TEST(EmbeddedSurface, WhatCouldMeetItselfIsRefused) {

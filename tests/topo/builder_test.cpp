@@ -110,6 +110,22 @@ TEST(Builder, ErrorsNameTheFace) {
   EXPECT_TRUE(m.empty());
 }
 
+// Points and nothing else: no side to order (the fuzzer's OBJ of vertices and no face
+// found the empty rows; under UBSan an empty list's pointer arithmetic aborts).
+TEST(Builder, PointsAloneBuild) {
+  Model m;
+  MeshInput in;
+  in.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  auto r = build_mesh(m, in);
+  ASSERT_TRUE(r.ok()) << r.error().message;
+  EXPECT_EQ(m.num_vertices(), 3u);
+  EXPECT_EQ(m.num_edges(), 0u);
+  in.wires = {{0, 1}};  // a wire: one side
+  Model w;
+  ASSERT_TRUE(build_mesh(w, in).ok());
+  EXPECT_EQ(w.num_edges(), 1u);
+}
+
 TEST(Builder, AShellPinchedAtAVertexIsValid) {
   // A cylinder r <= 1, |z| <= 1 with a double cone r < |z| taken out: one closed
   // shell whose every edge is manifold but whose faces form two fans around the
