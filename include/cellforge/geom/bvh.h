@@ -245,9 +245,11 @@ class Bvh {
     for (std::size_t i = 0; i < boxes.size(); ++i) out[i] = FloatBox::around(boxes[i]);
     return out;
   }
-  // Node `id` over items [begin, end), its subtree in preorder from id; the right
-  // subtree on a thread of its own while `threads` allows (the same nodes either way).
-  void build(std::uint32_t id, std::uint32_t begin, std::uint32_t end, std::vector<Item>& items, int threads) {
+  // Node `id` over items [begin, end), its subtree in preorder from id; returns the id
+  // after the subtree. The right subtree on a thread of its own while `threads` allows
+  // (its first id then counted ahead; the same nodes either way).
+  std::uint32_t build(std::uint32_t id, std::uint32_t begin, std::uint32_t end, std::vector<Item>& items,
+                      int threads) {
     nodes_[id].begin = begin;
     nodes_[id].end = end;
     if (end - begin <= 8) {
@@ -259,7 +261,7 @@ class Bvh {
       }
       nodes_[id].box = box;
       nodes_[id].group = group;
-      return;
+      return id + 1;
     }
     // Split at the median centre along the axis the centres spread most on (twice the
     // centres, in floats: only the tree's shape depends on them, never what it
@@ -276,19 +278,21 @@ class Bvh {
     std::nth_element(items.begin() + begin, items.begin() + mid, items.begin() + end,
                      [axis](const Item& a, const Item& b) { return a.twice_centre[axis] < b.twice_centre[axis]; });
     const std::uint32_t left = id + 1;
-    const auto right = static_cast<std::uint32_t>(left + node_count(mid - begin));
+    std::uint32_t right = 0, after = 0;
     if (threads > 1 && end - begin >= (1u << 15)) {
-      std::thread other([&, right, mid, end, threads] { build(right, mid, end, items, threads / 2); });
+      right = static_cast<std::uint32_t>(left + node_count(mid - begin));
+      std::thread other([&, right, mid, end, threads] { after = build(right, mid, end, items, threads / 2); });
       build(left, begin, mid, items, threads - threads / 2);
       other.join();
     } else {
-      build(left, begin, mid, items, 1);
-      build(right, mid, end, items, 1);
+      right = build(left, begin, mid, items, 1);
+      after = build(right, mid, end, items, 1);
     }
     nodes_[id].box = nodes_[left].box;
     nodes_[id].box.add(nodes_[right].box);
     nodes_[id].group = nodes_[left].group == nodes_[right].group ? nodes_[left].group : kMixed;
     nodes_[id].right = right;
+    return after;
   }
 
   template <class F>
