@@ -166,21 +166,36 @@ class RayCaster {
   // The sign of a polynomial that is affine in the point: first on the point's
   // rounded coordinates with their error bounds (tight, unlike the homogeneous form),
   // then exactly on its homogeneous coordinates (with W's sign ws).
+  // `line`: input vertices s, u (s != u) such that f vanishes on the line su (a
+  // triangle edge's side function), else null.
   template <class Start, class Affine>
-  int affine_sign(const Start& start, int ws, Affine f) const {
+  int affine_sign(const Start& start, int ws, Affine f, const std::uint32_t* line = nullptr) const {
     const int s = sign_of(f(H3<Fp>{{x_[0], x_[1], x_[2], Fp(1.0)}}));
     if (s != kUncertain) return s;
     if constexpr (std::is_same_v<Start, FreeStart>) {
-      // Between two input vertices, f is (f(p) + 2 f(q)) / 3: their signs, on doubles,
-      // decide unless they differ.
-      if (start.p < a_.pos.size() && start.q < a_.pos.size()) {
-        auto at = [&](std::uint32_t v) {
-          const Vec3 x = a_.pos[v];
-          return decide([&]<class T>() { return f(explicit_point<T>(x)); });
-        };
-        const int sp = at(start.p), sq = start.q == start.p ? sp : at(start.q);
+      // f at (p + 2q) / 3 is (f(p) + 2 f(q)) / 3: the signs at the ends decide unless
+      // they differ. Each known without the site's arithmetic where it can be: zero for
+      // a point made on the line su, on doubles at an input vertex; an implicit end
+      // off the line is asked only when the other end's sign is zero.
+      auto known = [&](std::uint32_t v) {
+        if (line && on_line(v, line[0], line[1])) return 0;
+        if (v >= a_.pos.size()) return kUncertain;
+        const Vec3 x = a_.pos[v];
+        return decide([&]<class T>() { return f(explicit_point<T>(x)); });
+      };
+      auto at = [&](std::uint32_t v) {
+        const int k = known(v);
+        if (k != kUncertain) return k;
+        return a_.w3_sign(v) * decide([&]<class T>() { return f(a_.point3<T>(v)); });
+      };
+      const int sp = known(start.p), sq = start.q == start.p ? sp : known(start.q);
+      if (sp != kUncertain && sq != kUncertain) {
         if (sp == sq || sq == 0) return sp;
         if (sp == 0) return sq;
+      } else if (sp == 0) {
+        return at(start.q);
+      } else if (sq == 0) {
+        return at(start.p);
       }
     }
     // The homogeneous coordinates in double-double (exact for the small integers of
@@ -208,15 +223,35 @@ class RayCaster {
     }
     const Tri& t = a_.tris[ti];
     const Vec3 p0 = a_.pos[t.v[0]];
-    return affine_sign(start, ws, [&]<class T>(const H3<T>& x) {
+    auto f = [&]<class T>(const H3<T>& x) {
       const V3<T> n = normal_t<T>(a_, t);
       return n[0] * (x.c[0] - T(p0.x) * x.c[3]) + n[1] * (x.c[1] - T(p0.y) * x.c[3]) +
              n[2] * (x.c[2] - T(p0.z) * x.c[3]);
-    });
+    };
+    if constexpr (std::is_same_v<Start, FreeStart>) {
+      // One end on the plane: the site's side is the other end's (its own point's
+      // arithmetic, not the site's, whose degree is twice as high).
+      if (start.q != start.p) {
+        const int sp = known_side(start.p, ti), sq = known_side(start.q, ti);
+        const std::uint32_t other = sp == 0 && sq == kUncertain ? start.q
+                                    : sq == 0 && sp == kUncertain ? start.p
+                                                                  : kInvalidIndex;
+        if (other != kInvalidIndex) {
+          const int so = sign_of(f(a_.point3<Fp>(other)));
+          if (so != kUncertain) return a_.w3_sign(other) * so;
+        }
+      }
+    }
+    return affine_sign(start, ws, f);
   }
   int known_side(std::uint32_t p, std::uint32_t ti) const {
     const Tri& t = a_.tris[ti];
-    if (p < a_.pos.size()) return orient3d(a_.pos[t.v[0]], a_.pos[t.v[1]], a_.pos[t.v[2]], a_.pos[p]);
+    if (p < a_.pos.size()) {
+      // A corner of the triangle's face (a site at its own triangle: no arithmetic).
+      const auto on = a_.plane_vertices(t);
+      if (std::find(on.begin(), on.end(), p) != on.end()) return 0;
+      return orient3d(a_.pos[t.v[0]], a_.pos[t.v[1]], a_.pos[t.v[2]], a_.pos[p]);
+    }
     const std::uint32_t plane = a_.plane_of[a_.cluster_of[ti]];
     const PointDef& d = a_.points[p - a_.pos.size()];
     if (d.kind == PointKind::kLpi && a_.plane_of[a_.cluster_of[d.c]] == plane) return 0;
@@ -235,6 +270,19 @@ class RayCaster {
     return kUncertain;
   }
 
+  // Whether point v is made on the line through input vertices s and u (known without
+  // arithmetic): one of them, or a point of an edge or segment su.
+  bool on_line(std::uint32_t v, std::uint32_t s, std::uint32_t u) const {
+    if (v == s || v == u) return true;
+    if (v < a_.pos.size()) return false;
+    const PointDef& d = a_.points[v - a_.pos.size()];
+    if (d.kind != PointKind::kLpi && d.kind != PointKind::kMeet) return false;
+    if ((d.a == s && d.b == u) || (d.a == u && d.b == s)) return true;
+    if (d.kind != PointKind::kMeet) return false;
+    const auto& m = a_.meets[d.c];  // the other segment
+    return (m[0] == s && m[1] == u) || (m[0] == u && m[1] == s);
+  }
+
   // Whether the start lies on the closed triangle t: on its plane, and inside or on
   // its sides in the projection along its normal's largest component.
   template <class Start>
@@ -250,10 +298,11 @@ class RayCaster {
     const int i = (k + 1) % 3, j = (k + 2) % 3;
     for (int q = 0; q < 3; ++q) {
       const Vec3 s = p[q], u = p[(q + 1) % 3];
+      const std::uint32_t line[2] = {t.v[q], t.v[(q + 1) % 3]};
       const int o = affine_sign(start, ws, [&]<class T>(const H3<T>& x) {
         return (T(u[i]) - T(s[i])) * (x.c[j] - T(s[j]) * x.c[3]) -
                (T(u[j]) - T(s[j])) * (x.c[i] - T(s[i]) * x.c[3]);
-      });
+      }, line);
       if (o == -mk) return false;
     }
     return plane_sign(start, ws, ti) == 0;
@@ -297,10 +346,11 @@ class RayCaster {
     bool in_front = true, in_back = true;
     for (int q = 0; q < 3; ++q) {
       const Vec3 s = p[q], u = p[(q + 1) % 3];
+      const std::uint32_t line[2] = {t.v[q], t.v[(q + 1) % 3]};
       const int o = affine_sign(start, ws, [&]<class T>(const H3<T>& x) {
         return (T(u[i]) - T(s[i])) * (x.c[j] - T(s[j]) * x.c[3]) -
                (T(u[j]) - T(s[j])) * (x.c[i] - T(s[i]) * x.c[3]);
-      });
+      }, line);
       if (o != 0) {
         if (o != mk) return;
         continue;
@@ -965,21 +1015,35 @@ Selection classify_and_select(const Arrangement& a, const Expr& expr, const Opti
 
 std::vector<SiteVerdict> classify_sites(const Arrangement& a, const Expr& expr,
                                         const std::vector<std::array<std::uint32_t, 2>>& sites,
-                                        int threads, bool both_sides) {
+                                        int threads, bool both_sides, const std::vector<std::int8_t>& axes) {
+  const Box bounds = a.bvh.bounds();
+  // Up the axis whose top the site is nearest to, as a share of the box's extent.
+  auto axis_of = [&](const std::array<std::uint32_t, 2>& s) {
+    const Vec3 x = (a.approx3(s[0]) + a.approx3(s[1]) * 2.0) * (1.0 / 3);
+    int best = 2;
+    double least = 2;
+    for (int k = 2; k >= 0; --k) {
+      const double extent = bounds.hi[k] - bounds.lo[k];
+      const double left = extent > 0 ? (bounds.hi[k] - x[k]) / extent : 0;
+      if (left < least) least = left, best = k;
+    }
+    return best;
+  };
   std::vector<std::vector<SiteVerdict>> parts = parallel_ranges<std::vector<SiteVerdict>>(
       sites.size(), threads, [&](std::size_t lo, std::size_t hi, std::vector<SiteVerdict>& part) {
         RayCaster rays(a);
         Windings w;
         Selector selector(expr, a.operands);
         for (std::size_t k = lo; k < hi; ++k) {
-          rays.cast_free(sites[k][0], sites[k][1], w);
+          const int first = axes.empty() ? axis_of(sites[k]) : axes[k];
+          rays.cast_free(sites[k][0], sites[k][1], w, first);
           const auto [in, around] = selector.at_point(w);
-          SiteVerdict v{in, around, false};
+          SiteVerdict v{in, around, false, static_cast<std::int8_t>(first)};
           // Shifted both ways along each axis: two sides that differ are the two
           // sides of a face of the result through the point.
           for (int axis = 0; axis < 3 && both_sides && !v.on_face; ++axis)
             for (int dir : {1, -1}) {
-              if (axis == 2 && dir == 1) continue;
+              if (axis == first && dir == 1) continue;
               rays.cast_free(sites[k][0], sites[k][1], w, axis, dir);
               v.on_face |= selector.at_point(w).second != around;
             }

@@ -362,12 +362,14 @@ std::vector<std::pair<std::uint32_t, bool>> alone_sites(
   const std::vector<SiteVerdict> v = classify_sites(a, expr, sites, threads);
   std::vector<std::uint32_t> differ;
   std::vector<std::array<std::uint32_t, 2>> again;
+  std::vector<std::int8_t> axes;  // each one's first ray again
   for (std::uint32_t i = 0; i < sites.size(); ++i)
     if (v[i].in != v[i].around) {
       differ.push_back(i);
       again.push_back(sites[i]);
+      axes.push_back(v[i].axis);
     }
-  const std::vector<SiteVerdict> w = classify_sites(a, expr, again, threads, true);
+  const std::vector<SiteVerdict> w = classify_sites(a, expr, again, threads, true, axes);
   std::vector<std::pair<std::uint32_t, bool>> out;
   for (std::size_t k = 0; k < differ.size(); ++k)
     if (!w[k].on_face) out.push_back({differ[k], v[differ[k]].in});
@@ -490,7 +492,6 @@ LowerParts lower_parts(Arrangement& a, const LineClasses& lc, const std::vector<
   // Between the two along an axis first: collinear neighbours beyond an end (the next
   // piece of a chain) are the common case, and only arithmetic tells them collinear.
   const auto inside = [&](std::uint32_t x, std::uint32_t y, std::uint32_t z) {
-    if (z == x || z == y) return false;
     for (int ax = 0; ax < 3; ++ax)
       if (const int d = a.compare3(x, y, ax); d != 0)
         return a.compare3(x, z, ax) == d && a.compare3(z, y, ax) == d && a.collinear3(x, y, z);
@@ -499,12 +500,25 @@ LowerParts lower_parts(Arrangement& a, const LineClasses& lc, const std::vector<
   const auto cut_back = [&](std::uint32_t& from, std::uint32_t to) {
     for (bool moved = true; moved && from != to;) {
       moved = false;
-      for (std::uint32_t z : next_to[from])
+      // A point of the segment has every coordinate between its ends': outside their
+      // box, grown by the approximations' error bounds, a neighbour is not on it.
+      double ef = 0, et = 0;
+      const Vec3 pf = a.approx3(from, &ef), pt = a.approx3(to, &et);
+      const Vec3 lo{std::min(pf.x - ef, pt.x - et), std::min(pf.y - ef, pt.y - et), std::min(pf.z - ef, pt.z - et)};
+      const Vec3 hi{std::max(pf.x + ef, pt.x + et), std::max(pf.y + ef, pt.y + et), std::max(pf.z + ef, pt.z + et)};
+      for (std::uint32_t z : next_to[from]) {
+        if (z == from || z == to) continue;
+        double ez = 0;
+        const Vec3 pz = a.approx3(z, &ez);
+        if (pz.x + ez < lo.x || pz.y + ez < lo.y || pz.z + ez < lo.z || pz.x - ez > hi.x || pz.y - ez > hi.y ||
+            pz.z - ez > hi.z)
+          continue;
         if (inside(from, to, z)) {
           from = z;
           moved = true;
           break;
         }
+      }
     }
   };
   std::unordered_set<std::uint64_t> settled_edges;

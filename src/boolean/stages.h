@@ -75,10 +75,16 @@ Selection classify_and_select(const Arrangement& a, const Expr& expr, const Opti
 // (next to it on two sides along some axis, the verdicts differ): five more rays.
 struct SiteVerdict {
   bool in = false, around = false, on_face = false;
+  std::int8_t axis = 2;  // the axis of the ray that gave `around` (+axis)
 };
+// The ray of each site runs up the axis along which the site is nearest the top of the
+// operands' bounding box (fewest triangles to cross, most often): `in` does not depend
+// on it, `around` is taken on that ray's side. With `both_sides`, the five rays along
+// the other directions (from `axes[k]`, each site's first, or +z) tell `on_face`.
 std::vector<SiteVerdict> classify_sites(const Arrangement& a, const Expr& expr,
                                         const std::vector<std::array<std::uint32_t, 2>>& sites,
-                                        int threads, bool both_sides = false);
+                                        int threads, bool both_sides = false,
+                                        const std::vector<std::int8_t>& axes = {});
 
 // Stages 5 and 6: one vertex per exact position, every vertex of a line on each edge
 // along it, coplanar neighbours and collinear edges merged, coordinates rounded, and

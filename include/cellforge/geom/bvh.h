@@ -118,6 +118,8 @@ class Bvh {
 
   // Box i as kept: holding the box given, within a float's unit in the last place.
   Box box(std::uint32_t i) const { return boxes_[i].box(); }
+  // The box around all of them (empty when there are none).
+  Box bounds() const { return nodes_.empty() ? Box{} : nodes_[0].box.box(); }
 
   // Calls f(i, j) once for every pair i < j of overlapping boxes not in one group.
   template <class F>
