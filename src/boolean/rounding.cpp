@@ -255,9 +255,7 @@ bool nudge_rounding(MeshInput& in, const std::vector<char>& inexact,
       fs.erase(std::unique(fs.begin(), fs.end()), fs.end());
       // Crossings of the faces at v, triangulated with v where it is: of their tiles
       // with the indexed triangles near them and with each other. A move of `reach`
-      // units at most keeps every tile of a face inside the face's grown box, so
-      // while the tiling stays as it is the pairs to test are found once; a place
-      // where the tiling changes is counted afresh.
+      // units at most keeps every tile of a face inside the face's grown box.
       using Tiling = std::vector<std::pair<std::uint32_t, Tri3>>;  // face, triangle
       const auto tiling = [&] {
         Tiling t;
@@ -268,21 +266,44 @@ bool nudge_rounding(MeshInput& in, const std::vector<char>& inexact,
       const auto crosses = [&](const Tri3& x, const Tri3& y) {
         return box_of(in, x).overlaps(box_of(in, y)) && meet(in, x, y);
       };
-      const auto pairs_of = [&](const Tiling& t) {
+      const auto at_v = [&](const Tri3& x) { return x[0] == v || x[1] == v || x[2] == v; };
+      // The pairs to test (boxes grown by the farthest move meeting): with `moving`,
+      // only those with a tile that has v as a corner (while the tiling stays, the
+      // only tiles that move).
+      const auto pairs_of = [&](const Tiling& t, bool moving) {
         std::vector<std::pair<Tri3, Tri3>> out;
+        std::vector<Box> boxes(t.size());
+        for (std::size_t a = 0; a < t.size(); ++a) boxes[a] = grown(box_of(in, t[a].second));
         for (std::size_t a = 0; a < t.size(); ++a) {
-          index.near(grown(box_of(in, t[a].second)), scratch, [&](std::uint32_t j) {
+          const bool a_moves = at_v(t[a].second);
+          if (moving && !a_moves) continue;
+          index.near(boxes[a], scratch, [&](std::uint32_t j) {
             if (std::binary_search(fs.begin(), fs.end(), face[j]) || share_vertex(t[a].second, tris[j])) return;
             out.push_back({t[a].second, tris[j]});
           });
-          for (std::size_t b = a + 1; b < t.size(); ++b)
-            if (t[a].first != t[b].first && !share_vertex(t[a].second, t[b].second))
+          for (std::size_t b = moving ? 0 : a + 1; b < t.size(); ++b) {
+            if (moving && b < a && at_v(t[b].second)) continue;  // listed from b
+            if (t[a].first != t[b].first && boxes[a].overlaps(boxes[b]) && !share_vertex(t[a].second, t[b].second))
               out.push_back({t[a].second, t[b].second});
+          }
         }
         return out;
       };
+      const auto count = [&](const std::vector<std::pair<Tri3, Tri3>>& pairs, std::size_t stop_at) {
+        std::size_t n = 0;
+        for (std::size_t k = 0; k < pairs.size() && n < stop_at; ++k) n += crosses(pairs[k].first, pairs[k].second);
+        return n;
+      };
+      // The places around v are compared with their own tilings (a place may change
+      // how a face is tiled) while the faces at v have few tiles. A face with many
+      // holes has thousands, and tiling it again at every place tried made one
+      // Boolean take minutes: there the places are compared on the tiling v has where
+      // it is, on which only v's tiles move and only their pairs count, and the best
+      // place is checked on its own tiling when that differs.
+      constexpr std::size_t kRetileAtEveryPlace = 256;
       const Tiling first = tiling();
-      const std::vector<std::pair<Tri3, Tri3>> pairs = pairs_of(first);
+      const bool retiling = first.size() <= kRetileAtEveryPlace;
+      const std::vector<std::pair<Tri3, Tri3>> pairs = pairs_of(first, !retiling);
       // The pairs that cross with v at its best place so far (while that place has
       // the first tiling): a place where as many of them still cross is no better,
       // whatever the others do.
@@ -295,9 +316,9 @@ bool nudge_rounding(MeshInput& in, const std::vector<char>& inexact,
       std::size_t best_count = crossing.size();
       // The crossings with v where it is now when fewer than best_count, else best_count.
       auto fewer = [&] {
+        if (!retiling) return count(pairs, best_count);
         if (const Tiling t = tiling(); t != first) {
-          std::size_t n = 0;
-          for (const auto& [x, y] : pairs_of(t)) n += crosses(x, y);
+          const std::size_t n = count(pairs_of(t, false), SIZE_MAX);
           if (n < best_count) crossing_known = false;
           return std::min(n, best_count);
         }
@@ -336,7 +357,17 @@ bool nudge_rounding(MeshInput& in, const std::vector<char>& inexact,
             }
           }
       in.positions[v] = best;
-      if (!(best == start)) {
+      if (!retiling && !(best == start)) {
+        // A new tiling at the best place: kept only when the crossings of all the
+        // faces' tiles are fewer than at the start.
+        if (const Tiling t = tiling(); t != first) {
+          const std::size_t there = count(pairs_of(t, false), SIZE_MAX);
+          in.positions[v] = start;
+          const std::size_t before = count(pairs_of(first, false), SIZE_MAX);
+          in.positions[v] = there < before ? best : start;
+        }
+      }
+      if (!(in.positions[v] == start)) {
         changed = true;
         retile.insert(retile.end(), fs.begin(), fs.end());
       }
