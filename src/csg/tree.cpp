@@ -134,7 +134,27 @@ using Color = std::optional<std::array<double, 4>>;
 struct Leaf {
   Model model;
   Color color;
+  std::vector<Color> face_colors;  // by face, where the leaf is a combined subtree
+  Color color_of(std::uint32_t face) const { return face < face_colors.size() ? face_colors[face] : color; }
 };
+
+// A subtree built once: its model and the color of each face.
+struct Built {
+  Model model;
+  std::vector<Color> face_colors;
+};
+
+// Whether a transform maps the axes to the axes (scaled, permuted, mirrored): faces
+// the subtree meant to lie in one axis plane stay in one plane when their vertices
+// are moved and rounded. A rotation off the axes moves them to planes a hair apart.
+bool keeps_axes(const shape::Transform& t) {
+  for (int r = 0; r < 3; ++r) {
+    int nonzero = 0;
+    for (int c = 0; c < 3; ++c) nonzero += t.m[r][c] != 0;
+    if (nonzero != 1) return false;
+  }
+  return true;
+}
 
 // A 2D subtree: regions (already transformed into the plane) combined by set operations.
 struct Shape2 {
@@ -221,7 +241,7 @@ class Builder {
         if (expr) p.model = combine(*expr, leaves, c->pos, &p.colors);
         cache_.store(key, p.model, p.colors);
         if (expr && expr->kind != boolean::Expr::Kind::kOperand)
-          subtree_memo_.emplace(content_key(geometry_core(*c)), p.model);
+          subtree_memo_.emplace(content_key(geometry_core(*c)), Built{p.model, p.colors});
       }
       if (p.model.num_faces() == 0) continue;
       const shape::MassProperties mp = shape::mass_properties(p.model);
@@ -340,6 +360,23 @@ class Builder {
       }
       case NodeKind::kMultmatrix: {
         const shape::Transform inner = t * n.matrix;
+        // Off the axes, a subtree that combines solids is combined in its own frame and
+        // its result moved (rounded once), as OpenSCAD evaluates it: moving each leaf
+        // would round the faces it puts side by side in one plane (cubes stacked, a
+        // Menger sponge's bars) to planes a hair apart, and the Boolean would then
+        // resolve every sliver between them exactly (example024: minutes, not a second).
+        if (!keeps_axes(n.matrix) && combines_solids(n)) {
+          if (inner.determinant() == 0) return std::nullopt;  // flattened: nothing
+          Built b = build_children_colored(n, color);
+          if (b.model.num_faces() == 0) return std::nullopt;
+          Leaf leaf{Model(), color, {}};
+          const std::vector<FaceId> ids = copy_into(leaf.model, b.model, inner);
+          leaf.face_colors.assign(leaf.model.face_slots(), color);
+          for (std::size_t f = 0; f < ids.size(); ++f)
+            if (ids[f].is_valid() && f < b.face_colors.size()) leaf.face_colors[ids[f].value] = b.face_colors[f];
+          leaves.push_back(std::move(leaf));
+          return boolean::Expr::of(static_cast<int>(leaves.size() - 1));
+        }
         std::vector<std::optional<boolean::Expr>> parts;
         for (const Node* c : active_children(n))
           parts.push_back(collect3(*c, inner, color, leaves));
@@ -363,7 +400,7 @@ class Builder {
       if (t.determinant() == 0) return std::nullopt;  // flattened to nothing, as OpenSCAD
       m = copy_transformed(m, t);
     }
-    leaves.push_back(Leaf{std::move(m), color});
+    leaves.push_back(Leaf{std::move(m), color, {}});
     return boolean::Expr::of(static_cast<int>(leaves.size() - 1));
   }
 
@@ -410,7 +447,10 @@ class Builder {
                 std::vector<Color>* face_colors) {
     if (expr.kind == boolean::Expr::Kind::kOperand) {
       Leaf& l = leaves[static_cast<std::size_t>(expr.operand)];
-      if (face_colors) face_colors->assign(l.model.face_slots(), l.color);
+      if (face_colors) {
+        face_colors->assign(l.model.face_slots(), l.color);
+        for (std::uint32_t f = 0; f < face_colors->size(); ++f) (*face_colors)[f] = l.color_of(f);
+      }
       return std::move(l.model);
     }
     std::vector<const Model*> operands;
@@ -426,7 +466,7 @@ class Builder {
       for (std::size_t f = 0; f < r->sources.size() && f < face_colors->size(); ++f) {
         const int op = r->sources[f].operand;
         if (op >= 0 && static_cast<std::size_t>(op) < leaves.size())
-          (*face_colors)[f] = leaves[static_cast<std::size_t>(op)].color;
+          (*face_colors)[f] = leaves[static_cast<std::size_t>(op)].color_of(r->sources[f].face);
       }
     }
     return std::move(r->model);
@@ -494,21 +534,51 @@ class Builder {
   // The children of n built into one model (a subtree of its own); the same subtree
   // met again in this build (GEB.scad's letters, built as a part and projected) is
   // built once.
-  Model build_children(const Node& n) {
+  Model build_children(const Node& n) { return build_children_colored(n, std::nullopt).model; }
+
+  // The same with the color of each face (`color` where the subtree gives none).
+  Built build_children_colored(const Node& n, const Color& color) {
     Node group;
     group.kind = NodeKind::kGroup;
     group.children = n.children;
-    const std::string key = content_key(geometry_core(group));
+    // The color given from above is part of what is built (the key of a subtree has
+    // its own color nodes, not this one).
+    std::string key = content_key(geometry_core(group));
+    if (color) {
+      for (double c : *color) key += " " + std::to_string(c);
+    }
     if (auto it = subtree_memo_.find(key); it != subtree_memo_.end()) {
       ++stats_.memo_hits;
       return it->second;
     }
     std::vector<Leaf> leaves;
-    auto expr = collect3(group, shape::Transform::identity(), std::nullopt, leaves);
-    if (!expr) return Model();
-    Model m = combine(*expr, leaves, n.pos, nullptr);
-    subtree_memo_.emplace(key, m);
-    return m;
+    auto expr = collect3(group, shape::Transform::identity(), color, leaves);
+    if (!expr) return Built();
+    Built b;
+    b.model = combine(*expr, leaves, n.pos, &b.face_colors);
+    subtree_memo_.emplace(key, b);
+    return b;
+  }
+
+  // Whether a set operation (explicit, or a group's implicit union) combines two or
+  // more solids somewhere below n.
+  bool combines_solids(const Node& n) const {
+    switch (n.kind) {
+      case NodeKind::kGroup:
+      case NodeKind::kUnion:
+      case NodeKind::kDifference:
+      case NodeKind::kIntersection:
+      case NodeKind::kMultmatrix:
+      case NodeKind::kColor: {
+        const auto kids = active_children(n);
+        if (kids.size() >= 2 && n.kind != NodeKind::kMultmatrix && n.kind != NodeKind::kColor) return true;
+        for (const Node* c : kids)
+          if (combines_solids(*c)) return true;
+        return false;
+      }
+      default:
+        return false;
+    }
   }
 
   // The node whose geometry n is: through colors and groups of one child, which
@@ -953,7 +1023,8 @@ class Builder {
   BuildStats stats_;
   // Within one build, by content key: leaves, and subtrees built whole (their
   // geometry; colors are the caller's).
-  std::unordered_map<std::string, Model> leaf_memo_, subtree_memo_;
+  std::unordered_map<std::string, Model> leaf_memo_;
+  std::unordered_map<std::string, Built> subtree_memo_;
 };
 
 }  // namespace
