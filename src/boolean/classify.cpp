@@ -435,8 +435,18 @@ class Selector {
   };
   Sides sides(const Windings& w, const std::vector<std::uint32_t>& on) {
     Sides s{contains(w, w.front), contains(w, w.back), false};
+    const auto in = [&](std::uint32_t o) { return w.front[o] > 0 && w.back[o] > 0; };
+    if (flat_) {
+      seen_.clear();
+      for (std::uint32_t o : w.touched)
+        if (member_[o] && in(o)) seen_.push_back(o);
+      for (std::uint32_t o : on)
+        if (member_[o]) seen_.push_back(o);
+      s.on = flat_contains();
+      return s;
+    }
     inside_.assign(w.front.size(), false);
-    for (std::uint32_t o : w.touched) inside_[o] = w.front[o] > 0 && w.back[o] > 0;
+    for (std::uint32_t o : w.touched) inside_[o] = in(o);
     for (std::uint32_t o : on) inside_[o] = true;
     s.on = expr_.contains(inside_);
     return s;
@@ -446,8 +456,15 @@ class Selector {
   // it (where its ray starts) are.
   std::pair<bool, bool> at_point(const Windings& w) {
     const bool around = contains(w, w.front);
+    const auto in = [&](std::uint32_t o) { return w.on[o] || w.front[o] > 0; };
+    if (flat_) {
+      seen_.clear();
+      for (std::uint32_t o : w.touched)
+        if (member_[o] && in(o)) seen_.push_back(o);
+      return {flat_contains(), around};
+    }
     inside_.assign(w.front.size(), false);
-    for (std::uint32_t o : w.touched) inside_[o] = w.on[o] || w.front[o] > 0;
+    for (std::uint32_t o : w.touched) inside_[o] = in(o);
     return {expr_.contains(inside_), around};
   }
 
@@ -461,6 +478,11 @@ class Selector {
     seen_.clear();  // the member operands the point is inside, once each
     for (std::uint32_t o : w.touched)
       if (member_[o] && wind[o] > 0) seen_.push_back(o);
+    return flat_contains();
+  }
+
+  // A flat expression on the member operands listed in seen_ (with repeats).
+  bool flat_contains() {
     std::sort(seen_.begin(), seen_.end());
     seen_.erase(std::unique(seen_.begin(), seen_.end()), seen_.end());
     switch (expr_.kind) {
@@ -1017,16 +1039,14 @@ std::vector<SiteVerdict> classify_sites(const Arrangement& a, const Expr& expr,
                                         const std::vector<std::array<std::uint32_t, 2>>& sites,
                                         int threads, bool both_sides, const std::vector<std::int8_t>& axes) {
   const Box bounds = a.bvh.bounds();
-  // Up the axis whose top the site is nearest to, as a share of the box's extent.
+  // Up the axis whose top of the box the site is nearest to (a thin plate's
+  // thickness, not its width with a row of holes across it).
   auto axis_of = [&](const std::array<std::uint32_t, 2>& s) {
     const Vec3 x = (a.approx3(s[0]) + a.approx3(s[1]) * 2.0) * (1.0 / 3);
     int best = 2;
-    double least = 2;
-    for (int k = 2; k >= 0; --k) {
-      const double extent = bounds.hi[k] - bounds.lo[k];
-      const double left = extent > 0 ? (bounds.hi[k] - x[k]) / extent : 0;
-      if (left < least) least = left, best = k;
-    }
+    double least = bounds.hi[2] - x[2];
+    for (int k = 1; k >= 0; --k)
+      if (bounds.hi[k] - x[k] < least) least = bounds.hi[k] - x[k], best = k;
     return best;
   };
   std::vector<std::vector<SiteVerdict>> parts = parallel_ranges<std::vector<SiteVerdict>>(

@@ -453,6 +453,25 @@ LowerParts lower_parts(Arrangement& a, const LineClasses& lc, const std::vector<
         held_edges.insert(ordered(loop[i], loop[(i + 1) % loop.size()]));
         held_points.insert(loop[i]);
       }
+  // only_operand_near, asked once per site and operand (a point is a corner of many
+  // sides, an edge the side of two pieces).
+  struct NearKey {
+    std::uint32_t x, p, q, whole;
+    bool operator==(const NearKey&) const = default;
+  };
+  struct NearHash {
+    std::size_t operator()(const NearKey& k) const {
+      const std::uint64_t h = (static_cast<std::uint64_t>(k.p) << 32 | k.q) * 0x9E3779B97F4A7C15ull;
+      return static_cast<std::size_t>(h ^ (static_cast<std::uint64_t>(k.x) << 1 | k.whole) * 0xff51afd7ed558ccdull);
+    }
+  };
+  std::unordered_map<NearKey, bool, NearHash> near_memo;
+  const auto near_alone = [&](std::uint32_t x, std::uint32_t p, std::uint32_t q, bool whole = false) {
+    if (x == kInvalidIndex) return false;
+    const auto [it, fresh] = near_memo.try_emplace({x, std::min(p, q), std::max(p, q), whole}, false);
+    if (fresh) it->second = only_operand_near(a, x, p, q, whole);
+    return it->second;
+  };
   std::vector<std::array<std::uint32_t, 2>> raw, edges;
   std::vector<std::uint32_t> raw_settled_by, corners, chain;
   // The corners and edges of settled sides (OutSide::settled) with nothing of another
@@ -473,7 +492,7 @@ LowerParts lower_parts(Arrangement& a, const LineClasses& lc, const std::vector<
     }
     corners.push_back(q);
     for (std::uint32_t v : chain)
-      if (!settled_corners.count(v) && only_operand_near(a, side.settled, v, v)) settled_corners.insert(v);
+      if (!settled_corners.count(v) && near_alone(side.settled, v, v)) settled_corners.insert(v);
   }
   // Two sides along one line may be cut at different points (the line known under
   // two keys whose classes hold different points): an edge that another edge or a
@@ -526,14 +545,14 @@ LowerParts lower_parts(Arrangement& a, const LineClasses& lc, const std::vector<
     auto [x, y] = raw[i];
     // Nothing of another operand near the whole of a settled edge: neither it nor a
     // part of it stands alone, and it need not be cut back.
-    if (only_operand_near(a, raw_settled_by[i], x, y, /*whole=*/true)) {
+    if (near_alone(raw_settled_by[i], x, y, /*whole=*/true)) {
       seen.insert(ordered(x, y));
       continue;
     }
     cut_back(x, y);
     cut_back(y, x);
     if (x == y || held_edges.count(ordered(x, y))) continue;
-    if (only_operand_near(a, raw_settled_by[i], x, y)) settled_edges.insert(ordered(x, y));
+    if (near_alone(raw_settled_by[i], x, y)) settled_edges.insert(ordered(x, y));
     if (seen.insert(ordered(x, y)).second) edges.push_back({x, y});
   }
   // An edge inside the pieces of a settled side has the verdict of all around it.
