@@ -167,9 +167,10 @@ class RayCaster {
   // rounded coordinates with their error bounds (tight, unlike the homogeneous form),
   // then exactly on its homogeneous coordinates (with W's sign ws).
   // `line`: input vertices s, u (s != u) such that f vanishes on the line su (a
-  // triangle edge's side function), else null.
+  // triangle edge's side function in the projection along axis `k`: on every plane
+  // through su that runs along k), else null.
   template <class Start, class Affine>
-  int affine_sign(const Start& start, int ws, Affine f, const std::uint32_t* line = nullptr) const {
+  int affine_sign(const Start& start, int ws, Affine f, const std::uint32_t* line = nullptr, int k = 0) const {
     const int s = sign_of(f(H3<Fp>{{x_[0], x_[1], x_[2], Fp(1.0)}}));
     if (s != kUncertain) return s;
     if constexpr (std::is_same_v<Start, FreeStart>) {
@@ -178,7 +179,7 @@ class RayCaster {
       // a point made on the line su, on doubles at an input vertex; an implicit end
       // off the line is asked only when the other end's sign is zero.
       auto known = [&](std::uint32_t v) {
-        if (line && on_line(v, line[0], line[1])) return 0;
+        if (line && (on_line(v, line[0], line[1]) || on_plane_along(v, line[0], line[1], k))) return 0;
         if (v >= a_.pos.size()) return kUncertain;
         const Vec3 x = a_.pos[v];
         return decide([&]<class T>() { return f(explicit_point<T>(x)); });
@@ -283,6 +284,23 @@ class RayCaster {
     return (m[0] == s && m[1] == u) || (m[0] == u && m[1] == s);
   }
 
+  // Whether point v is made on a face's plane that holds s and u and runs along axis
+  // k (a wall, for a ray up it): v, s and u then project along k onto one line. The
+  // faces are those of the edge v was made on (an lpi of it, the wall's diagonal).
+  bool on_plane_along(std::uint32_t v, std::uint32_t s, std::uint32_t u, int k) const {
+    if (v < a_.pos.size()) return false;
+    const PointDef& d = a_.points[v - a_.pos.size()];
+    if (d.kind != PointKind::kLpi) return false;
+    for (const EdgeUseTable::Use& use : a_.edge_uses.uses(d.a, d.b)) {
+      const Tri& f = a_.tris[use.tri()];
+      const auto on = a_.plane_vertices(f);
+      const auto has = [&](std::uint32_t x) { return std::find(on.begin(), on.end(), x) != on.end(); };
+      if (has(s) && has(u) && orient2d_projected(a_.pos[f.v[0]], a_.pos[f.v[1]], a_.pos[f.v[2]], k) == 0)
+        return true;
+    }
+    return false;
+  }
+
   // Whether the start lies on the closed triangle t: on its plane, and inside or on
   // its sides in the projection along its normal's largest component.
   template <class Start>
@@ -302,7 +320,7 @@ class RayCaster {
       const int o = affine_sign(start, ws, [&]<class T>(const H3<T>& x) {
         return (T(u[i]) - T(s[i])) * (x.c[j] - T(s[j]) * x.c[3]) -
                (T(u[j]) - T(s[j])) * (x.c[i] - T(s[i]) * x.c[3]);
-      }, line);
+      }, line, k);
       if (o == -mk) return false;
     }
     return plane_sign(start, ws, ti) == 0;
@@ -350,7 +368,7 @@ class RayCaster {
       const int o = affine_sign(start, ws, [&]<class T>(const H3<T>& x) {
         return (T(u[i]) - T(s[i])) * (x.c[j] - T(s[j]) * x.c[3]) -
                (T(u[j]) - T(s[j])) * (x.c[i] - T(s[i]) * x.c[3]);
-      }, line);
+      }, line, k);
       if (o != 0) {
         if (o != mk) return;
         continue;
