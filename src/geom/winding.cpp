@@ -135,7 +135,7 @@ Nesting nest_surfaces(std::span<const Vec3> points,
     open.clear();
     by_surface.query([&](const Box& b) { return inside_box(b, surface_box[t]); },
                      [&](std::uint32_t k) {
-                       if (container_id[k] != t) open.push_back({container_id[k], 0});
+                       if (container_id[k] != t) open.push_back({container_id[k], false, {}});
                      });
     for (std::size_t i = 0; i < members[t].size() * 3 && !open.empty(); ++i) {
       const std::uint32_t v = triangles[members[t][i / 3]][i % 3];
