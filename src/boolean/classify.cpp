@@ -185,8 +185,8 @@ class RayCaster {
         return decide([&]<class T>() { return f(explicit_point<T>(x)); });
       };
       auto at = [&](std::uint32_t v) {
-        const int k = known(v);
-        if (k != kUncertain) return k;
+        const int sign = known(v);
+        if (sign != kUncertain) return sign;
         return a_.w3_sign(v) * decide([&]<class T>() { return f(a_.point3<T>(v)); });
       };
       const int sp = known(start.p), sq = start.q == start.p ? sp : known(start.q);
@@ -214,14 +214,6 @@ class RayCaster {
   // share; otherwise, and for a piece's start, exactly.
   template <class Start>
   int plane_sign(const Start& start, int ws, std::uint32_t ti) const {
-    if constexpr (std::is_same_v<Start, FreeStart>) {
-      const int sp = known_side(start.p, ti);
-      const int sq = start.q == start.p ? sp : known_side(start.q, ti);
-      if (sp != kUncertain && sq != kUncertain) {
-        if (sp == sq || sq == 0) return sp;
-        if (sp == 0) return sq;
-      }
-    }
     const Tri& t = a_.tris[ti];
     const Vec3 p0 = a_.pos[t.v[0]];
     auto f = [&]<class T>(const H3<T>& x) {
@@ -230,17 +222,20 @@ class RayCaster {
              n[2] * (x.c[2] - T(p0.z) * x.c[3]);
     };
     if constexpr (std::is_same_v<Start, FreeStart>) {
+      const int sp = known_side(start.p, ti);
+      const int sq = start.q == start.p ? sp : known_side(start.q, ti);
+      if (sp != kUncertain && sq != kUncertain) {
+        if (sp == sq || sq == 0) return sp;
+        if (sp == 0) return sq;
+      }
       // One end on the plane: the site's side is the other end's (its own point's
       // arithmetic, not the site's, whose degree is twice as high).
-      if (start.q != start.p) {
-        const int sp = known_side(start.p, ti), sq = known_side(start.q, ti);
-        const std::uint32_t other = sp == 0 && sq == kUncertain ? start.q
-                                    : sq == 0 && sp == kUncertain ? start.p
-                                                                  : kInvalidIndex;
-        if (other != kInvalidIndex) {
-          const int so = sign_of(f(a_.point3<Fp>(other)));
-          if (so != kUncertain) return a_.w3_sign(other) * so;
-        }
+      const std::uint32_t other = sp == 0 && sq == kUncertain   ? start.q
+                                  : sq == 0 && sp == kUncertain ? start.p
+                                                                : kInvalidIndex;
+      if (other != kInvalidIndex) {
+        const int so = sign_of(f(a_.point3<Fp>(other)));
+        if (so != kUncertain) return a_.w3_sign(other) * so;
       }
     }
     return affine_sign(start, ws, f);
@@ -455,9 +450,7 @@ class Selector {
     Sides s{contains(w, w.front), contains(w, w.back), false};
     const auto in = [&](std::uint32_t o) { return w.front[o] > 0 && w.back[o] > 0; };
     if (flat_) {
-      seen_.clear();
-      for (std::uint32_t o : w.touched)
-        if (member_[o] && in(o)) seen_.push_back(o);
+      gather(w, in);
       for (std::uint32_t o : on)
         if (member_[o]) seen_.push_back(o);
       s.on = flat_contains();
@@ -476,9 +469,7 @@ class Selector {
     const bool around = contains(w, w.front);
     const auto in = [&](std::uint32_t o) { return w.on[o] || w.front[o] > 0; };
     if (flat_) {
-      seen_.clear();
-      for (std::uint32_t o : w.touched)
-        if (member_[o] && in(o)) seen_.push_back(o);
+      gather(w, in);
       return {flat_contains(), around};
     }
     inside_.assign(w.front.size(), false);
@@ -493,10 +484,16 @@ class Selector {
       for (std::uint32_t o : w.touched) inside_[o] = wind[o] > 0;
       return expr_.contains(inside_);
     }
-    seen_.clear();  // the member operands the point is inside, once each
-    for (std::uint32_t o : w.touched)
-      if (member_[o] && wind[o] > 0) seen_.push_back(o);
+    gather(w, [&](std::uint32_t o) { return wind[o] > 0; });
     return flat_contains();
+  }
+
+  // seen_: the member operands the ray met that `in` holds (with repeats).
+  template <class In>
+  void gather(const Windings& w, In in) {
+    seen_.clear();
+    for (std::uint32_t o : w.touched)
+      if (member_[o] && in(o)) seen_.push_back(o);
   }
 
   // A flat expression on the member operands listed in seen_ (with repeats).

@@ -521,17 +521,9 @@ LowerParts lower_parts(Arrangement& a, const LineClasses& lc, const std::vector<
       moved = false;
       // A point of the segment has every coordinate between its ends': outside their
       // box, grown by the approximations' error bounds, a neighbour is not on it.
-      double ef = 0, et = 0;
-      const Vec3 pf = a.approx3(from, &ef), pt = a.approx3(to, &et);
-      const Vec3 lo{std::min(pf.x - ef, pt.x - et), std::min(pf.y - ef, pt.y - et), std::min(pf.z - ef, pt.z - et)};
-      const Vec3 hi{std::max(pf.x + ef, pt.x + et), std::max(pf.y + ef, pt.y + et), std::max(pf.z + ef, pt.z + et)};
+      const Box segment = site_box(a, from, to, /*whole=*/true);
       for (std::uint32_t z : next_to[from]) {
-        if (z == from || z == to) continue;
-        double ez = 0;
-        const Vec3 pz = a.approx3(z, &ez);
-        if (pz.x + ez < lo.x || pz.y + ez < lo.y || pz.z + ez < lo.z || pz.x - ez > hi.x || pz.y - ez > hi.y ||
-            pz.z - ez > hi.z)
-          continue;
+        if (z == from || z == to || !segment.overlaps(site_box(a, z, z, true))) continue;
         if (inside(from, to, z)) {
           from = z;
           moved = true;

@@ -77,10 +77,10 @@ struct SiteVerdict {
   bool in = false, around = false, on_face = false;
   std::int8_t axis = 2;  // the axis of the ray that gave `around` (+axis)
 };
-// The ray of each site runs up the axis along which the site is nearest the top of the
-// operands' bounding box (fewest triangles to cross, most often): `in` does not depend
-// on it, `around` is taken on that ray's side. With `both_sides`, the five rays along
-// the other directions (from `axes[k]`, each site's first, or +z) tell `on_face`.
+// The ray of each site runs up `axes[k]` when given, else up the axis along which the
+// site is nearest the top of the operands' bounding box (fewest triangles to cross,
+// most often): `in` does not depend on it, `around` is taken on that ray's side. With
+// `both_sides`, the rays along the five other directions tell `on_face`.
 std::vector<SiteVerdict> classify_sites(const Arrangement& a, const Expr& expr,
                                         const std::vector<std::array<std::uint32_t, 2>>& sites,
                                         int threads, bool both_sides = false,

@@ -12,6 +12,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <functional>
 #include <string>
 #include <unordered_map>
@@ -448,7 +449,7 @@ class Builder {
     if (expr.kind == boolean::Expr::Kind::kOperand) {
       Leaf& l = leaves[static_cast<std::size_t>(expr.operand)];
       if (face_colors) {
-        face_colors->assign(l.model.face_slots(), l.color);
+        face_colors->resize(l.model.face_slots());
         for (std::uint32_t f = 0; f < face_colors->size(); ++f) (*face_colors)[f] = l.color_of(f);
       }
       return std::move(l.model);
@@ -545,7 +546,8 @@ class Builder {
     // its own color nodes, not this one).
     std::string key = content_key(geometry_core(group));
     if (color) {
-      for (double c : *color) key += " " + std::to_string(c);
+      char bits[40];  // exactly: colors a digit apart are different builds
+      for (double c : *color) key.append(bits, static_cast<std::size_t>(std::snprintf(bits, sizeof bits, " %a", c)));
     }
     if (auto it = subtree_memo_.find(key); it != subtree_memo_.end()) {
       ++stats_.memo_hits;
