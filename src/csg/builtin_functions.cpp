@@ -8,6 +8,7 @@
 #include <random>
 
 #include "cellforge/shape/faceting.h"
+#include "import2d.h"
 #include "interp.h"
 
 namespace cellforge::csg {
@@ -379,10 +380,64 @@ bool Interp::call_builtin_function(const std::string& name, const Args& args, So
     out = Value::string(module_stack_[module_stack_.size() - 1 - static_cast<std::size_t>(n)]);
     return true;
   }
-  if (name == "dxf_dim" || name == "dxf_cross")
-    fail(pos, name + "() is not supported yet (it reads DXF files)");
+  if (name == "dxf_dim" || name == "dxf_cross") return dxf_function(name, args, pos, out);
   (void)env;
   return false;
+}
+
+// dxf_dim(file, layer, origin, scale, name) and dxf_cross(file, layer, origin, scale):
+// a dimension's measurement and the crossing of two lines, read from a DXF file
+// (import2d.h). Where OpenSCAD warns and gives undef (no such file, no such dimension,
+// no crossing), cellforge stops with an error naming the file: a size that is not
+// there would only show up later as wrong geometry.
+bool Interp::dxf_function(const std::string& name, const Args& args, SourcePos pos, Value& out) {
+  const bool dim = name == "dxf_dim";
+  const Params p(args, dim ? std::vector<std::string>{"file", "layer", "origin", "scale", "name"}
+                           : std::vector<std::string>{"file", "layer", "origin", "scale"},
+                 pos);
+  for (const Arg& a : args)
+    if (!a.name.empty() && a.name != "file" && a.name != "layer" && a.name != "origin" &&
+        a.name != "scale" && !(dim && a.name == "name"))
+      warn(a.pos, name + "(): unknown argument " + a.name + " (ignored)");
+  const Value& file = p.get("file");
+  if (!file.is_string()) fail(p.call(), name + "(): file must be a string");
+  if (!options_.allow_files) fail(pos, name + "(): reading files is turned off");
+  Import2DOptions o;
+  const std::string path = script_relative(file.as_string(), pos);
+  const auto text = [&](const char* param) {
+    const Value& v = p.get(param);
+    if (v.is_undef()) return std::string();
+    if (!v.is_string()) fail(p.pos(param), name + "(): " + param + " must be a string");
+    return v.as_string();
+  };
+  o.layer = text("layer");
+  if (p.has("origin")) {
+    Vec3 origin;
+    if (!to_vec3(p.get("origin"), origin)) fail(p.pos("origin"), name + "(): origin must be [x, y]");
+    o.origin = Vec2{origin.x, origin.y};
+  }
+  if (p.has("scale") && !to_number(p.get("scale"), o.scale))
+    fail(p.pos("scale"), name + "(): scale must be a number");
+  const std::string where = " in " + file.as_string() + (o.layer.empty() ? "" : ", layer \"" + o.layer + "\"");
+  if (dim) {
+    const std::string wanted = text("name");
+    auto dims = read_dxf_dimensions(path, o);
+    if (!dims) fail(pos, name + "(): " + dims.error().message);
+    for (const DxfDimension& d : *dims) {
+      if (!wanted.empty() && d.name != wanted) continue;
+      const std::optional<double> v = dimension_value(d);
+      if (!v) fail(pos, name + "(): dimension \"" + d.name + "\"" + where + " (line " + std::to_string(d.line) +
+                            ") is of type " + std::to_string(d.type & 7) + ", which is not measured");
+      out = Value::number(*v);
+      return true;
+    }
+    fail(pos, name + "(): no dimension" + (wanted.empty() ? "" : " named \"" + wanted + "\"") + where);
+  }
+  auto cross = read_dxf_cross(path, o);
+  if (!cross) fail(pos, name + "(): " + cross.error().message);
+  if (!*cross) fail(pos, name + "(): no two crossing lone lines" + where);
+  out = Value::vector({Value::number((*cross)->x), Value::number((*cross)->y)});
+  return true;
 }
 
 }  // namespace cellforge::csg

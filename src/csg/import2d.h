@@ -23,6 +23,8 @@
 // line, text, image, use and nested svg elements are errors naming FILE:LINE.
 #pragma once
 
+#include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -43,6 +45,27 @@ struct Import2DOptions {
 // kInvalidInput / kUnsupported with FILE:LINE.
 Result<std::vector<std::vector<Vec2>>> read_dxf(const std::string& path,
                                                 const Import2DOptions& options);
+// dxf_dim(): the DIMENSION entities of the ENTITIES section, of the layer (every layer
+// when it is ""), in file order. Points 0, 3, 4 and 5 (groups 10-15/20-25) are read as
+// (p - origin) * scale, the offsets 1, 2 and 6 as p * scale, as OpenSCAD reads them.
+struct DxfDimension {
+  std::string name;  // group 1, the dimension's text
+  int type = 0;      // group 70
+  double angle = 0;  // group 50, degrees
+  std::array<Vec2, 7> points{};
+  std::size_t line = 0;  // of the entity
+};
+Result<std::vector<DxfDimension>> read_dxf_dimensions(const std::string& path,
+                                                      const Import2DOptions& options);
+// What OpenSCAD's dxf_dim() measures: by type & 7, 0 the distance along the angle
+// between points 3 and 4, 1 their distance, 2 the angle between the lines 5-0 and 3-4
+// (degrees), 3 and 4 the distance from point 0 to 5, 6 point 3's x (flag 64) or y;
+// none for 5 (angular by three points), which OpenSCAD does not measure either.
+std::optional<double> dimension_value(const DxfDimension& d);
+// dxf_cross(): where the lines through the first two lone segments of the layer (each
+// joined to no other segment) cross; none when there are fewer or they are parallel.
+Result<std::optional<Vec2>> read_dxf_cross(const std::string& path, const Import2DOptions& options);
+
 // SVG: per drawn element (shape), its closed subpaths; OpenSCAD fills each shape's
 // subpaths even-odd and unites the shapes.
 Result<std::vector<std::vector<std::vector<Vec2>>>> read_svg(const std::string& path,

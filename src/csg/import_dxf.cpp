@@ -58,12 +58,44 @@ std::string trim(const std::string& s) {
   return s.substr(a, s.find_last_not_of(" \t\r\n") - a + 1);
 }
 
-}  // namespace
 
-Result<std::vector<std::vector<Vec2>>> read_dxf(const std::string& path, const Import2DOptions& o) {
+// An entity: its type, its groups up to the next entity, the line of its type name.
+struct Entity {
+  std::string type;
+  std::vector<Group> body;
+  std::size_t line;
+};
+
+// The ENTITIES section and the BLOCKS (for INSERT).
+struct Drawing {
+  std::vector<Entity> entities;
+  std::map<std::string, std::vector<Entity>> blocks;
+};
+
+std::string at_line(const std::string& path, std::size_t line) {
+  return path + ":" + std::to_string(line) + ": ";
+}
+
+// The group codes whose values are numbers (coordinates, sizes, angles, flags).
+bool numeric_code(int code) {
+  return (code >= 10 && code <= 59) || (code >= 70 && code <= 79) || (code >= 210 && code <= 239);
+}
+
+// A group's value as a number; an error naming the line when it is not one.
+Result<double> group_number(const std::string& path, const Group& g) {
+  char* end = nullptr;
+  const double v = std::strtod(g.value.c_str(), &end);
+  if (g.value.empty() || *end != '\0' || !std::isfinite(v)) {
+    return Error{ErrorCode::kInvalidInput, at_line(path, g.line + 1) + "group " + std::to_string(g.code) +
+                                               " must be a number, not \"" + g.value + "\""};
+  }
+  return v;
+}
+
+Result<Drawing> read_drawing(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) return Error{ErrorCode::kIo, "cannot open " + path};
-  auto at = [&](std::size_t line) { return path + ":" + std::to_string(line) + ": "; };
+  auto at = [&](std::size_t line) { return at_line(path, line); };
   std::vector<Group> groups;
   {
     std::string code, value;
@@ -83,14 +115,9 @@ Result<std::vector<std::vector<Vec2>>> read_dxf(const std::string& path, const I
     }
   }
 
-  // The ENTITIES section and the BLOCKS (for INSERT), each a list of entities.
-  struct Entity {
-    std::string type;
-    std::vector<Group> body;
-    std::size_t line;  // of the type name
-  };
-  std::vector<Entity> entities;
-  std::map<std::string, std::vector<Entity>> blocks;
+  Drawing d;
+  std::vector<Entity>& entities = d.entities;
+  std::map<std::string, std::vector<Entity>>& blocks = d.blocks;
   {
     std::string section;
     std::vector<Entity>* block = nullptr;
@@ -131,8 +158,23 @@ Result<std::vector<std::vector<Vec2>>> read_dxf(const std::string& path, const I
     }
   }
 
+  return d;
+}
+
+// The outlines' segments between points on OpenSCAD's grid.
+struct Segments {
   Grid grid;
   std::vector<std::pair<std::uint32_t, std::uint32_t>> segments;
+};
+
+Result<Segments> read_segments(const std::string& path, const Import2DOptions& o) {
+  auto drawing = read_drawing(path);
+  if (!drawing) return drawing.error();
+  const std::map<std::string, std::vector<Entity>>& blocks = drawing->blocks;
+  auto at = [&](std::size_t line) { return at_line(path, line); };
+  Segments out;
+  Grid& grid = out.grid;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>>& segments = out.segments;
   // A point of an entity: through the INSERTs it sits in (placement), then origin and
   // scale.
   struct Placement {
@@ -178,16 +220,10 @@ Result<std::vector<std::vector<Vec2>>> read_dxf(const std::string& path, const I
       for (const Group& g : ent.body) {
         if (g.code == 8) layer = g.value;
         if (g.code == 2) block_name = g.value;
-        const bool numeric = (g.code >= 10 && g.code <= 59) || (g.code >= 70 && g.code <= 79) ||
-                             (g.code >= 210 && g.code <= 239);
-        if (!numeric) continue;
-        char* end = nullptr;
-        const double v = std::strtod(g.value.c_str(), &end);
-        if (g.value.empty() || *end != '\0' || !std::isfinite(v)) {
-          return Error{ErrorCode::kInvalidInput, at(g.line + 1) + "group " +
-                                                     std::to_string(g.code) +
-                                                     " must be a number, not \"" + g.value + "\""};
-        }
+        if (!numeric_code(g.code)) continue;
+        const auto number = group_number(path, g);
+        if (!number) return number.error();
+        const double v = *number;
         num[g.code] = v;
         if (type == "LWPOLYLINE") {
           if (g.code == 10) vertices.push_back(Vec2{v, 0});
@@ -274,8 +310,17 @@ Result<std::vector<std::vector<Vec2>>> read_dxf(const std::string& path, const I
     if (polyline.active) end_polyline();
     return std::nullopt;
   };
-  if (auto err = emit(entities, 0)) return *err;
+  if (auto err = emit(drawing->entities, 0)) return *err;
+  return out;
+}
 
+}  // namespace
+
+Result<std::vector<std::vector<Vec2>>> read_dxf(const std::string& path, const Import2DOptions& o) {
+  auto read = read_segments(path, o);
+  if (!read) return read.error();
+  const Grid& grid = read->grid;
+  const auto& segments = read->segments;
   // Join the segments into closed paths at their shared points.
   std::set<std::pair<std::uint32_t, std::uint32_t>> seen;
   std::vector<std::vector<std::size_t>> at_point(grid.points.size());
@@ -325,6 +370,85 @@ Result<std::vector<std::vector<Vec2>>> read_dxf(const std::string& path, const I
     if (!used[s]) walk(unique[s].first, s);
   }
   return paths;
+}
+
+Result<std::vector<DxfDimension>> read_dxf_dimensions(const std::string& path,
+                                                      const Import2DOptions& o) {
+  auto drawing = read_drawing(path);
+  if (!drawing) return drawing.error();
+  std::vector<DxfDimension> out;
+  for (const Entity& ent : drawing->entities) {
+    if (ent.type != "DIMENSION") continue;
+    DxfDimension d;
+    d.line = ent.line;
+    std::string layer = "0";
+    for (const Group& g : ent.body) {
+      if (g.code == 8) layer = g.value;
+      if (g.code == 1) d.name = g.value;
+      if (!numeric_code(g.code)) continue;
+      const auto v = group_number(path, g);
+      if (!v) return v.error();
+      // Points 0, 3, 4 and 5 are places (origin moved), 1, 2 and 6 offsets (scaled only),
+      // as OpenSCAD reads them.
+      const auto offset = [](int k) { return k == 1 || k == 2 || k == 6; };
+      if (const int k = g.code - 10; k >= 0 && k <= 6)
+        d.points[k].x = offset(k) ? *v * o.scale : (*v - o.origin.x) * o.scale;
+      if (const int k = g.code - 20; k >= 0 && k <= 6)
+        d.points[k].y = offset(k) ? *v * o.scale : (*v - o.origin.y) * o.scale;
+      if (g.code == 50) d.angle = *v;
+      if (g.code == 70) d.type = static_cast<int>(*v);
+    }
+    if (o.layer.empty() || o.layer == layer) out.push_back(std::move(d));
+  }
+  return out;
+}
+
+std::optional<double> dimension_value(const DxfDimension& d) {
+  const auto& c = d.points;
+  const auto dx = [&](int a, int b) { return c[a].x - c[b].x; };
+  const auto dy = [&](int a, int b) { return c[a].y - c[b].y; };
+  switch (d.type & 7) {
+    case 0:  // rotated, horizontal or vertical: the distance along the angle
+      return std::fabs(dx(4, 3) * shape::cos_degrees(d.angle) + dy(4, 3) * shape::sin_degrees(d.angle));
+    case 1:  // aligned
+      return std::hypot(dx(4, 3), dy(4, 3));
+    case 2: {  // angular, in degrees (atan2 of x over y, as OpenSCAD measures it)
+      const double a1 = std::atan2(dx(0, 5), dy(0, 5)) * 180 / M_PI;
+      const double a2 = std::atan2(dx(4, 3), dy(4, 3)) * 180 / M_PI;
+      return std::fabs(a1 - a2);
+    }
+    case 3:  // diameter
+    case 4:  // radius
+      return std::hypot(dx(5, 0), dy(5, 0));
+    case 6:  // ordinate: x when flag 64 is set, else y
+      return (d.type & 64) ? c[3].x : c[3].y;
+    default:  // 5, angular by three points: not measured, as in OpenSCAD
+      return std::nullopt;
+  }
+}
+
+Result<std::optional<Vec2>> read_dxf_cross(const std::string& path, const Import2DOptions& o) {
+  auto read = read_segments(path, o);
+  if (!read) return read.error();
+  std::vector<int> degree(read->grid.points.size(), 0);
+  for (auto [a, b] : read->segments) {
+    ++degree[a];
+    ++degree[b];
+  }
+  std::vector<Vec2> ends;  // of the first two lone segments
+  for (auto [a, b] : read->segments) {
+    if (degree[a] != 1 || degree[b] != 1) continue;
+    ends.push_back(read->grid.points[a]);
+    ends.push_back(read->grid.points[b]);
+    if (ends.size() == 4) break;
+  }
+  if (ends.size() < 4) return std::optional<Vec2>{};
+  const double d1x = ends[1].x - ends[0].x, d1y = ends[1].y - ends[0].y;
+  const double d2x = ends[3].x - ends[2].x, d2y = ends[3].y - ends[2].y;
+  const double den = d2y * d1x - d2x * d1y;
+  if (den == 0) return std::optional<Vec2>{};  // parallel
+  const double t = (d2x * (ends[0].y - ends[2].y) - d2y * (ends[0].x - ends[2].x)) / den;
+  return std::optional<Vec2>{Vec2{ends[0].x + d1x * t, ends[0].y + d1y * t}};
 }
 
 }  // namespace cellforge::csg

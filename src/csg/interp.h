@@ -82,6 +82,7 @@ class Interp {
   // builtin_functions.cpp: false when no built-in function has the name.
   bool call_builtin_function(const std::string& name, const Args& args, SourcePos pos,
                              const EnvPtr& env, Value& out);
+  bool dxf_function(const std::string& name, const Args& args, SourcePos pos, Value& out);
 
   // eval_stmt.cpp
   std::vector<NodePtr> run_scope(const std::vector<const Stmt*>& stmts, const EnvPtr& env,

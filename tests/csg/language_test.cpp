@@ -134,6 +134,32 @@ TEST(Files, MissingIncludeNamesThePlace) {
       << r.error().message;
 }
 
+// dxf_dim() and dxf_cross() refuse what OpenSCAD would turn into undef: a file that is
+// not there, a dimension of a type OpenSCAD does not measure, a layer without two lone
+// lines; reading files off refuses them too (tests/scad/lang_dxf_dim.scad has the
+// measurements).
+TEST(Files, DxfFunctionsNameWhatIsMissing) {
+  const std::string dims = std::string(CELLFORGE_TEST_DATA) + "/../scad/data/dims.dxf";
+  EvalOptions o;
+  o.use_default_library_path = false;
+  auto error = [&](const std::string& text) {
+    auto r = evaluate_text(text, "/tmp/t.scad", o);
+    return r ? std::string() : r.error().message;
+  };
+  EXPECT_NE(error("x = dxf_dim(file = \"/no/such.dxf\", name = \"a\");").find("/tmp/t.scad:1:12: dxf_dim(): cannot open /no/such.dxf"),
+            std::string::npos);
+  EXPECT_NE(error("x = dxf_dim(file = \"" + dims + "\", name = \"three\");").find("is of type 5, which is not measured"),
+            std::string::npos);
+  EXPECT_NE(error("x = dxf_cross(file = \"" + dims + "\", layer = \"body\");").find("no two crossing lone lines in"),
+            std::string::npos);
+  EXPECT_NE(error("x = dxf_dim(file = 3);").find("dxf_dim(): file must be a string"), std::string::npos);
+  auto r = evaluate_text("echo(dxf_dim(file = \"" + dims + "\", name = \"hole\", scale = 0.5));", "/tmp/t.scad", o);
+  ASSERT_TRUE(r) << r.error().message;
+  ASSERT_EQ(r->echoes.size(), 1u);
+  EXPECT_EQ(r->echoes[0], "ECHO: 5");
+  EXPECT_NE(error_of("x = dxf_dim(file = \"a.dxf\");").find("reading files is turned off"), std::string::npos);
+}
+
 TEST(Defines, OverrideTopLevelAssignments) {
   EvalOptions o;
   o.defines = {{"a", "[1, 2]"}, {"s", "\"x\""}};
