@@ -3,7 +3,10 @@
 // and replace by a default are errors here when they would change the geometry: a
 // cube whose size is a string is not built as a unit cube.
 #include <cmath>
+#include <map>
+#include <span>
 
+#include "cellforge/geom/volume.h"
 #include "interp.h"
 
 namespace cellforge::csg {
@@ -49,6 +52,22 @@ shape::Faceting Interp::faceting(const Params& p, const EnvPtr& env) {
 }
 
 namespace {
+
+// Whether the faces, listed clockwise seen from outside as OpenSCAD wants them, make a
+// closed surface (each edge used once each way) that encloses a negative volume: the
+// faces point inward. OpenSCAD (CGAL) builds such a polyhedron as the volume it
+// encloses.
+bool points_inward(const std::vector<Vec3>& points, const std::vector<std::vector<std::uint32_t>>& faces) {
+  std::map<std::pair<std::uint32_t, std::uint32_t>, int> balance;
+  for (const auto& f : faces)
+    for (std::size_t i = 0; i < f.size(); ++i) {
+      const std::uint32_t a = f[i], b = f[(i + 1) % f.size()];
+      balance[{std::min(a, b), std::max(a, b)}] += a < b ? 1 : -1;
+    }
+  for (const auto& [edge, n] : balance)
+    if (n != 0) return false;
+  return !faces.empty() && volume_sign(std::span<const Vec3>(points), faces) > 0;
+}
 
 struct Named {
   const char* name;
@@ -298,6 +317,11 @@ bool Interp::call_builtin_module(const Stmt& s, const Args& args, const EnvPtr& 
       }
     } else if (poly3) {
       fail(s.pos, "polyhedron(): faces are missing");
+    }
+    if (poly3 && points_inward(node->points, node->faces)) {
+      warn(s.pos, "polyhedron(): the faces point inward (each is counterclockwise seen from "
+                  "outside); reversed, since OpenSCAD builds the volume they enclose");
+      for (auto& f : node->faces) std::reverse(f.begin(), f.end());
     }
     return leaf(poly3 ? NodeKind::kPolyhedron : NodeKind::kPolygon);
   }
