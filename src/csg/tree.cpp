@@ -10,10 +10,12 @@
 // region is turned with the same segments.
 #include "cellforge/csg/tree.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <optional>
 #include <string>
 #include <unordered_map>
 
@@ -22,6 +24,7 @@
 #include "cellforge/boolean/minkowski.h"
 #include "cellforge/boolean/ops2d.h"
 #include "cellforge/csg/tree_json.h"
+#include "cellforge/geom/union_find.h"
 #include "cellforge/io/mesh_io.h"
 #include "cellforge/shape/hull.h"
 #include "cellforge/shape/mass.h"
@@ -255,48 +258,70 @@ class Builder {
       out.dimension = 0;
       return;
     }
-    bool apart = true;
-    for (std::size_t i = 0; i < parts.size() && apart; ++i) {
-      for (std::size_t j = i + 1; j < parts.size() && apart; ++j) {
-        bool separated = false;
-        for (int k = 0; k < 3; ++k) {
-          separated |= parts[i].hi[k] < parts[j].lo[k] || parts[j].hi[k] < parts[i].lo[k];
-        }
-        apart = separated;
-      }
-    }
     if (parts.size() == 1) {
       out.model = std::move(parts[0].model);
       out.face_colors = std::move(parts[0].colors);
       return;
     }
-    if (apart) {
-      for (Part& p : parts) {
-        const std::vector<FaceId> ids = copy_into(out.model, p.model, shape::Transform::identity());
-        out.face_colors.resize(out.model.face_slots());
-        for (FaceId f : p.model.faces()) {
-          if (ids[f.value].is_valid() && f.value < p.colors.size())
-            out.face_colors[ids[f.value].value] = p.colors[f.value];
+    // Parts whose boxes are apart, or that are apart though their boxes meet (exactly:
+    // meeting_clusters), are put side by side; each cluster of parts that meet is
+    // united by one more Boolean.
+    std::vector<std::uint32_t> cluster(parts.size());
+    std::vector<const Model*> all;
+    for (std::size_t i = 0; i < parts.size(); ++i) {
+      cluster[i] = static_cast<std::uint32_t>(i);
+      all.push_back(&parts[i].model);
+    }
+    bool boxes_apart = true;
+    for (std::size_t i = 0; i < parts.size() && boxes_apart; ++i) {
+      for (std::size_t j = i + 1; j < parts.size() && boxes_apart; ++j) {
+        bool separated = false;
+        for (int k = 0; k < 3; ++k) {
+          separated |= parts[i].hi[k] < parts[j].lo[k] || parts[j].hi[k] < parts[i].lo[k];
         }
+        boxes_apart = separated;
       }
-      return;
     }
-    std::vector<const Model*> operands;
-    for (const Part& p : parts) operands.push_back(&p.model);
-    const auto start = Clock::now();
-    auto r = boolean::apply(boolean::Op::kUnion, operands);
-    stats_.boolean_seconds += seconds_since(start);
-    ++stats_.booleans;
-    stats_.boolean_operands += operands.size();
-    if (!r) fail(root.pos, "the Boolean operation failed: " + r.error().message);
-    out.face_colors.assign(r->model.face_slots(), std::nullopt);
-    for (std::size_t f = 0; f < r->sources.size() && f < out.face_colors.size(); ++f) {
-      const auto& src = r->sources[f];
-      if (src.operand < 0) continue;
-      const Part& p = parts[static_cast<std::size_t>(src.operand)];
-      if (src.face < p.colors.size()) out.face_colors[f] = p.colors[src.face];
+    if (!boxes_apart) cluster = meeting_clusters(all);
+    auto put = [&](const Model& m, const std::vector<Color>& colors) {
+      const std::vector<FaceId> ids = copy_into(out.model, m, shape::Transform::identity());
+      out.face_colors.resize(out.model.face_slots());
+      for (FaceId f : m.faces()) {
+        if (ids[f.value].is_valid() && f.value < colors.size())
+          out.face_colors[ids[f.value].value] = colors[f.value];
+      }
+    };
+    for (std::size_t c = 0; c < parts.size(); ++c) {
+      std::vector<std::size_t> members;
+      for (std::size_t i = 0; i < parts.size(); ++i)
+        if (cluster[i] == c) members.push_back(i);
+      if (members.empty()) continue;
+      if (members.size() == 1) {
+        put(parts[c].model, parts[c].colors);
+        continue;
+      }
+      std::vector<const Model*> operands;
+      for (std::size_t i : members) operands.push_back(&parts[i].model);
+      const auto start = Clock::now();
+      auto r = boolean::apply(boolean::Op::kUnion, operands);
+      stats_.boolean_seconds += seconds_since(start);
+      ++stats_.booleans;
+      stats_.boolean_operands += operands.size();
+      if (!r) fail(root.pos, "the Boolean operation failed: " + r.error().message);
+      std::vector<Color> colors(r->model.face_slots(), std::nullopt);
+      for (std::size_t f = 0; f < r->sources.size() && f < colors.size(); ++f) {
+        const auto& src = r->sources[f];
+        if (src.operand < 0) continue;
+        const Part& p = parts[members[static_cast<std::size_t>(src.operand)]];
+        if (src.face < p.colors.size()) colors[f] = p.colors[src.face];
+      }
+      if (members.size() == parts.size()) {
+        out.model = std::move(r->model);
+        out.face_colors = std::move(colors);
+      } else {
+        put(r->model, colors);
+      }
     }
-    out.model = std::move(r->model);
   }
 
   [[noreturn]] void fail(SourcePos pos, const std::string& message) const {
@@ -445,7 +470,10 @@ class Builder {
   }
 
   Model combine(const boolean::Expr& expr, std::vector<Leaf>& leaves, SourcePos pos,
-                std::vector<Color>* face_colors) {
+                std::vector<Color>* face_colors, bool split_apart = true) {
+    if (split_apart && expr.kind == boolean::Expr::Kind::kUnion && expr.children.size() > 1) {
+      if (auto apart = combine_apart(expr, leaves, pos, face_colors)) return std::move(*apart);
+    }
     if (expr.kind == boolean::Expr::Kind::kOperand) {
       Leaf& l = leaves[static_cast<std::size_t>(expr.operand)];
       if (face_colors) {
@@ -471,6 +499,77 @@ class Builder {
       }
     }
     return std::move(r->model);
+  }
+
+  // A union whose terms fall into clusters that are apart (meeting_clusters: no
+  // surfaces meet, none inside another; a term stands for its leaves, since what it
+  // makes lies within them): each cluster is combined alone and the results are put
+  // side by side. Nothing when the terms make one cluster.
+  std::optional<Model> combine_apart(const boolean::Expr& expr, std::vector<Leaf>& leaves,
+                                     SourcePos pos, std::vector<Color>* face_colors) {
+    constexpr std::uint32_t kNone = 0xffffffffu;
+    std::vector<std::uint32_t> term_of(leaves.size(), kNone);
+    UnionFind terms(expr.children.size());  // terms sharing a leaf are one
+    std::function<void(const boolean::Expr&, std::uint32_t)> mark = [&](const boolean::Expr& e, std::uint32_t t) {
+      if (e.kind == boolean::Expr::Kind::kOperand) {
+        std::uint32_t& at = term_of[static_cast<std::size_t>(e.operand)];
+        if (at != kNone) terms.unite_to_smaller(at, t);
+        at = t;
+      }
+      for (const boolean::Expr& c : e.children) mark(c, t);
+    };
+    for (std::size_t t = 0; t < expr.children.size(); ++t) mark(expr.children[t], static_cast<std::uint32_t>(t));
+    std::vector<const Model*> models;
+    std::vector<std::uint32_t> together;
+    for (std::size_t i = 0; i < leaves.size(); ++i) {
+      if (term_of[i] == kNone) return std::nullopt;  // a leaf the union does not name
+      models.push_back(&leaves[i].model);
+      together.push_back(terms.find(term_of[i]));
+    }
+    const std::vector<std::uint32_t> cluster = meeting_clusters(models, together);
+    if (std::all_of(cluster.begin(), cluster.end(), [&](std::uint32_t c) { return c == cluster[0]; }))
+      return std::nullopt;
+    Model out;
+    if (face_colors) face_colors->clear();
+    for (std::size_t c = 0; c < leaves.size(); ++c) {
+      // Cluster c's leaves, renumbered in order, and the terms that name them.
+      std::vector<int> local(leaves.size(), -1);
+      std::vector<Leaf> own;
+      for (std::size_t i = 0; i < leaves.size(); ++i) {
+        if (cluster[i] != c) continue;
+        local[i] = static_cast<int>(own.size());
+        own.push_back(std::move(leaves[i]));
+      }
+      if (own.empty()) continue;
+      std::function<boolean::Expr(const boolean::Expr&)> renumber = [&](const boolean::Expr& e) {
+        boolean::Expr r{e.kind, e.kind == boolean::Expr::Kind::kOperand ? local[static_cast<std::size_t>(e.operand)] : 0, {}};
+        for (const boolean::Expr& k : e.children) r.children.push_back(renumber(k));
+        return r;
+      };
+      std::vector<boolean::Expr> own_terms;
+      for (std::size_t t = 0; t < expr.children.size(); ++t) {
+        const boolean::Expr& term = expr.children[t];
+        // A term's leaves are all in one cluster: its first one tells which.
+        std::function<int(const boolean::Expr&)> first_leaf = [&](const boolean::Expr& e) -> int {
+          if (e.kind == boolean::Expr::Kind::kOperand) return e.operand;
+          for (const boolean::Expr& k : e.children)
+            if (const int l = first_leaf(k); l >= 0) return l;
+          return -1;
+        };
+        const int l = first_leaf(term);
+        if (l >= 0 && cluster[static_cast<std::size_t>(l)] == c) own_terms.push_back(renumber(term));
+      }
+      const boolean::Expr sub = own_terms.size() == 1 ? own_terms[0] : boolean::Expr{boolean::Expr::Kind::kUnion, 0, std::move(own_terms)};
+      std::vector<Color> colors;
+      const Model m = combine(sub, own, pos, face_colors ? &colors : nullptr, false);
+      const std::vector<FaceId> ids = copy_into(out, m, shape::Transform::identity());
+      if (!face_colors) continue;
+      face_colors->resize(out.face_slots());
+      for (FaceId f : m.faces()) {
+        if (ids[f.value].is_valid() && f.value < colors.size()) (*face_colors)[ids[f.value].value] = colors[f.value];
+      }
+    }
+    return out;
   }
 
   template <class T>

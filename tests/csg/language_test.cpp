@@ -279,6 +279,48 @@ TEST(Build, RotatedSubtreeIsCombinedInItsOwnFrame) {
   EXPECT_LT(red, b->model.num_faces());  // the cut face is the cube's, uncolored
 }
 
+// Parts whose boxes overlap but whose surfaces do not meet, neither inside the other,
+// are put side by side without a Boolean (tree_private.h, meeting_clusters): tilted
+// slabs in a row (example021.scad's sections), at the top and under a transform; a
+// cube in another's cavity. Parts that touch, cross or nest take the Boolean.
+TEST(Build, PartsApartAreSideBySide) {
+  struct Case {
+    const char* script;
+    std::size_t booleans, operands;
+    double volume;
+    std::size_t volumes;
+  };
+  const Case cases[] = {
+      {"for (i = [0 : 4]) rotate([30, 40, 0]) translate([0, 0, 3 * i]) cube([10, 10, 1]);", 0, 0, 500, 5},
+      {"translate([1, 0, 0]) union() for (i = [0 : 4]) rotate([30, 40, 0]) translate([0, 0, 3 * i])\n"
+       "  cube([10, 10, 1]);",
+       0, 0, 500, 5},
+      {"difference() { cube(10, center = true); cube(8, center = true); }\ncube(2, center = true);", 1, 2,
+       1000 - 512 + 8, 2},
+      {"cube(10, center = true);\ncube(2, center = true);", 1, 2, 1000, 1},
+      {"cube(1);\ntranslate([1, 0, 0]) cube(1);", 1, 2, 2, 1},
+      // two slabs crossing and a third apart: one Boolean of two
+      {"rotate([30, 40, 0]) { cube([10, 10, 1]); translate([0, 0, 6]) cube([10, 10, 1]); }\n"
+       "rotate([30, 40, 0]) translate([5, 5, -2]) rotate([0, 90, 0]) cube([1, 1, 1]);",
+       0, 0, 201, 3},
+      {"rotate([30, 40, 0]) { cube([10, 10, 1]); translate([5, 5, -2]) cube([1, 1, 4]); }\n"
+       "rotate([30, 40, 0]) translate([0, 0, 6]) cube([10, 10, 1]);",
+       1, 2, 200 + 3, 2},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.script);
+    auto r = run(c.script);
+    ASSERT_TRUE(r) << r.error().message;
+    auto b = build(*r->root);
+    ASSERT_TRUE(b) << b.error().message;
+    EXPECT_EQ(b->stats.booleans, c.booleans);
+    EXPECT_EQ(b->stats.boolean_operands, c.operands);
+    EXPECT_TRUE(validate(b->model).empty());
+    EXPECT_NEAR(shape::mass_properties(b->model).volume, c.volume, 1e-9 * c.volume);
+    EXPECT_EQ(b->model.num_volumes(), c.volumes);
+  }
+}
+
 // The cache key holds the bytes of the files a part imports: editing an imported OFF
 // file, a surface() heightmap or a DXF outline rebuilds the part that reads it (and
 // only it), with the new geometry; an unchanged file is a hit.
