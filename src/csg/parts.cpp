@@ -3,6 +3,16 @@
 // of example021.scad, slabs turned 30° off the axes) have boxes that overlap while the
 // parts are far apart; united by one Boolean, each part's own faces, a rounding apart
 // from planar since the turn, would be resolved against each other as well.
+//
+// Three steps, the cheap ones first. (1) A part lies inside another, or crosses it in
+// the common case, when the other's surface winds around one of its vertices (the
+// first one in the other's box): the loops' fans are surface enough for the winding
+// number (their inner edges cancel), so nothing is tiled. (2) For the parts that step
+// leaves with a neighbour in another cluster, every pair of triangles whose boxes meet
+// (a tree over the boxes, geom/bvh.h) is tested exactly (geom/intersect.h), until the
+// two parts are one cluster. (3) Parts whose surfaces do not meet are apart unless one
+// lies inside the other, which step 1 decided already: with no surface between them,
+// one vertex tells for all.
 #include <algorithm>
 #include <array>
 #include <unordered_map>
@@ -16,113 +26,171 @@
 
 namespace cellforge::csg {
 
+namespace {
+
+using Tri = std::array<std::uint32_t, 3>;
+
+// One part: its points (in the shared table from `base`), the fans of its bounding
+// faces' loops turned outward, and whether they close (every edge as often each way,
+// no sheet, wire or lone point).
+struct PartSurface {
+  std::uint32_t base = 0, count = 0;
+  std::vector<Tri> fans;
+  Box box;
+  bool closed = true;
+};
+
+std::uint64_t edge_key(std::uint32_t p, std::uint32_t q) { return (std::uint64_t{p} << 32) | q; }
+
+// Adds the triangle's edges to `balance` (a directed edge cancels its reverse).
+void balance_edges(const Tri& t, std::unordered_map<std::uint64_t, int>& balance) {
+  for (int e = 0; e < 3; ++e) {
+    const std::uint32_t a = t[e], b = t[(e + 1) % 3];
+    if (auto it = balance.find(edge_key(b, a)); it != balance.end()) {
+      if (--it->second == 0) balance.erase(it);
+    } else {
+      ++balance[edge_key(a, b)];
+    }
+  }
+}
+
+// The faces that bound a cell on one side (a face between two of the part's cells is
+// inside it), with whether to reverse each so that it turns outward.
+template <class F>
+void bounding_faces(const Model& m, bool& sheet, F&& f) {
+  for (FaceId face : m.faces()) {
+    const bool front = m.front_volume(face).is_valid(), back = m.back_volume(face).is_valid();
+    if (front && back) continue;
+    sheet |= !front && !back;
+    f(face, front);
+  }
+}
+
+PartSurface surface_of(const Model& m, std::vector<Vec3>& points, std::vector<std::uint32_t>& index) {
+  PartSurface s;
+  s.base = static_cast<std::uint32_t>(points.size());
+  index.assign(m.vertex_slots(), kInvalidIndex);
+  for (VertexId v : m.vertices()) {
+    index[v.value] = static_cast<std::uint32_t>(points.size());
+    points.push_back(m.position(v));
+    s.box.add(points.back());
+  }
+  s.count = static_cast<std::uint32_t>(points.size()) - s.base;
+  bool sheet = false;
+  std::unordered_map<std::uint64_t, int> balance;
+  std::vector<std::uint32_t> loop;
+  bounding_faces(m, sheet, [&](FaceId f, bool reverse) {
+    for (LoopId l = m.outer_loop(f); l.is_valid(); l = m.next_loop(l)) {
+      if (m.is_point_loop(l)) continue;
+      loop.clear();
+      for (EdgeUseId u : m.uses_of(l)) loop.push_back(index[m.use_start(u).value]);
+      for (std::size_t i = 1; i + 1 < loop.size(); ++i) {
+        Tri t{loop[0], loop[i], loop[i + 1]};
+        if (reverse) std::swap(t[1], t[2]);
+        balance_edges(t, balance);
+        s.fans.push_back(t);
+      }
+    }
+  });
+  bool wires = false;
+  for (EdgeId e : m.edges()) wires |= m.is_wire(e);
+  for (VertexId v : m.vertices()) wires |= !m.first_end(v).edge.is_valid() && !m.point_loop(v).is_valid();
+  s.closed = !sheet && !wires && balance.empty() && !s.fans.empty();
+  return s;
+}
+
+// The part's bounding faces tiled; where a tiling misses a sliver along a loop (a face
+// that rounding left a hair off planar), the fans, which cover at least the face.
+std::vector<Tri> tiles_of(const Model& m, const PartSurface& s, std::vector<std::uint32_t>& index) {
+  index.assign(m.vertex_slots(), kInvalidIndex);
+  std::uint32_t next = s.base;
+  for (VertexId v : m.vertices()) index[v.value] = next++;
+  std::vector<Tri> out;
+  std::unordered_map<std::uint64_t, int> balance;
+  std::vector<std::array<VertexId, 3>> tiles;
+  bool sheet = false;
+  bounding_faces(m, sheet, [&](FaceId f, bool reverse) {
+    tiles.clear();
+    io::triangulate_face(m, f, tiles);
+    for (const auto& t : tiles) {
+      Tri tri{index[t[0].value], index[t[1].value], index[t[2].value]};
+      if (reverse) std::swap(tri[1], tri[2]);
+      balance_edges(tri, balance);
+      out.push_back(tri);
+    }
+  });
+  return balance.empty() || !s.closed ? out : s.fans;
+}
+
+bool boxes_meet(const Box& a, const Box& b) {
+  return a.lo.x <= b.hi.x && b.lo.x <= a.hi.x && a.lo.y <= b.hi.y && b.lo.y <= a.hi.y &&
+         a.lo.z <= b.hi.z && b.lo.z <= a.hi.z;
+}
+
+bool in_box(Vec3 p, const Box& b) {
+  return p.x >= b.lo.x && p.y >= b.lo.y && p.z >= b.lo.z && p.x <= b.hi.x && p.y <= b.hi.y &&
+         p.z <= b.hi.z;
+}
+
+}  // namespace
+
 std::vector<std::uint32_t> meeting_clusters(const std::vector<const Model*>& parts,
                                             const std::vector<std::uint32_t>& together) {
   const std::size_t n = parts.size();
-  // Every part's bounding faces as outward triangles over one table of points.
-  std::vector<Vec3> points;
-  std::vector<std::array<std::uint32_t, 3>> tris;
-  std::vector<std::uint32_t> part_of;     // by triangle
-  std::vector<std::uint32_t> first(n + 1);  // part k's triangles: [first[k], first[k + 1])
-  std::vector<bool> closed(n, true);
-  std::vector<std::array<VertexId, 3>> tiles;
-  for (std::size_t k = 0; k < n; ++k) {
-    const Model& m = *parts[k];
-    first[k] = static_cast<std::uint32_t>(tris.size());
-    std::vector<std::uint32_t> index(m.vertex_slots(), kInvalidIndex);
-    for (VertexId v : m.vertices()) {
-      index[v.value] = static_cast<std::uint32_t>(points.size());
-      points.push_back(m.position(v));
-    }
-    // The faces' tilings; where they miss a sliver along a loop (a face that rounding
-    // left a hair off planar), the loops' fans instead, whose signed sum still winds
-    // once around the inside.
-    bool sheet = false;
-    auto triangles = [&](bool fans) {
-      tris.resize(first[k]);
-      part_of.resize(first[k]);
-      std::unordered_map<std::uint64_t, int> balance;  // directed edge -> uses not undone
-      const auto key = [](std::uint32_t p, std::uint32_t q) { return (std::uint64_t{p} << 32) | q; };
-      auto add = [&](std::array<std::uint32_t, 3> tri) {
-        for (int e = 0; e < 3; ++e) {
-          const std::uint32_t a = tri[e], b = tri[(e + 1) % 3];
-          if (auto it = balance.find(key(b, a)); it != balance.end()) {
-            if (--it->second == 0) balance.erase(it);
-          } else {
-            ++balance[key(a, b)];
-          }
-        }
-        tris.push_back(tri);
-        part_of.push_back(static_cast<std::uint32_t>(k));
-      };
-      for (FaceId f : m.faces()) {
-        const bool front = m.front_volume(f).is_valid(), back = m.back_volume(f).is_valid();
-        if (front && back) continue;  // between two of the part's cells
-        sheet |= !front && !back;
-        tiles.clear();
-        if (!fans) {
-          io::triangulate_face(m, f, tiles);
-        } else {
-          for (LoopId l = m.outer_loop(f); l.is_valid(); l = m.next_loop(l)) {
-            if (m.is_point_loop(l)) continue;
-            std::vector<VertexId> loop;
-            for (EdgeUseId u : m.uses_of(l)) loop.push_back(m.use_start(u));
-            for (std::size_t i = 1; i + 1 < loop.size(); ++i) tiles.push_back({loop[0], loop[i], loop[i + 1]});
-          }
-        }
-        for (const auto& t : tiles) {
-          std::array<std::uint32_t, 3> tri{index[t[0].value], index[t[1].value], index[t[2].value]};
-          if (front) std::swap(tri[1], tri[2]);
-          add(tri);
-        }
-      }
-      return balance.empty();
-    };
-    closed[k] = (triangles(false) || triangles(true)) && !sheet && tris.size() > first[k];
-    // Wires and points are not in the triangles: such a part meets all it reaches.
-    for (EdgeId e : m.edges()) closed[k] = closed[k] && !m.is_wire(e);
-  }
-  first[n] = static_cast<std::uint32_t>(tris.size());
-
   UnionFind clusters(n);
+  const auto same = [&](std::size_t p, std::size_t q) {
+    return clusters.find(static_cast<std::uint32_t>(p)) == clusters.find(static_cast<std::uint32_t>(q));
+  };
+  const auto unite = [&](std::size_t p, std::size_t q) {
+    clusters.unite_to_smaller(static_cast<std::uint32_t>(p), static_cast<std::uint32_t>(q));
+  };
   if (!together.empty()) {
-    std::unordered_map<std::uint32_t, std::uint32_t> first_of;  // id -> its first part
+    std::unordered_map<std::uint32_t, std::size_t> first_of;  // id -> its first part
     for (std::size_t k = 0; k < n; ++k) {
-      const auto [it, fresh] = first_of.emplace(together[k], static_cast<std::uint32_t>(k));
-      if (!fresh) clusters.unite_to_smaller(it->second, static_cast<std::uint32_t>(k));
+      const auto [it, fresh] = first_of.emplace(together[k], k);
+      if (!fresh) unite(it->second, k);
+    }
+  }
+  std::vector<Vec3> points;
+  std::vector<std::uint32_t> index;
+  std::vector<PartSurface> surfaces;
+  for (const Model* m : parts) surfaces.push_back(surface_of(*m, points, index));
+
+  // 1: a vertex of one inside the other.
+  for (std::size_t t = 0; t < n; ++t)
+    for (std::size_t s = 0; s < n; ++s) {
+      const PartSurface &a = surfaces[t], &b = surfaces[s];
+      if (s == t || !b.closed || same(s, t) || !boxes_meet(a.box, b.box)) continue;
+      for (std::uint32_t v = a.base; v < a.base + a.count; ++v) {
+        if (!in_box(points[v], b.box)) continue;
+        if (winding_number(points, b.fans, points[v]).number != 0) unite(s, t);
+        break;
+      }
+    }
+  // 2: the surfaces of parts with a neighbour in another cluster, triangle by triangle.
+  std::vector<bool> open(n, false);
+  for (std::size_t p = 0; p < n; ++p)
+    for (std::size_t q = p + 1; q < n; ++q)
+      if (!same(p, q) && boxes_meet(surfaces[p].box, surfaces[q].box)) open[p] = open[q] = true;
+  std::vector<Tri> tris;
+  std::vector<std::uint32_t> part_of;
+  for (std::size_t k = 0; k < n; ++k) {
+    if (!open[k]) continue;
+    for (const Tri& t : tiles_of(*parts[k], surfaces[k], index)) {
+      tris.push_back(t);
+      part_of.push_back(static_cast<std::uint32_t>(k));
     }
   }
   std::vector<Box> boxes(tris.size());
   for (std::size_t i = 0; i < tris.size(); ++i)
     for (std::uint32_t v : tris[i]) boxes[i].add(points[v]);
-  const Bvh tree(boxes, part_of);
-  tree.pairs([&](std::uint32_t i, std::uint32_t j) {
+  if (!tris.empty()) Bvh(boxes, part_of).pairs([&](std::uint32_t i, std::uint32_t j) {
     const std::uint32_t p = part_of[i], q = part_of[j];
-    if (clusters.find(p) == clusters.find(q)) return;
+    if (same(p, q)) return;
     const Vec3 a[3] = {points[tris[i][0]], points[tris[i][1]], points[tris[i][2]]};
     const Vec3 b[3] = {points[tris[j][0]], points[tris[j][1]], points[tris[j][2]]};
-    if (!closed[p] || !closed[q] || triangles_meet(a, b)) clusters.unite_to_smaller(p, q);
+    if (!surfaces[p].closed || !surfaces[q].closed || triangles_meet(a, b)) unite(p, q);
   });
-  // The surfaces of parts in different clusters do not meet: one lies inside another
-  // exactly when the other winds around one of its points.
-  std::vector<Box> part_box(n);
-  for (std::size_t k = 0; k < n; ++k)
-    for (std::uint32_t i = first[k]; i < first[k + 1]; ++i) part_box[k].add(boxes[i]);
-  for (std::size_t t = 0; t < n; ++t) {
-    if (first[t] == first[t + 1]) continue;
-    const Vec3 v = points[tris[first[t]][0]];
-    for (std::size_t s = 0; s < n; ++s) {
-      if (s == t || !closed[s] || clusters.find(static_cast<std::uint32_t>(s)) ==
-                                      clusters.find(static_cast<std::uint32_t>(t)))
-        continue;
-      const Box& b = part_box[s];
-      if (v.x < b.lo.x || v.y < b.lo.y || v.z < b.lo.z || v.x > b.hi.x || v.y > b.hi.y || v.z > b.hi.z)
-        continue;
-      const std::span<const std::array<std::uint32_t, 3>> own(tris.data() + first[s], first[s + 1] - first[s]);
-      if (winding_number(points, own, v).number != 0)
-        clusters.unite_to_smaller(static_cast<std::uint32_t>(s), static_cast<std::uint32_t>(t));
-    }
-  }
   std::vector<std::uint32_t> out(n);
   for (std::size_t k = 0; k < n; ++k) out[k] = clusters.find(static_cast<std::uint32_t>(k));
   return out;
