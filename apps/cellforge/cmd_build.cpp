@@ -229,6 +229,8 @@ int run(const std::vector<std::string>& argv) {
               << ", \"warnings\": " << warnings << ", \"leaves\": " << st.leaves
               << ", \"booleans\": " << st.booleans
               << ", \"boolean_operands\": " << st.boolean_operands
+              << ", \"booleans_in_frame\": " << st.booleans_in_frame
+              << ", \"parts_apart\": " << st.parts_apart
               << ", \"cache_hits\": " << st.cache_hits << ", \"cache_misses\": " << st.cache_misses
               << ", \"memo_hits\": " << st.memo_hits
               << ", \"seconds\": {\"evaluate\": " << num(eval_seconds)

@@ -15,6 +15,7 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <unordered_map>
@@ -24,6 +25,7 @@
 #include "cellforge/boolean/minkowski.h"
 #include "cellforge/boolean/ops2d.h"
 #include "cellforge/csg/tree_json.h"
+#include "cellforge/geom/bvh.h"
 #include "cellforge/geom/union_find.h"
 #include "cellforge/io/mesh_io.h"
 #include "cellforge/shape/hull.h"
@@ -135,12 +137,36 @@ struct BuildError {
 
 using Color = std::optional<std::array<double, 4>>;
 
+// A subtree combined in its own frame before it was moved (turned off the axes): its
+// model there, its faces' colors, and the move.
+struct Framed {
+  Model model;
+  std::vector<Color> face_colors;
+  shape::Transform to_world;
+};
+
 struct Leaf {
   Model model;
   Color color;
   std::vector<Color> face_colors;  // by face, where the leaf is a combined subtree
+  std::shared_ptr<const Framed> frame;  // where the leaf is a turned subtree
   Color color_of(std::uint32_t face) const { return face < face_colors.size() ? face_colors[face] : color; }
 };
+
+// The inverse of an invertible affine map (the linear part by its adjugate).
+shape::Transform inverse(const shape::Transform& t) {
+  const auto& a = t.m;
+  const double det = t.determinant();
+  shape::Transform r;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      const int i1 = (j + 1) % 3, i2 = (j + 2) % 3, j1 = (i + 1) % 3, j2 = (i + 2) % 3;
+      r.m[i][j] = (a[i1][j1] * a[i2][j2] - a[i1][j2] * a[i2][j1]) / det;
+    }
+  for (int i = 0; i < 3; ++i)
+    r.m[i][3] = -(r.m[i][0] * a[0][3] + r.m[i][1] * a[1][3] + r.m[i][2] * a[2][3]);
+  return r;
+}
 
 // A subtree built once: its model and the color of each face.
 struct Built {
@@ -283,6 +309,8 @@ class Builder {
       }
     }
     if (!boxes_apart) cluster = meeting_clusters(all);
+    if (std::any_of(cluster.begin(), cluster.end(), [&](std::uint32_t c) { return c != cluster[0]; }))
+      ++stats_.parts_apart;
     auto put = [&](const Model& m, const std::vector<Color>& colors) {
       const std::vector<FaceId> ids = copy_into(out.model, m, shape::Transform::identity());
       out.face_colors.resize(out.model.face_slots());
@@ -395,11 +423,12 @@ class Builder {
           if (inner.determinant() == 0) return std::nullopt;  // flattened: nothing
           Built b = build_children_colored(n, color);
           if (b.model.num_faces() == 0) return std::nullopt;
-          Leaf leaf{Model(), color, {}};
+          Leaf leaf{Model(), color, {}, nullptr};
           const std::vector<FaceId> ids = copy_into(leaf.model, b.model, inner);
           leaf.face_colors.assign(leaf.model.face_slots(), color);
           for (std::size_t f = 0; f < ids.size(); ++f)
             if (ids[f].is_valid() && f < b.face_colors.size()) leaf.face_colors[ids[f].value] = b.face_colors[f];
+          leaf.frame = std::make_shared<const Framed>(Framed{std::move(b.model), std::move(b.face_colors), inner});
           leaves.push_back(std::move(leaf));
           return boolean::Expr::of(static_cast<int>(leaves.size() - 1));
         }
@@ -426,7 +455,7 @@ class Builder {
       if (t.determinant() == 0) return std::nullopt;  // flattened to nothing, as OpenSCAD
       m = copy_transformed(m, t);
     }
-    leaves.push_back(Leaf{std::move(m), color, {}});
+    leaves.push_back(Leaf{std::move(m), color, {}, nullptr});
     return boolean::Expr::of(static_cast<int>(leaves.size() - 1));
   }
 
@@ -482,6 +511,7 @@ class Builder {
       }
       return std::move(l.model);
     }
+    if (auto framed = combine_framed(expr, leaves, pos, face_colors)) return std::move(*framed);
     std::vector<const Model*> operands;
     for (const Leaf& l : leaves) operands.push_back(&l.model);
     const auto start = Clock::now();
@@ -499,6 +529,78 @@ class Builder {
       }
     }
     return std::move(r->model);
+  }
+
+  // A Boolean whose operands are mostly one subtree turned off the axes (a rotated
+  // Menger sponge cut by a box: example024.scad) is evaluated in that subtree's frame,
+  // the other operands moved there, and its result moved back: the turned subtree's
+  // faces, a rounding off planar once moved and then resolved against each other
+  // exactly, stay in their planes, and only the few faces of the others are rounded
+  // in between. Nothing when no turned subtree holds more than half the faces.
+  std::optional<Model> combine_framed(const boolean::Expr& expr, std::vector<Leaf>& leaves, SourcePos pos,
+                                      std::vector<Color>* face_colors) {
+    std::size_t big = leaves.size(), big_faces = 0, total = 0;
+    for (std::size_t i = 0; i < leaves.size(); ++i) {
+      const std::size_t faces = leaves[i].model.num_faces();
+      total += faces;
+      if (leaves[i].frame && faces > big_faces) big = i, big_faces = faces;
+    }
+    if (big == leaves.size() || 2 * big_faces <= total) return std::nullopt;
+    // The others, turned into the frame, would meet each other a rounding off their
+    // planes: only others whose boxes are apart.
+    std::vector<Box> boxes;
+    for (std::size_t i = 0; i < leaves.size(); ++i) {
+      if (i == big) continue;
+      Box b;
+      for (VertexId v : leaves[i].model.vertices()) b.add(leaves[i].model.position(v));
+      for (const Box& o : boxes)
+        if (o.overlaps(b)) return std::nullopt;
+      boxes.push_back(b);
+    }
+    const Framed& frame = *leaves[big].frame;
+    const shape::Transform to_frame = inverse(frame.to_world);
+    std::vector<Model> moved(leaves.size());
+    std::vector<std::vector<FaceId>> moved_ids(leaves.size());  // frame face -> leaf face
+    std::vector<const Model*> operands;
+    for (std::size_t i = 0; i < leaves.size(); ++i) {
+      if (i == big) {
+        operands.push_back(&frame.model);
+        continue;
+      }
+      const std::vector<FaceId> ids = copy_into(moved[i], leaves[i].model, to_frame);
+      moved_ids[i].assign(moved[i].face_slots(), FaceId());
+      for (std::size_t f = 0; f < ids.size(); ++f)
+        if (ids[f].is_valid()) moved_ids[i][ids[f].value] = FaceId(static_cast<std::uint32_t>(f));
+      operands.push_back(&moved[i]);
+    }
+    const auto start = Clock::now();
+    auto r = boolean::evaluate(operands, expr);
+    stats_.boolean_seconds += seconds_since(start);
+    ++stats_.booleans;
+    ++stats_.booleans_in_frame;
+    stats_.boolean_operands += operands.size();
+    if (!r) fail(pos, "the Boolean operation failed: " + r.error().message);
+    Model out;
+    const std::vector<FaceId> ids = copy_into(out, r->model, frame.to_world);
+    if (face_colors) {
+      face_colors->assign(out.face_slots(), std::nullopt);
+      for (std::size_t f = 0; f < r->sources.size() && f < ids.size(); ++f) {
+        const int op = r->sources[f].operand;
+        if (op < 0 || !ids[f].is_valid()) continue;
+        const auto i = static_cast<std::size_t>(op);
+        const std::uint32_t face = r->sources[f].face;
+        Color c;
+        if (i == big) {
+          c = face < frame.face_colors.size() ? frame.face_colors[face] : leaves[i].color;
+        } else if (face < moved_ids[i].size() && moved_ids[i][face].is_valid()) {
+          c = leaves[i].color_of(moved_ids[i][face].value);
+        } else {
+          c = leaves[i].color;
+        }
+        (*face_colors)[ids[f].value] = c;
+      }
+    }
+    return out;
   }
 
   // A union whose terms fall into clusters that are apart (meeting_clusters: no
@@ -529,6 +631,7 @@ class Builder {
     const std::vector<std::uint32_t> cluster = meeting_clusters(models, together);
     if (std::all_of(cluster.begin(), cluster.end(), [&](std::uint32_t c) { return c == cluster[0]; }))
       return std::nullopt;
+    ++stats_.parts_apart;
     Model out;
     if (face_colors) face_colors->clear();
     for (std::size_t c = 0; c < leaves.size(); ++c) {

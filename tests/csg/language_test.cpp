@@ -288,24 +288,25 @@ TEST(Build, PartsApartAreSideBySide) {
     const char* script;
     std::size_t booleans, operands;
     double volume;
-    std::size_t volumes;
+    std::size_t volumes, unions_apart;
   };
   const Case cases[] = {
-      {"for (i = [0 : 4]) rotate([30, 40, 0]) translate([0, 0, 3 * i]) cube([10, 10, 1]);", 0, 0, 500, 5},
+      {"for (i = [0 : 4]) rotate([30, 40, 0]) translate([0, 0, 3 * i]) cube([10, 10, 1]);", 0, 0, 500, 5, 1},
       {"translate([1, 0, 0]) union() for (i = [0 : 4]) rotate([30, 40, 0]) translate([0, 0, 3 * i])\n"
        "  cube([10, 10, 1]);",
-       0, 0, 500, 5},
+       0, 0, 500, 5, 1},
       {"difference() { cube(10, center = true); cube(8, center = true); }\ncube(2, center = true);", 1, 2,
-       1000 - 512 + 8, 2},
-      {"cube(10, center = true);\ncube(2, center = true);", 1, 2, 1000, 1},
-      {"cube(1);\ntranslate([1, 0, 0]) cube(1);", 1, 2, 2, 1},
-      // two slabs crossing and a third apart: one Boolean of two
+       1000 - 512 + 8, 2, 1},
+      {"cube(10, center = true);\ncube(2, center = true);", 1, 2, 1000, 1, 0},
+      {"cube(1);\ntranslate([1, 0, 0]) cube(1);", 1, 2, 2, 1, 0},
+      // two slabs apart under one turn (a union apart), and a third part apart
       {"rotate([30, 40, 0]) { cube([10, 10, 1]); translate([0, 0, 6]) cube([10, 10, 1]); }\n"
        "rotate([30, 40, 0]) translate([5, 5, -2]) rotate([0, 90, 0]) cube([1, 1, 1]);",
-       0, 0, 201, 3},
+       0, 0, 201, 3, 2},
+      // a slab crossed by a post, and a slab apart: one Boolean of two
       {"rotate([30, 40, 0]) { cube([10, 10, 1]); translate([5, 5, -2]) cube([1, 1, 4]); }\n"
        "rotate([30, 40, 0]) translate([0, 0, 6]) cube([10, 10, 1]);",
-       1, 2, 200 + 3, 2},
+       1, 2, 200 + 3, 2, 1},
   };
   for (const Case& c : cases) {
     SCOPED_TRACE(c.script);
@@ -313,12 +314,46 @@ TEST(Build, PartsApartAreSideBySide) {
     ASSERT_TRUE(r) << r.error().message;
     auto b = build(*r->root);
     ASSERT_TRUE(b) << b.error().message;
+    EXPECT_EQ(b->stats.parts_apart, c.unions_apart);
     EXPECT_EQ(b->stats.booleans, c.booleans);
     EXPECT_EQ(b->stats.boolean_operands, c.operands);
     EXPECT_TRUE(validate(b->model).empty());
     EXPECT_NEAR(shape::mass_properties(b->model).volume, c.volume, 1e-9 * c.volume);
     EXPECT_EQ(b->model.num_volumes(), c.volumes);
   }
+}
+
+// A Boolean whose faces are mostly those of a subtree turned off the axes is evaluated
+// in that subtree's frame, the others turned into it and the result turned back: an
+// L-shaped block (two cubes, 8 faces once merged) turned by [30, 20, 10] with a cube of
+// side 2 cut out of it, axis-aligned in the world, at the block's point (5, 5, 5)
+// turned likewise (Rz Ry Rx, OpenSCAD's order): 3000 - 8. Colors follow both operands.
+TEST(Build, BooleanIsEvaluatedInTheFrameOfATurnedSubtree) {
+  auto r = run(
+      "function rx(a) = [[1, 0, 0], [0, cos(a), -sin(a)], [0, sin(a), cos(a)]];\n"
+      "function ry(a) = [[cos(a), 0, sin(a)], [0, 1, 0], [-sin(a), 0, cos(a)]];\n"
+      "function rz(a) = [[cos(a), -sin(a), 0], [sin(a), cos(a), 0], [0, 0, 1]];\n"
+      "difference() {\n"
+      "  color(\"red\") rotate([30, 20, 10]) union() { cube([20, 10, 10]); translate([0, 0, 10]) cube(10); }\n"
+      "  color(\"blue\") translate(rz(10) * ry(20) * rx(30) * [5, 5, 5]) cube(2, center = true);\n"
+      "}\n");
+  ASSERT_TRUE(r) << r.error().message;
+  auto b = build(*r->root);
+  ASSERT_TRUE(b) << b.error().message;
+  EXPECT_EQ(b->stats.booleans, 2u);
+  EXPECT_EQ(b->stats.booleans_in_frame, 1u);
+  EXPECT_TRUE(validate(b->model).empty());
+  EXPECT_NEAR(shape::mass_properties(b->model).volume, 3000 - 8, 1e-9 * 3000);
+  EXPECT_EQ(b->model.num_faces(), 8u + 6u);  // the block's faces merged in its frame
+  std::size_t red = 0, blue = 0;
+  for (FaceId f : b->model.faces()) {
+    const auto& c = b->face_colors.at(f.value);
+    ASSERT_TRUE(c);
+    red += (*c)[0] == 1 && (*c)[2] == 0;
+    blue += (*c)[0] == 0 && (*c)[2] == 1;
+  }
+  EXPECT_EQ(red, 8u);
+  EXPECT_EQ(blue, 6u);
 }
 
 // The cache key holds the bytes of the files a part imports: editing an imported OFF

@@ -124,6 +124,13 @@ struct BuildStats {
   std::size_t leaves = 0;    // primitives and other leaf nodes built
   std::size_t booleans = 0;  // n-ary Boolean evaluations
   std::size_t boolean_operands = 0;
+  // Booleans evaluated in the frame of a subtree turned off the axes that holds most of
+  // their faces, the others moved there and the result moved back (docs/csg.md).
+  std::size_t booleans_in_frame = 0;
+  // Unions (of the top-level parts, or in the tree) whose parts fall into clusters
+  // that do not meet, put side by side with a Boolean for each cluster only
+  // (docs/csg.md).
+  std::size_t parts_apart = 0;
   std::size_t cache_hits = 0, cache_misses = 0;
   // Leaves and whole subtrees met again within the build, taken from the first time.
   std::size_t memo_hits = 0;
