@@ -148,7 +148,7 @@ TriangleBoxes::TriangleBoxes(const std::vector<std::array<Vec3, 3>>& tris, int t
 
 bool nudge_rounding(MeshInput& in, const std::vector<char>& inexact,
                     const std::function<bool(std::uint32_t, int)>& exact, int threads) {
-  constexpr int kRounds = 4;
+  constexpr int kRounds = 6;
   int reach = 2;  // units in the last place a vertex may move
   // Only a triangle of a face with a rounded corner can have come to cross another
   // (the faces with all their corners exact meet as the exact arrangement does), and
@@ -337,7 +337,8 @@ bool nudge_rounding(MeshInput& in, const std::vector<char>& inexact,
       };
       const bool keep[3] = {exact(v, 0), exact(v, 1), exact(v, 2)};
       // One unit in the last place first, then two; after a round that left crossings
-      // no such move reduced, up to four, then eight (slivers crossing a few units deep).
+      // no such move reduced, up to four, eight, then sixteen (slivers crossing a few
+      // units deep; seed 63415 of the long property run needs sixteen and five rounds).
       for (int r = 1; r <= reach && best_count > 0; ++r)
       for (int dx = -r; dx <= r && best_count > 0; ++dx)
         for (int dy = -r; dy <= r && best_count > 0; ++dy)
@@ -373,7 +374,7 @@ bool nudge_rounding(MeshInput& in, const std::vector<char>& inexact,
       }
     }
     if (!changed) {
-      if (reach >= 8) return false;
+      if (reach >= 16) return false;
       reach *= 2;  // the same suspects again, reaching further
       continue;
     }
