@@ -13,6 +13,7 @@
 #include <cassert>
 #include <cmath>
 
+#include "cellforge/geom/filtered.h"
 #include "geom/expansion_kernels.h"
 
 namespace cellforge::inline geom {
@@ -155,10 +156,46 @@ ExactVec3 exact_newell_normal(std::span<const Vec3> polygon) {
   return n;
 }
 
+namespace {
+
+// An expansion as a filtered number (filtered.h): its components summed in doubles,
+// with the bound n u sum|c| on that sum's error (recursive summation of n terms errs
+// by at most gamma_(n-1) sum|c|; the bound is doubled to cover the rounding of
+// sum|c| itself).
+Fp filtered(const Expansion& x) {
+  const auto c = x.components();
+  double s = 0, a = 0;
+  for (double v : c) {
+    s += v;
+    a += std::abs(v);
+  }
+  return c.size() <= 1 ? Fp(s) : Fp(s, 2 * static_cast<double>(c.size()) * kUnit * a * kGrow);
+}
+
+// The sign of a . (b x c): the filter first, the expansions when it cannot tell.
+int det3_sign(const ExactVec3& a, const ExactVec3& b, const ExactVec3& c) {
+  const Fp ax = filtered(a.x), ay = filtered(a.y), az = filtered(a.z);
+  const Fp bx = filtered(b.x), by = filtered(b.y), bz = filtered(b.z);
+  const Fp cx = filtered(c.x), cy = filtered(c.y), cz = filtered(c.z);
+  const Fp d = ax * (by * cz - bz * cy) + ay * (bz * cx - bx * cz) + az * (bx * cy - by * cx);
+  if (const int s = sign_of(d); s != kUncertain) return s;
+  return exact_det3(a, b, c).sign();
+}
+
+}  // namespace
+
 int radial_half(const ExactVec3& t, const ExactVec3& d0, const ExactVec3& d) {
-  const int s = exact_det3(t, d0, d).sign();
+  const int s = det3_sign(t, d0, d);
   if (s != 0) return s > 0 ? 1 : 3;
-  // d is in the plane of t and d0: on d0's side of t (theta 0) or the opposite (pi).
+  // d is in the plane of t and d0: on d0's side of t (theta 0) or the opposite (pi),
+  // the sign of (t x d0) . (t x d), the filter first.
+  const Fp tx = filtered(t.x), ty = filtered(t.y), tz = filtered(t.z);
+  const Fp ax = filtered(d0.x), ay = filtered(d0.y), az = filtered(d0.z);
+  const Fp bx = filtered(d.x), by = filtered(d.y), bz = filtered(d.z);
+  const Fp u[3] = {ty * az - tz * ay, tz * ax - tx * az, tx * ay - ty * ax};
+  const Fp v[3] = {ty * bz - tz * by, tz * bx - tx * bz, tx * by - ty * bx};
+  if (const int side = sign_of(u[0] * v[0] + u[1] * v[1] + u[2] * v[2]); side != kUncertain)
+    return side > 0 ? 0 : 2;
   return exact_dot(exact_cross(t, d0), exact_cross(t, d)).sign() > 0 ? 0 : 2;
 }
 
@@ -169,7 +206,7 @@ bool radial_less(const ExactVec3& t, const ExactVec3& d0, const ExactVec3& di,
   if (hi == 0 || hi == 2) return false;
   // Both strictly inside the same half turn: the angle from di to dj lies in
   // (-pi, pi), and it is positive iff det[t, di, dj] > 0.
-  return exact_det3(t, di, dj).sign() > 0;
+  return det3_sign(t, di, dj) > 0;
 }
 
 }  // namespace cellforge::inline geom

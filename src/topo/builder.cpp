@@ -205,6 +205,7 @@ Result<BuildResult> build_mesh(Model& m, const MeshInput& in) {
 
   // Radial cycles: uses in input order, then angular order where three or more meet.
   std::vector<EdgeUseId> cycle;
+  FaceNormals normals;
   for (std::size_t g = 0; g < groups.size(); ++g) {
     const EdgeId e = edge_of_group[g];
     cycle.clear();
@@ -212,7 +213,7 @@ Result<BuildResult> build_mesh(Model& m, const MeshInput& in) {
       if (sides[i].slot != kInvalidIndex) cycle.push_back(use_of_slot[sides[i].slot]);
     }
     ed.set_radial_cycle(e, cycle);
-    if (cycle.size() >= 3) ed.radial_sort(e);
+    if (cycle.size() >= 3) ed.radial_sort(e, &normals);
   }
   return out;
 }

@@ -555,10 +555,10 @@ void ModelEditor::set_radial_cycle(EdgeId e, const std::vector<EdgeUseId>& uses)
 
 void ModelEditor::radial_insert(EdgeUseId u) { radial_sort(m_.edge_of(u)); }
 
-void ModelEditor::radial_sort(EdgeId e) {
+void ModelEditor::radial_sort(EdgeId e, FaceNormals* normals) {
   std::vector<EdgeUseId> cycle = ops::radial_uses(m_, e);
   if (cycle.size() <= 2) return;
-  set_radial_cycle(e, sort_radially(m_, e, std::move(cycle)));
+  set_radial_cycle(e, sort_radially(m_, e, std::move(cycle), normals));
 }
 
 EdgeUseId ModelEditor::move_use(EdgeUseId u, EdgeId e, bool flip) {

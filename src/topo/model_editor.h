@@ -11,9 +11,14 @@
 // by every call that edits them.
 #pragma once
 
+#include <unordered_map>
+
+#include "cellforge/geom/predicates.h"
 #include "cellforge/topo/model.h"
 
 namespace cellforge::inline topo {
+
+class FaceNormals;  // below
 
 class ModelEditor {
  public:
@@ -77,7 +82,7 @@ class ModelEditor {
   // Gives u (in its edge's cycle since new_use) its angular place there.
   void radial_insert(EdgeUseId u);
   // Sorts the whole radial cycle of e by angle (after bulk changes).
-  void radial_sort(EdgeId e);
+  void radial_sort(EdgeId e, FaceNormals* normals = nullptr);
   // Makes `uses` (in this order; all of e's uses) the radial cycle of e.
   void set_radial_cycle(EdgeId e, const std::vector<EdgeUseId>& uses);
   // Moves u, a use in a closed loop, to edge e (a slot of e, so a new id, which
@@ -158,11 +163,25 @@ class ModelEditor {
   Model& m_;
 };
 
+// The exact Newell normals of faces' outer loops, each computed once for a run of
+// radial sorts or checks over a model whose faces do not change meanwhile (a face
+// of many sides met at each of its edges: the sides of a sheet along a curve that
+// crosses a solid).
+class FaceNormals {
+ public:
+  const ExactVec3& of(const Model& m, FaceId f);
+
+ private:
+  std::unordered_map<std::uint32_t, ExactVec3> normals_;
+};
+
 // Angular order of the uses around an edge: the interior direction of each use's
 // face at the edge, compared exactly (radial.cpp). Returns the uses sorted starting
-// from `uses[0]`.
-std::vector<EdgeUseId> sort_radially(const Model& m, EdgeId e, std::vector<EdgeUseId> uses);
+// from `uses[0]`. `normals`, when given, keeps the faces' normals for the next calls.
+std::vector<EdgeUseId> sort_radially(const Model& m, EdgeId e, std::vector<EdgeUseId> uses,
+                                     FaceNormals* normals = nullptr);
 // True when `cycle` (a radial cycle read from its first use) is in that order.
-bool radially_ordered(const Model& m, EdgeId e, const std::vector<EdgeUseId>& cycle);
+bool radially_ordered(const Model& m, EdgeId e, const std::vector<EdgeUseId>& cycle,
+                      FaceNormals* normals = nullptr);
 
 }  // namespace cellforge::inline topo

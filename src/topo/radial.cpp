@@ -18,11 +18,11 @@ namespace cellforge::inline topo {
 
 namespace {
 
-ExactVec3 interior_direction(const Model& m, EdgeUseId u) {
-  const std::vector<Vec3> pts = m.loop_points(m.outer_loop(m.face_of(u)));
-  const ExactVec3 n = exact_newell_normal(pts);
+ExactVec3 interior_direction(const Model& m, EdgeUseId u, FaceNormals* normals) {
   const ExactVec3 t = exact_sub(m.position(m.use_end(u)), m.position(m.use_start(u)));
-  return exact_cross(n, t);
+  if (normals) return exact_cross(normals->of(m, m.face_of(u)), t);
+  const std::vector<Vec3> pts = m.loop_points(m.outer_loop(m.face_of(u)));
+  return exact_cross(exact_newell_normal(pts), t);
 }
 
 bool is_zero(const ExactVec3& d) { return d.x.sign() == 0 && d.y.sign() == 0 && d.z.sign() == 0; }
@@ -58,12 +58,12 @@ std::vector<std::uint32_t> twins(const Model& m, const std::vector<EdgeUseId>& u
 // two glued faces lies between their fronts.
 class RadialOrder {
  public:
-  RadialOrder(const Model& m, EdgeId e, const std::vector<EdgeUseId>& uses)
+  RadialOrder(const Model& m, EdgeId e, const std::vector<EdgeUseId>& uses, FaceNormals* normals)
       : axis_(exact_sub(m.position(m.end_of(e)), m.position(m.start_of(e)))), m_(m) {
     entries_.reserve(uses.size());
     const std::vector<std::uint32_t> twin = twins(m, uses);
     for (std::size_t i = 0; i < uses.size(); ++i) {
-      ExactVec3 d = twin[i] == i ? interior_direction(m, uses[i]) : entries_[twin[i]].dir;
+      ExactVec3 d = twin[i] == i ? interior_direction(m, uses[i], normals) : entries_[twin[i]].dir;
       const bool degenerate = is_zero(d);
       entries_.push_back({uses[i], std::move(d), degenerate, twin[i]});
     }
@@ -167,8 +167,15 @@ void sort_by_direction(const RadialOrder& order, std::vector<Entry>& entries) {
 
 }  // namespace
 
-std::vector<EdgeUseId> sort_radially(const Model& m, EdgeId e, std::vector<EdgeUseId> uses) {
-  RadialOrder order(m, e, uses);
+const ExactVec3& FaceNormals::of(const Model& m, FaceId f) {
+  auto [it, fresh] = normals_.try_emplace(f.value);
+  if (fresh) it->second = exact_newell_normal(m.loop_points(m.outer_loop(f)));
+  return it->second;
+}
+
+std::vector<EdgeUseId> sort_radially(const Model& m, EdgeId e, std::vector<EdgeUseId> uses,
+                                     FaceNormals* normals) {
+  RadialOrder order(m, e, uses, normals);
   if (!order.has_reference()) return uses;
   auto& entries = order.entries();
   if (entries.size() > 16) {
@@ -181,11 +188,12 @@ std::vector<EdgeUseId> sort_radially(const Model& m, EdgeId e, std::vector<EdgeU
   return uses;
 }
 
-bool radially_ordered(const Model& m, EdgeId e, const std::vector<EdgeUseId>& cycle) {
+bool radially_ordered(const Model& m, EdgeId e, const std::vector<EdgeUseId>& cycle,
+                      FaceNormals* normals) {
   if (cycle.size() <= 2) return true;
   // A rotation of a sorted sequence: at most one place where, going round the
   // cycle, the angle decreases.
-  RadialOrder order(m, e, cycle);
+  RadialOrder order(m, e, cycle, normals);
   if (!order.has_reference()) return true;
   const auto& entries = order.entries();
   int descents = 0;

@@ -34,6 +34,7 @@ void radial_cycles(const Model& m, Violations& out) {
   const std::size_t limit = m.num_edge_uses();
   std::size_t total = 0;
   std::vector<EdgeUseId> cycle;
+  FaceNormals normals;  // the model does not change while it is checked
   for (EdgeId e : m.edges()) {
     if (m.is_wire(e)) continue;
     cycle.clear();
@@ -53,7 +54,7 @@ void radial_cycles(const Model& m, Violations& out) {
       ok = false;
     }
     total += cycle.size();
-    if (ok && !radially_ordered(m, e, cycle)) {
+    if (ok && !radially_ordered(m, e, cycle, &normals)) {
       fail("the radial cycle of " + e.str() + " is not in angular order");
     }
   }

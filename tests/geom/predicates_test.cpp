@@ -544,6 +544,45 @@ TEST(RadialLess, IsAStrictWeakOrderMatchingTheAngle) {
   }
 }
 
+// radial_half and radial_less decide in doubles first (the expansions summed, with
+// a bound on the sum's error) and exactly when that cannot tell: on faces through one
+// edge whose third points lie a few units in the last place off one plane (the
+// directions nearly coplanar, some exactly), each answer is the exact one.
+TEST(RadialHalf, FilterAgreesWithTheExactAnswer) {
+  const Vec3 a{0.1, 0.7, -0.3}, b{1.3, -0.2, 0.9}, p0{0.45, 1.9, 0.35};
+  const ExactVec3 t = exact_sub(b, a);
+  auto dir = [&](Vec3 p) { return exact_cross(exact_cross(exact_sub(b, a), exact_sub(p, a)), t); };
+  auto exact_half = [&](const ExactVec3& d0, const ExactVec3& d) {
+    const int s = exact_det3(t, d0, d).sign();
+    if (s != 0) return s > 0 ? 1 : 3;
+    return exact_dot(exact_cross(t, d0), exact_cross(t, d)).sign() > 0 ? 0 : 2;
+  };
+  std::vector<ExactVec3> dirs;
+  for (int dx = -3; dx <= 3; ++dx)
+    for (int dz = -3; dz <= 3; ++dz) {
+      Vec3 p = p0;
+      for (int k = 0; k < std::abs(dx); ++k) p.x = std::nextafter(p.x, dx > 0 ? 10.0 : -10.0);
+      for (int k = 0; k < std::abs(dz); ++k) p.z = std::nextafter(p.z, dz > 0 ? 10.0 : -10.0);
+      dirs.push_back(dir(p));
+      dirs.push_back(exact_cross(t, exact_cross(exact_sub(b, a), exact_sub(p, a))));  // opposite
+    }
+  int zeros = 0;
+  for (const ExactVec3& d0 : dirs)
+    for (const ExactVec3& d : dirs) {
+      const int want = exact_half(d0, d);
+      zeros += want == 0 || want == 2;
+      ASSERT_EQ(radial_half(t, d0, d), want);
+    }
+  EXPECT_GT(zeros, 0);  // coplanar pairs are met, and told apart exactly
+  for (std::size_t i = 0; i < dirs.size(); ++i)
+    for (std::size_t j = 0; j < dirs.size(); ++j) {
+      const int hi = exact_half(dirs[0], dirs[i]), hj = exact_half(dirs[0], dirs[j]);
+      const bool want = hi != hj ? hi < hj
+                                 : (hi == 1 || hi == 3) && exact_det3(t, dirs[i], dirs[j]).sign() > 0;
+      ASSERT_EQ(radial_less(t, dirs[0], dirs[i], dirs[j]), want) << i << ' ' << j;
+    }
+}
+
 // Directions given as exact expansions (as topo/radial.cpp builds them: N x t) with
 // non-integer coordinates: same axioms on a tilted axis.
 TEST(RadialLess, StrictWeakOrderOnExactCrossProducts) {
