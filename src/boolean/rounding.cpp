@@ -71,15 +71,16 @@ bool meet(const MeshInput& in, const Tri3& x, const Tri3& y) {
   return triangles_meet(a, b);
 }
 
-// Boxes grown by 16 units in the last place (twice the farthest move), so that the
-// tree built before a vertex moves still finds what the moved triangles meet.
+// Boxes grown by 64 units in the last place, so that the tree built before a vertex
+// moves still finds what the moved triangles meet: a move reaches 16 units, which
+// across a power of two are up to 32 of the finer spacing.
 Box grown(Box b) {
-  // 16 units in the last place of the larger magnitude: 2^(exponent - 52 + 4), made
+  // 64 units in the last place of the larger magnitude: 2^(exponent - 52 + 6), made
   // from the exponent's bits (no libm call; a million boxes a check).
   const auto margin = [](double lo, double hi) {
     const double x = std::max({std::abs(lo), std::abs(hi), 1e-300});
     const std::uint64_t e = (std::bit_cast<std::uint64_t>(x) >> 52) & 0x7ff;  // biased
-    return e > 48 ? std::bit_cast<double>((e - 48) << 52) : 16 * std::ldexp(1.0, static_cast<int>(e) - 1023 - 52);
+    return e > 46 ? std::bit_cast<double>((e - 46) << 52) : 64 * std::ldexp(1.0, static_cast<int>(e) - 1023 - 52);
   };
   const Vec3 m{margin(b.lo.x, b.hi.x), margin(b.lo.y, b.hi.y), margin(b.lo.z, b.hi.z)};
   b.lo = b.lo - m;

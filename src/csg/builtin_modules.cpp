@@ -6,6 +6,7 @@
 #include <map>
 #include <span>
 
+#include "cellforge/geom/union_find.h"
 #include "cellforge/geom/volume.h"
 #include "interp.h"
 
@@ -53,20 +54,41 @@ shape::Faceting Interp::faceting(const Params& p, const EnvPtr& env) {
 
 namespace {
 
-// Whether the faces, listed clockwise seen from outside as OpenSCAD wants them, make a
-// closed surface (each edge used once each way) that encloses a negative volume: the
-// faces point inward. OpenSCAD (CGAL) builds such a polyhedron as the volume it
-// encloses.
-bool points_inward(const std::vector<Vec3>& points, const std::vector<std::vector<std::uint32_t>>& faces) {
-  std::map<std::pair<std::uint32_t, std::uint32_t>, int> balance;
-  for (const auto& f : faces)
-    for (std::size_t i = 0; i < f.size(); ++i) {
-      const std::uint32_t a = f[i], b = f[(i + 1) % f.size()];
-      balance[{std::min(a, b), std::max(a, b)}] += a < b ? 1 : -1;
+// The faces of the shells (faces joined by edges) that point inward: listed clockwise
+// seen from outside, as OpenSCAD wants them, a closed shell (each edge used once each
+// way) enclosing a negative volume. OpenSCAD (CGAL) builds such a shell as the volume
+// it encloses.
+std::vector<std::size_t> inward_faces(const std::vector<Vec3>& points,
+                                      const std::vector<std::vector<std::uint32_t>>& faces) {
+  UnionFind shells(faces.size());
+  std::map<std::pair<std::uint32_t, std::uint32_t>, std::size_t> face_at;  // an edge's first face
+  for (std::size_t f = 0; f < faces.size(); ++f)
+    for (std::size_t i = 0; i < faces[f].size(); ++i) {
+      const std::uint32_t a = faces[f][i], b = faces[f][(i + 1) % faces[f].size()];
+      const auto [it, fresh] = face_at.try_emplace({std::min(a, b), std::max(a, b)}, f);
+      if (!fresh) shells.unite_to_smaller(static_cast<std::uint32_t>(it->second), static_cast<std::uint32_t>(f));
     }
-  for (const auto& [edge, n] : balance)
-    if (n != 0) return false;
-  return !faces.empty() && volume_sign(std::span<const Vec3>(points), faces) > 0;
+  std::map<std::uint32_t, std::vector<std::vector<std::uint32_t>>> loops;  // by shell
+  std::map<std::uint32_t, std::vector<std::size_t>> members;
+  for (std::size_t f = 0; f < faces.size(); ++f) {
+    const std::uint32_t root = shells.find(static_cast<std::uint32_t>(f));
+    loops[root].push_back(faces[f]);
+    members[root].push_back(f);
+  }
+  std::vector<std::size_t> out;
+  for (const auto& [root, shell] : loops) {
+    std::map<std::pair<std::uint32_t, std::uint32_t>, int> balance;
+    for (const auto& f : shell)
+      for (std::size_t i = 0; i < f.size(); ++i) {
+        const std::uint32_t a = f[i], b = f[(i + 1) % f.size()];
+        balance[{std::min(a, b), std::max(a, b)}] += a < b ? 1 : -1;
+      }
+    bool closed = true;
+    for (const auto& [edge, n] : balance) closed &= n == 0;
+    if (closed && volume_sign(std::span<const Vec3>(points), shell) > 0)
+      out.insert(out.end(), members[root].begin(), members[root].end());
+  }
+  return out;
 }
 
 struct Named {
@@ -318,10 +340,14 @@ bool Interp::call_builtin_module(const Stmt& s, const Args& args, const EnvPtr& 
     } else if (poly3) {
       fail(s.pos, "polyhedron(): faces are missing");
     }
-    if (poly3 && points_inward(node->points, node->faces)) {
-      warn(s.pos, "polyhedron(): the faces point inward (each is counterclockwise seen from "
-                  "outside); reversed, since OpenSCAD builds the volume they enclose");
-      for (auto& f : node->faces) std::reverse(f.begin(), f.end());
+    if (poly3) {
+      const std::vector<std::size_t> inward = inward_faces(node->points, node->faces);
+      if (!inward.empty()) {
+        warn(s.pos, "polyhedron(): the faces of a closed shell point inward (as listed they "
+                    "enclose a negative volume); reversed, since OpenSCAD builds the volume "
+                    "they enclose");
+        for (std::size_t f : inward) std::reverse(node->faces[f].begin(), node->faces[f].end());
+      }
     }
     return leaf(poly3 ? NodeKind::kPolyhedron : NodeKind::kPolygon);
   }

@@ -89,6 +89,10 @@ Result<double> group_number(const std::string& path, const Group& g) {
     return Error{ErrorCode::kInvalidInput, at_line(path, g.line + 1) + "group " + std::to_string(g.code) +
                                                " must be a number, not \"" + g.value + "\""};
   }
+  if (g.code >= 70 && g.code <= 79 && (v != std::floor(v) || std::abs(v) > 2147483647.0)) {
+    return Error{ErrorCode::kInvalidInput, at_line(path, g.line + 1) + "group " + std::to_string(g.code) +
+                                               " must be an integer, not \"" + g.value + "\""};
+  }
   return v;
 }
 

@@ -5,14 +5,14 @@
 // from planar since the turn, would be resolved against each other as well.
 //
 // Three steps, the cheap ones first. (1) A part lies inside another, or crosses it in
-// the common case, when the other's surface winds around one of its vertices (the
-// first one in the other's box): the loops' fans are surface enough for the winding
+// the common case, when the other's surface winds around one of its vertices (one
+// of each of its edge-connected pieces): the loops' fans are surface enough for the winding
 // number (their inner edges cancel), so nothing is tiled. (2) For the parts that step
 // leaves with a neighbour in another cluster, every pair of triangles whose boxes meet
 // (a tree over the boxes, geom/bvh.h) is tested exactly (geom/intersect.h), until the
 // two parts are one cluster. (3) Parts whose surfaces do not meet are apart unless one
 // lies inside the other, which step 1 decided already: with no surface between them,
-// one vertex tells for all.
+// one vertex of each edge-connected piece tells for the piece.
 #include <algorithm>
 #include <array>
 #include <unordered_map>
@@ -36,6 +36,7 @@ using Tri = std::array<std::uint32_t, 3>;
 struct PartSurface {
   std::uint32_t base = 0, count = 0;
   std::vector<Tri> fans;
+  std::vector<std::uint32_t> pieces;  // a vertex of each edge-connected piece
   Box box;
   bool closed = true;
 };
@@ -96,6 +97,17 @@ PartSurface surface_of(const Model& m, std::vector<Vec3>& points, std::vector<st
   for (EdgeId e : m.edges()) wires |= m.is_wire(e);
   for (VertexId v : m.vertices()) wires |= !m.first_end(v).edge.is_valid() && !m.point_loop(v).is_valid();
   s.closed = !sheet && !wires && balance.empty() && !s.fans.empty();
+  // The pieces: a part may be several solids (a transform of several children, a
+  // polyhedron of several shells), each of which may lie inside another part alone.
+  UnionFind joined(s.count);
+  for (const Tri& t : s.fans) {
+    joined.unite_to_smaller(t[0] - s.base, t[1] - s.base);
+    joined.unite_to_smaller(t[0] - s.base, t[2] - s.base);
+  }
+  for (const Tri& t : s.fans)
+    for (std::uint32_t v : t) s.pieces.push_back(s.base + joined.find(v - s.base));  // its smallest
+  std::sort(s.pieces.begin(), s.pieces.end());
+  s.pieces.erase(std::unique(s.pieces.begin(), s.pieces.end()), s.pieces.end());
   return s;
 }
 
@@ -156,15 +168,15 @@ std::vector<std::uint32_t> meeting_clusters(const std::vector<const Model*>& par
   std::vector<PartSurface> surfaces;
   for (const Model* m : parts) surfaces.push_back(surface_of(*m, points, index));
 
-  // 1: a vertex of one inside the other.
+  // 1: a vertex of a piece of one inside the other (a piece inside lies in the
+  // other's box whole, so the piece's root vertex tells).
   for (std::size_t t = 0; t < n; ++t)
     for (std::size_t s = 0; s < n; ++s) {
       const PartSurface &a = surfaces[t], &b = surfaces[s];
-      if (s == t || !b.closed || same(s, t) || !boxes_meet(a.box, b.box)) continue;
-      for (std::uint32_t v = a.base; v < a.base + a.count; ++v) {
-        if (!in_box(points[v], b.box)) continue;
-        if (winding_number(points, b.fans, points[v]).number != 0) unite(s, t);
-        break;
+      if (s == t || !b.closed || !boxes_meet(a.box, b.box)) continue;
+      for (std::uint32_t v : a.pieces) {
+        if (same(s, t)) break;
+        if (in_box(points[v], b.box) && winding_number(points, b.fans, points[v]).number != 0) unite(s, t);
       }
     }
   // 2: the surfaces of parts with a neighbour in another cluster, triangle by triangle.

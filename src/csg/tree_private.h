@@ -23,9 +23,11 @@ namespace cellforge::csg {
 // Which of the parts meet, as a cluster id for each (the smallest part index of its
 // cluster): two parts meet when a triangle of one meets a triangle of the other
 // (exactly, geom/intersect.h) or when one lies inside the other (the winding number
-// of the other's surface around one of its vertices, geom/winding.h); a part whose
-// surface is not closed meets every part its triangles' boxes reach. Parts in
-// different clusters are apart, and their union is the parts side by side.
+// of the other's surface around a vertex of each of its pieces, geom/winding.h); a
+// part whose surface is not closed (a sheet) meets every part its triangles' boxes
+// reach. Parts in different clusters are apart, and their union is the parts side by
+// side. Parts are solids with faces (the tree's leaves are); a wire or a lone point
+// in a part is not looked at.
 // Parts with the same `together` id (when given, one per part) start in one cluster.
 std::vector<std::uint32_t> meeting_clusters(const std::vector<const Model*>& parts,
                                             const std::vector<std::uint32_t>& together = {});

@@ -303,6 +303,15 @@ TEST(Build, PartsApartAreSideBySide) {
       {"rotate([30, 40, 0]) { cube([10, 10, 1]); translate([0, 0, 6]) cube([10, 10, 1]); }\n"
        "rotate([30, 40, 0]) translate([5, 5, -2]) rotate([0, 90, 0]) cube([1, 1, 1]);",
        0, 0, 201, 3, 2},
+      // a part of two pieces, one inside the other part and one far away, either
+      // way round: the piece inside is found (a vertex of each piece is tested)
+      // (the far piece in the other's box, outside the turned cube, comes first)
+      {"rotate([0, 0, 45]) cube(10, center = true);\n"
+       "translate([0, 0, 0]) { translate([6, 6, 0]) cube(0.5); cube(1, center = true); }",
+       1, 2, 1000.125, 2, 1},
+      {"translate([0, 0, 0]) { translate([6, 6, 0]) cube(0.5); cube(1, center = true); }\n"
+       "rotate([0, 0, 45]) cube(10, center = true);",
+       1, 2, 1000.125, 2, 1},
       // a slab crossed by a post, and a slab apart: one Boolean of two
       {"rotate([30, 40, 0]) { cube([10, 10, 1]); translate([5, 5, -2]) cube([1, 1, 4]); }\n"
        "rotate([30, 40, 0]) translate([0, 0, 6]) cube([10, 10, 1]);",
