@@ -134,11 +134,6 @@ std::vector<Tri> tiles_of(const Model& m, const PartSurface& s, std::vector<std:
   return balance.empty() || !s.closed ? out : s.fans;
 }
 
-bool boxes_meet(const Box& a, const Box& b) {
-  return a.lo.x <= b.hi.x && b.lo.x <= a.hi.x && a.lo.y <= b.hi.y && b.lo.y <= a.hi.y &&
-         a.lo.z <= b.hi.z && b.lo.z <= a.hi.z;
-}
-
 bool in_box(Vec3 p, const Box& b) {
   return p.x >= b.lo.x && p.y >= b.lo.y && p.z >= b.lo.z && p.x <= b.hi.x && p.y <= b.hi.y &&
          p.z <= b.hi.z;
@@ -173,7 +168,7 @@ std::vector<std::uint32_t> meeting_clusters(const std::vector<const Model*>& par
   for (std::size_t t = 0; t < n; ++t)
     for (std::size_t s = 0; s < n; ++s) {
       const PartSurface &a = surfaces[t], &b = surfaces[s];
-      if (s == t || !b.closed || !boxes_meet(a.box, b.box)) continue;
+      if (s == t || !b.closed || !a.box.overlaps(b.box)) continue;
       for (std::uint32_t v : a.pieces) {
         if (same(s, t)) break;
         if (in_box(points[v], b.box) && winding_number(points, b.fans, points[v]).number != 0) unite(s, t);
@@ -183,7 +178,7 @@ std::vector<std::uint32_t> meeting_clusters(const std::vector<const Model*>& par
   std::vector<bool> open(n, false);
   for (std::size_t p = 0; p < n; ++p)
     for (std::size_t q = p + 1; q < n; ++q)
-      if (!same(p, q) && boxes_meet(surfaces[p].box, surfaces[q].box)) open[p] = open[q] = true;
+      if (!same(p, q) && surfaces[p].box.overlaps(surfaces[q].box)) open[p] = open[q] = true;
   std::vector<Tri> tris;
   std::vector<std::uint32_t> part_of;
   for (std::size_t k = 0; k < n; ++k) {

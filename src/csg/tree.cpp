@@ -153,6 +153,16 @@ struct Leaf {
   Color color_of(std::uint32_t face) const { return face < face_colors.size() ? face_colors[face] : color; }
 };
 
+// copy_into with the faces' colors (by source face) carried to out_colors, when given,
+// grown to out's faces.
+void copy_colored(Model& out, std::vector<Color>* out_colors, const Model& m, const std::vector<Color>& colors) {
+  const std::vector<FaceId> ids = copy_into(out, m, shape::Transform::identity());
+  if (!out_colors) return;
+  out_colors->resize(out.face_slots());
+  for (FaceId f : m.faces())
+    if (ids[f.value].is_valid() && f.value < colors.size()) (*out_colors)[ids[f.value].value] = colors[f.value];
+}
+
 // The inverse of an invertible affine map (the linear part by its adjugate).
 shape::Transform inverse(const shape::Transform& t) {
   const auto& a = t.m;
@@ -311,25 +321,16 @@ class Builder {
     if (!boxes_apart) cluster = meeting_clusters(all);
     if (std::any_of(cluster.begin(), cluster.end(), [&](std::uint32_t c) { return c != cluster[0]; }))
       ++stats_.parts_apart;
-    auto put = [&](const Model& m, const std::vector<Color>& colors) {
-      const std::vector<FaceId> ids = copy_into(out.model, m, shape::Transform::identity());
-      out.face_colors.resize(out.model.face_slots());
-      for (FaceId f : m.faces()) {
-        if (ids[f.value].is_valid() && f.value < colors.size())
-          out.face_colors[ids[f.value].value] = colors[f.value];
-      }
-    };
+    std::vector<std::vector<std::size_t>> members(parts.size());  // by cluster
+    for (std::size_t i = 0; i < parts.size(); ++i) members[cluster[i]].push_back(i);
     for (std::size_t c = 0; c < parts.size(); ++c) {
-      std::vector<std::size_t> members;
-      for (std::size_t i = 0; i < parts.size(); ++i)
-        if (cluster[i] == c) members.push_back(i);
-      if (members.empty()) continue;
-      if (members.size() == 1) {
-        put(parts[c].model, parts[c].colors);
+      if (members[c].empty()) continue;
+      if (members[c].size() == 1) {
+        copy_colored(out.model, &out.face_colors, parts[c].model, parts[c].colors);
         continue;
       }
       std::vector<const Model*> operands;
-      for (std::size_t i : members) operands.push_back(&parts[i].model);
+      for (std::size_t i : members[c]) operands.push_back(&parts[i].model);
       const auto start = Clock::now();
       auto r = boolean::apply(boolean::Op::kUnion, operands);
       stats_.boolean_seconds += seconds_since(start);
@@ -340,14 +341,14 @@ class Builder {
       for (std::size_t f = 0; f < r->sources.size() && f < colors.size(); ++f) {
         const auto& src = r->sources[f];
         if (src.operand < 0) continue;
-        const Part& p = parts[members[static_cast<std::size_t>(src.operand)]];
+        const Part& p = parts[members[c][static_cast<std::size_t>(src.operand)]];
         if (src.face < p.colors.size()) colors[f] = p.colors[src.face];
       }
-      if (members.size() == parts.size()) {
+      if (members[c].size() == parts.size()) {
         out.model = std::move(r->model);
         out.face_colors = std::move(colors);
       } else {
-        put(r->model, colors);
+        copy_colored(out.model, &out.face_colors, r->model, colors);
       }
     }
   }
@@ -632,45 +633,34 @@ class Builder {
     if (std::all_of(cluster.begin(), cluster.end(), [&](std::uint32_t c) { return c == cluster[0]; }))
       return std::nullopt;
     ++stats_.parts_apart;
+    // The leaves and terms of each cluster (named by its smallest leaf), the leaves
+    // renumbered in order within it; a term's leaves are all in one cluster.
+    std::vector<std::vector<std::size_t>> members(leaves.size()), own_terms(leaves.size());
+    std::vector<int> local(leaves.size());
+    for (std::size_t i = 0; i < leaves.size(); ++i) {
+      local[i] = static_cast<int>(members[cluster[i]].size());
+      members[cluster[i]].push_back(i);
+    }
+    std::vector<std::uint32_t> term_cluster(expr.children.size());
+    for (std::size_t i = 0; i < leaves.size(); ++i) term_cluster[term_of[i]] = cluster[i];
+    for (std::size_t t = 0; t < expr.children.size(); ++t) own_terms[term_cluster[t]].push_back(t);
+    std::function<boolean::Expr(const boolean::Expr&)> renumber = [&](const boolean::Expr& e) {
+      boolean::Expr r{e.kind, e.kind == boolean::Expr::Kind::kOperand ? local[static_cast<std::size_t>(e.operand)] : 0, {}};
+      for (const boolean::Expr& k : e.children) r.children.push_back(renumber(k));
+      return r;
+    };
     Model out;
     if (face_colors) face_colors->clear();
     for (std::size_t c = 0; c < leaves.size(); ++c) {
-      // Cluster c's leaves, renumbered in order, and the terms that name them.
-      std::vector<int> local(leaves.size(), -1);
+      if (members[c].empty()) continue;
       std::vector<Leaf> own;
-      for (std::size_t i = 0; i < leaves.size(); ++i) {
-        if (cluster[i] != c) continue;
-        local[i] = static_cast<int>(own.size());
-        own.push_back(std::move(leaves[i]));
-      }
-      if (own.empty()) continue;
-      std::function<boolean::Expr(const boolean::Expr&)> renumber = [&](const boolean::Expr& e) {
-        boolean::Expr r{e.kind, e.kind == boolean::Expr::Kind::kOperand ? local[static_cast<std::size_t>(e.operand)] : 0, {}};
-        for (const boolean::Expr& k : e.children) r.children.push_back(renumber(k));
-        return r;
-      };
-      std::vector<boolean::Expr> own_terms;
-      for (std::size_t t = 0; t < expr.children.size(); ++t) {
-        const boolean::Expr& term = expr.children[t];
-        // A term's leaves are all in one cluster: its first one tells which.
-        std::function<int(const boolean::Expr&)> first_leaf = [&](const boolean::Expr& e) -> int {
-          if (e.kind == boolean::Expr::Kind::kOperand) return e.operand;
-          for (const boolean::Expr& k : e.children)
-            if (const int l = first_leaf(k); l >= 0) return l;
-          return -1;
-        };
-        const int l = first_leaf(term);
-        if (l >= 0 && cluster[static_cast<std::size_t>(l)] == c) own_terms.push_back(renumber(term));
-      }
-      const boolean::Expr sub = own_terms.size() == 1 ? own_terms[0] : boolean::Expr{boolean::Expr::Kind::kUnion, 0, std::move(own_terms)};
+      for (std::size_t i : members[c]) own.push_back(std::move(leaves[i]));
+      std::vector<boolean::Expr> terms_here;
+      for (std::size_t t : own_terms[c]) terms_here.push_back(renumber(expr.children[t]));
+      const boolean::Expr sub = terms_here.size() == 1 ? terms_here[0] : boolean::Expr{boolean::Expr::Kind::kUnion, 0, std::move(terms_here)};
       std::vector<Color> colors;
       const Model m = combine(sub, own, pos, face_colors ? &colors : nullptr, false);
-      const std::vector<FaceId> ids = copy_into(out, m, shape::Transform::identity());
-      if (!face_colors) continue;
-      face_colors->resize(out.face_slots());
-      for (FaceId f : m.faces()) {
-        if (ids[f.value].is_valid() && f.value < colors.size()) (*face_colors)[ids[f.value].value] = colors[f.value];
-      }
+      copy_colored(out, face_colors, m, colors);
     }
     return out;
   }
