@@ -194,14 +194,20 @@ bool nudge_rounding(MeshInput& in, const std::vector<char>& inexact,
       near_moved.query([&](const auto& x) { return !hit && x.overlaps(b); }, [&](std::uint32_t) { hit = true; });
       return hit;
     };
+    // Every face's box against the moved ones', on threads (the faces of a big result
+    // are mostly far from all of them).
+    const auto near_parts = parallel_ranges<std::vector<std::uint32_t>>(
+        nf, threads, [&](std::size_t lo, std::size_t hi, std::vector<std::uint32_t>& out) {
+          for (auto f = static_cast<std::uint32_t>(lo); f < hi; ++f) {
+            if (moved_face[f] || tiled[f]) continue;
+            Box b;
+            for (const auto& loop : in.faces[f].loops)
+              for (std::uint32_t v : loop) b.add(in.positions[v]);
+            if (meets_moved(grown(b))) out.push_back(f);
+          }
+        });
     std::vector<std::uint32_t> near_faces;
-    for (std::uint32_t f = 0; f < nf; ++f) {
-      if (moved_face[f] || tiled[f]) continue;
-      Box b;
-      for (const auto& loop : in.faces[f].loops)
-        for (std::uint32_t v : loop) b.add(in.positions[v]);
-      if (meets_moved(grown(b))) near_faces.push_back(f);
-    }
+    for (const auto& part : near_parts) near_faces.insert(near_faces.end(), part.begin(), part.end());
     tile(near_faces);
     // The crossing pairs among them.
     std::vector<Tri3> tris;
