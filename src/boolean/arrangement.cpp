@@ -957,6 +957,9 @@ void Arrangement::intersect(int threads) {
     if (which & 1) add_pair(i, j);
     if (which & 2) add_pair(j, i);
   }
+  // The quads' fourth vertices serve the pair tests alone (sides_of).
+  std::vector<std::uint32_t>().swap(quad_other);
+  std::vector<std::int8_t>().swap(quad_side);
 }
 
 bool Arrangement::may_be_diagonal(const Tri& t, std::uint32_t p, std::uint32_t q) const {
@@ -1162,8 +1165,6 @@ void Arrangement::release_pieces(bool keep_tree) {
   }
   if (!keep_tree) edge_uses.clear();
   lpi_ids_ = {};
-  std::vector<std::uint32_t>().swap(quad_other);
-  std::vector<std::int8_t>().swap(quad_side);
   if (keep_tree) return;
   bvh = Bvh();
 }

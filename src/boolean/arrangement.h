@@ -405,7 +405,8 @@ class Arrangement {
   std::vector<Vec3> pos;
   std::vector<Tri> tris;
   // By triangle, for the tiles of a quad: the quad's fourth vertex and its side of the
-  // tile's plane (sides_of); kInvalidIndex elsewhere. Set by intersect().
+  // tile's plane (sides_of); kInvalidIndex elsewhere. Set by intersect(), which frees them
+  // at its end.
   std::vector<std::uint32_t> quad_other;
   std::vector<std::int8_t> quad_side;
   // By triangle: bit e set when its edge e (v[e] -> v[e + 1]) is a diagonal of its
