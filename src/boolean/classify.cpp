@@ -986,13 +986,22 @@ Selection classify_and_select(const Arrangement& a, const Expr& expr, const Opti
     poly.kind = verdict_of(t).kind;
     poly.mark = verdict_of(t).mark;
   };
+  // Room for every kept untouched triangle as a face of its own (the most there can
+  // be), reserved, not filled: a list doubled as it grows copies and touches its pages
+  // twice (34 MB of faces for two spheres of 10^6 triangles).
+  {
+    std::size_t at_most = out.size();
+    for (std::uint32_t t = 0; t < a.tris.size(); ++t) at_most += tri_keep[t] != 0;
+    out.reserve(at_most);
+  }
+  std::vector<std::uint64_t> rim;  // a face's loop edges, reused face by face
   for (const SoupFace& f : a.faces) {
     bool whole = !f.tris.empty();
     for (std::uint32_t t : f.tris)
       whole &= untouched(t) && tri_keep[t] != 0 && same_verdict(t, f.tris[0]);
     // Not when something touches a diagonal inside it (the face must take the point).
     if (whole && f.tris.size() > 1) {
-      std::vector<std::uint64_t> rim;
+      rim.clear();
       for (const auto loop : a.loops_of(f))
         for (std::size_t k = 0; k < loop.size(); ++k) {
           const std::uint32_t p = loop[k], q = loop[(k + 1) % loop.size()];
