@@ -72,6 +72,8 @@ class TileRange {
     ++count_;
   }
   std::uint32_t operator[](std::size_t k) const { return first_ + static_cast<std::uint32_t>(k); }
+  // The same tiles, their list moved `by` places later.
+  void shift(std::uint32_t by) { first_ += by; }
   std::size_t size() const { return count_; }
   bool empty() const { return count_ == 0; }
   iterator begin() const { return iterator(first_); }
@@ -92,6 +94,13 @@ class LoopTable {
   }
   std::span<const std::uint32_t> operator[](std::uint32_t i) const {
     return {points_.data() + begin_[i], begin_[i + 1] - begin_[i]};
+  }
+  std::uint32_t size() const { return static_cast<std::uint32_t>(begin_.size() - 1); }
+  // Another table's loops after these (their numbers shifted by size()).
+  void append(const LoopTable& o) {
+    const auto base = static_cast<std::uint32_t>(points_.size());
+    points_.insert(points_.end(), o.points_.begin(), o.points_.end());
+    for (std::size_t i = 1; i < o.begin_.size(); ++i) begin_.push_back(base + o.begin_[i]);
   }
   void clear() {
     std::vector<std::uint32_t>().swap(points_);

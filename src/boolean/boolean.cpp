@@ -355,9 +355,7 @@ Result<Arrangement> make_soup(std::span<const Model* const> operands, int thread
   std::size_t face_count = 0;
   for (const Model* m : operands) face_count += m->num_faces();
   faces.reserve(face_count);
-  std::vector<char> closed_only;                     // no sheet, wire or point, by operand
-  std::vector<std::uint32_t> scratch;                // a loop being read
-  std::vector<std::array<std::uint32_t, 3>> tiles;  // a face's triangles
+  std::vector<char> closed_only;  // no sheet, wire or point, by operand
   for (std::uint32_t k = 0; k < operands.size(); ++k) {
     const Model& m = *operands[k];
     std::vector<std::uint32_t> vmap(m.vertex_slots(), kInvalidIndex);  // by vertex slot
@@ -377,7 +375,6 @@ Result<Arrangement> make_soup(std::span<const Model* const> operands, int thread
     for (VertexId v : m.vertices())
       if (m.first_end(v).edge.is_valid()) vid(v);
     const std::size_t before = tris.size();
-    bool sheets = false;
     const std::vector<FaceId> face_ids = face_list(m);
     const FaceTiles tiled =
         triangulate_faces(m, face_ids, threads, [&](FaceId f) {
@@ -387,48 +384,92 @@ Result<Arrangement> make_soup(std::span<const Model* const> operands, int thread
     // operand copies the whole soup once per operand (a plate and 1,000 cylinders).
     if (tris.capacity() < tris.size() + tiled.tiles.size())
       tris.reserve(std::max(tris.size() + tiled.tiles.size(), 2 * tris.capacity()));
-    for (std::size_t fi = 0; fi < face_ids.size(); ++fi) {
-      const FaceId f = face_ids[fi];
-      const auto triangles = tiled[fi];
-      const bool front = m.front_volume(f).is_valid(), back = m.back_volume(f).is_valid();
-      if (front && back) continue;  // a face between two of its cells: inside it
-      SoupFace sf;
-      sf.operand = k;
-      sf.face = f.value;
-      sf.flipped = front;
-      sf.sheet = !front && !back;
-      sheets |= sf.sheet;
-      // Each vector allocated once at its size (scratch reused across faces): the
-      // soup of a big mesh is mostly allocation otherwise.
-      for (LoopId l = m.outer_loop(f); l.is_valid(); l = m.next_loop(l)) {
-        if (m.is_point_loop(l)) continue;
-        scratch.clear();
-        for (EdgeUseId u : m.uses_of(l)) scratch.push_back(vid(m.use_start(u)));
-        if (front) std::reverse(scratch.begin(), scratch.end());
-        const std::uint32_t li = loops.add(scratch);
-        if (sf.loop_count++ == 0) sf.first_loop = li;
+    // The faces on threads: the first range of them writes the soup's own lists, each
+    // later range lists of its own, appended in order after it (their indices shifted),
+    // so that the lists are the ones one thread makes and one thread copies nothing.
+    // Every vertex a face's loops or tiles hold has an edge: numbered above, and only
+    // read here.
+    struct FacePart {
+      std::vector<SoupFace> faces;
+      std::vector<Tri> tris;
+      LoopTable loops;
+      bool sheets = false;
+    };
+    auto read_faces = [&](std::size_t lo, std::size_t hi, FacePart& out) {
+      std::vector<std::uint32_t> scratch;                // a loop being read
+      std::vector<std::array<std::uint32_t, 3>> tiles;  // a face's triangles
+      for (std::size_t fi = lo; fi < hi; ++fi) {
+        const FaceId f = face_ids[fi];
+        const auto triangles = tiled[fi];
+        const bool front = m.front_volume(f).is_valid(), back = m.back_volume(f).is_valid();
+        if (front && back) continue;  // a face between two of its cells: inside it
+        SoupFace sf;
+        sf.operand = k;
+        sf.face = f.value;
+        sf.flipped = front;
+        sf.sheet = !front && !back;
+        out.sheets |= sf.sheet;
+        for (LoopId l = m.outer_loop(f); l.is_valid(); l = m.next_loop(l)) {
+          if (m.is_point_loop(l)) continue;
+          scratch.clear();
+          for (EdgeUseId u : m.uses_of(l)) scratch.push_back(vmap[m.use_start(u).value]);
+          if (front) std::reverse(scratch.begin(), scratch.end());
+          const std::uint32_t li = out.loops.add(scratch);
+          if (sf.loop_count++ == 0) sf.first_loop = li;
+        }
+        const auto sfi = static_cast<std::uint32_t>(out.faces.size());
+        tiles.clear();
+        for (const auto& t : triangles) {
+          std::array<std::uint32_t, 3> tri{vmap[t[0].value], vmap[t[1].value], vmap[t[2].value]};
+          if (front) std::swap(tri[1], tri[2]);
+          tiles.push_back(tri);
+        }
+        // A face that is not planar (a rounded result read back) may have two vertices
+        // that one projection makes one point, and its tiling then misses a sliver along
+        // its boundary. Then each loop is tiled as a fan instead: the fans' triangles,
+        // signed, have the face's winding number everywhere, which is all the
+        // classification reads, and they take every edge of every loop.
+        const FaceLoops face_loops{&out.loops, sf.first_loop, sf.loop_count};
+        if (!covers_loops(face_loops, tiles)) tiles = fan_tiles(face_loops);
+        for (const auto& t : tiles) {
+          const Tri tri{t, k, sfi};
+          if (collinear3d(pos[tri.v[0]], pos[tri.v[1]], pos[tri.v[2]])) continue;
+          sf.tris.push_back(static_cast<std::uint32_t>(out.tris.size()));
+          out.tris.push_back(tri);
+        }
+        out.faces.push_back(sf);
       }
-      const auto sfi = static_cast<std::uint32_t>(faces.size());
-      tiles.clear();
-      for (const auto& t : triangles) {
-        std::array<std::uint32_t, 3> tri{vid(t[0]), vid(t[1]), vid(t[2])};
-        if (front) std::swap(tri[1], tri[2]);
-        tiles.push_back(tri);
+    };
+    FacePart soup_lists{std::move(faces), std::move(tris), std::move(loops), false};
+    std::vector<FacePart> parts =
+        parallel_ranges<FacePart>(face_ids.size(), threads, [&](std::size_t lo, std::size_t hi, FacePart& part) {
+          if (lo > 0) {
+            part.faces.reserve(hi - lo);
+            part.tris.reserve(tiled.begin[hi] - tiled.begin[lo]);
+          }
+          read_faces(lo, hi, lo == 0 ? soup_lists : part);
+        });
+    faces = std::move(soup_lists.faces);
+    tris = std::move(soup_lists.tris);
+    loops = std::move(soup_lists.loops);
+    bool sheets = soup_lists.sheets;
+    for (std::size_t r = 1; r < parts.size(); ++r) {
+      FacePart& part = parts[r];
+      const auto face_base = static_cast<std::uint32_t>(faces.size());
+      const auto tri_base = static_cast<std::uint32_t>(tris.size());
+      const std::uint32_t loop_base = loops.size();
+      for (SoupFace sf : part.faces) {
+        sf.first_loop += loop_base;
+        sf.tris.shift(tri_base);
+        faces.push_back(sf);
       }
-      // A face that is not planar (a rounded result read back) may have two vertices
-      // that one projection makes one point, and its tiling then misses a sliver along
-      // its boundary. Then each loop is tiled as a fan instead: the fans' triangles,
-      // signed, have the face's winding number everywhere, which is all the
-      // classification reads, and they take every edge of every loop.
-      const FaceLoops face_loops{&loops, sf.first_loop, sf.loop_count};
-      if (!covers_loops(face_loops, tiles)) tiles = fan_tiles(face_loops);
-      for (const auto& t : tiles) {
-        const Tri tri{t, k, sfi};
-        if (collinear3d(pos[tri.v[0]], pos[tri.v[1]], pos[tri.v[2]])) continue;
-        sf.tris.push_back(static_cast<std::uint32_t>(tris.size()));
-        tris.push_back(tri);
+      for (Tri t : part.tris) {
+        t.input_face += face_base;
+        tris.push_back(t);
       }
-      faces.push_back(std::move(sf));
+      loops.append(part.loops);
+      sheets |= part.sheets;
+      part = FacePart{};
     }
     // Wire edges, and vertices on nothing (not a face's point loop either).
     const std::size_t wires_before = wires.size();
