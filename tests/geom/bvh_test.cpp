@@ -68,6 +68,36 @@ TEST(Bvh, PairsAreExactlyTheOverlappingPairsOutsideOneGroup) {
   }
 }
 
+// Boxes crowded into a small region and one far away: the far one makes the whole
+// run one Morton cell at first, and the run is ordered again over its own bounds (and
+// again, for a cluster inside the crowd). Both orderings (a sort of short runs, the
+// counting passes of long ones) report exactly the overlapping pairs.
+TEST(Bvh, AFarBoxDoesNotChangeThePairs) {
+  std::mt19937_64 rng(20261207);
+  for (const std::size_t n : {50u, 700u, 6000u}) {
+    Case c = random_case(rng, n, 2);
+    for (std::size_t i = 0; i < n / 3; ++i) {  // a third of them squeezed together
+      Box b;
+      const double x = 1e-6 * static_cast<double>(rng() % 1000);
+      b.add(Vec3{x, x, x});
+      b.add(Vec3{x + 1e-6, x + 2e-6, x});
+      c.boxes[i] = b;
+    }
+    Box far;
+    far.add(Vec3{1e9, -1e9, 3e9});
+    far.add(Vec3{1e9 + 1, -1e9 + 1, 3e9 + 1});
+    c.boxes.push_back(far);
+    c.groups.push_back(Bvh::kNoGroup);
+    for (bool use_groups : {false, true}) {
+      const Bvh tree = use_groups ? Bvh(c.boxes, c.groups) : Bvh(c.boxes);
+      std::vector<std::array<std::uint32_t, 2>> whole;
+      tree.pairs([&](std::uint32_t i, std::uint32_t j) { whole.push_back({i, j}); });
+      std::sort(whole.begin(), whole.end());
+      EXPECT_EQ(whole, brute_force(c, use_groups)) << n << " boxes";
+    }
+  }
+}
+
 // Boxes whose corners are doubles no float holds, some a few double units apart: the
 // floats the tree keeps may make two of them meet that do not (a gap under a float's
 // unit), never part two that meet. Every box kept holds the box given.

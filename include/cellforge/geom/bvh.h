@@ -238,29 +238,41 @@ class Bvh {
     for (std::size_t i = 0; i < boxes.size(); ++i) out[i] = FloatBox::around(boxes[i]);
     return out;
   }
-  // order_: the boxes by the Morton code of their centres (ten bits an axis, over the
-  // centres' bounds), ties in index order: three stable counting passes of ten bits.
-  // Only the tree's shape depends on it, never what the tree reports.
+  // order_: the boxes by the Morton code of their centres, ties in index order.
   void morton_order() {
-    const std::size_t n = boxes_.size();
-    order_.resize(n);
-    if (n == 0) return;
+    order_.resize(boxes_.size());
+    for (std::size_t i = 0; i < order_.size(); ++i) order_[i] = static_cast<std::uint32_t>(i);
+    if (order_.size() > 1) sort_by_morton(0, static_cast<std::uint32_t>(order_.size()), 0);
+  }
+  // order_[begin, end) (its ids ascending) by the Morton code of the centres, ten bits
+  // an axis over these boxes' own bounds, ties by id: three stable counting passes of
+  // ten bits, or a sort of the keys when the run is short. Then each run of more than
+  // a leaf's boxes in one cell is ordered again over its own bounds, up to four times
+  // deep, so that a box far from the rest cannot crowd them all into one cell (which
+  // would leave them in index order, and the tree's nodes as wide as the model).
+  // Only the tree's shape depends on it, never what the tree reports.
+  void sort_by_morton(std::uint32_t begin, std::uint32_t end, int depth) {
+    const std::size_t n = end - begin;
     std::array<float, 3> lo{}, hi{};
     for (int d = 0; d < 3; ++d) {
       lo[d] = std::numeric_limits<float>::infinity();
       hi[d] = -lo[d];
     }
-    for (const FloatBox& b : boxes_)
+    for (std::uint32_t k = begin; k < end; ++k)
       for (int d = 0; d < 3; ++d) {
+        const FloatBox& b = boxes_[order_[k]];
         const float c = b.lo[d] + b.hi[d];  // twice the centre
         lo[d] = std::min(lo[d], c);
         hi[d] = std::max(hi[d], c);
       }
     std::array<double, 3> scale{};
+    bool spread_out = false;
     for (int d = 0; d < 3; ++d) {
       const double extent = static_cast<double>(hi[d]) - lo[d];
       scale[d] = extent > 0 && std::isfinite(extent) ? 1023.0 / extent : 0.0;
+      spread_out |= scale[d] != 0;
     }
+    if (!spread_out) return;  // every centre at one point (or none finite): as they are
     // Bits 0..9 of x spread to every third bit.
     const auto spread = [](std::uint32_t x) {
       x = (x | (x << 16)) & 0x030000ffu;
@@ -269,27 +281,41 @@ class Bvh {
       x = (x | (x << 2)) & 0x09249249u;
       return x;
     };
-    std::vector<std::uint64_t> keys(n), other(n);  // code << 32 | index
+    std::vector<std::uint64_t> keys(n);  // code << 32 | id
     for (std::size_t i = 0; i < n; ++i) {
+      const std::uint32_t id = order_[begin + i];
       std::uint32_t code = 0;
       for (int d = 0; d < 3; ++d) {
-        const double c = static_cast<double>(boxes_[i].lo[d] + boxes_[i].hi[d]) - lo[d];
-        const double q = std::clamp(c * scale[d], 0.0, 1023.0);  // NaN centres: 0
+        const double c = static_cast<double>(boxes_[id].lo[d] + boxes_[id].hi[d]) - lo[d];
+        const double q = std::clamp(c * scale[d], 0.0, 1023.0);  // NaN: not >= 0, cell 0
         code |= spread(q >= 0 ? static_cast<std::uint32_t>(q) : 0u) << d;
       }
-      keys[i] = (static_cast<std::uint64_t>(code) << 32) | i;
+      keys[i] = (static_cast<std::uint64_t>(code) << 32) | id;
     }
-    std::vector<std::uint32_t> count(1024);
-    for (int pass = 0; pass < 3; ++pass) {
-      const int shift = 32 + 10 * pass;
-      std::fill(count.begin(), count.end(), 0u);
-      for (std::uint64_t k : keys) ++count[(k >> shift) & 1023];
-      std::uint32_t sum = 0;
-      for (std::uint32_t& c : count) sum += std::exchange(c, sum);
-      for (std::uint64_t k : keys) other[count[(k >> shift) & 1023]++] = k;
-      keys.swap(other);
+    if (n <= 4096) {
+      std::sort(keys.begin(), keys.end());  // the same order: ids are distinct
+    } else {
+      std::vector<std::uint64_t> other(n);
+      std::vector<std::uint32_t> count(1024);
+      for (int pass = 0; pass < 3; ++pass) {
+        const int shift = 32 + 10 * pass;
+        std::fill(count.begin(), count.end(), 0u);
+        for (std::uint64_t k : keys) ++count[(k >> shift) & 1023];
+        std::uint32_t sum = 0;
+        for (std::uint32_t& c : count) sum += std::exchange(c, sum);
+        for (std::uint64_t k : keys) other[count[(k >> shift) & 1023]++] = k;
+        keys.swap(other);
+      }
     }
-    for (std::size_t i = 0; i < n; ++i) order_[i] = static_cast<std::uint32_t>(keys[i]);
+    for (std::size_t i = 0; i < n; ++i) order_[begin + i] = static_cast<std::uint32_t>(keys[i]);
+    if (depth >= 4) return;
+    for (std::size_t i = 0; i < n;) {
+      std::size_t j = i + 1;
+      while (j < n && keys[j] >> 32 == keys[i] >> 32) ++j;
+      if (j - i > 8)
+        sort_by_morton(begin + static_cast<std::uint32_t>(i), begin + static_cast<std::uint32_t>(j), depth + 1);
+      i = j;
+    }
   }
   // Node `id` over order_[begin, end), its subtree in preorder from id; returns the id
   // after the subtree. The right subtree on a thread of its own while `threads` allows
