@@ -170,7 +170,8 @@ H2<T> Arrangement::point2(const Cluster& c, std::uint32_t p) const {
 
 template <class T>
 H3<T> Arrangement::rep3(const RepPoint& r) const {
-  const Cluster& c = clusters[r.cluster];
+  Cluster lone;
+  const Cluster& c = cluster(r.cluster, lone);
   const H2<T> a = point2<T>(c, r.p[0]), b = point2<T>(c, r.p[1]), d = point2<T>(c, r.p[2]);
   const T bd = b.w * d.w, ad = a.w * d.w, ab = a.w * b.w;
   const H2<T> sum{a.u * bd + b.u * ad + d.u * ab, a.v * bd + b.v * ad + d.v * ab,
@@ -219,13 +220,13 @@ int Arrangement::side(const Cluster& c, const Line& l, std::uint32_t p) const {
       if (l.kind == LineKind::kTrace)
         for (std::uint32_t m : {d.b, d.c})
           if (c.lines()[m].kind == LineKind::kTrace &&
-              plane_of[cluster_of[c.lines()[m].a]] == plane_of[cluster_of[l.a]])
+              plane_key(cluster_of[c.lines()[m].a]) == plane_key(cluster_of[l.a]))
             return 0;
     }
     if (d.kind == PointKind::kLpi) {
       // where this edge's segment meets a plane, or a segment meets this trace's plane;
       if (l.kind == LineKind::kThrough && ordered(l.a, l.b) == ordered(d.a, d.b)) return 0;
-      if (l.kind == LineKind::kTrace && plane_of[cluster_of[l.a]] == plane_of[cluster_of[d.c]]) return 0;
+      if (l.kind == LineKind::kTrace && plane_key(cluster_of[l.a]) == plane_key(cluster_of[d.c])) return 0;
       // or a segment lying in this trace's plane meets this cluster's plane;
       if (l.kind == LineKind::kTrace && on_traced_plane(d.a) && on_traced_plane(d.b)) return 0;
     }
@@ -249,7 +250,7 @@ int Arrangement::side(const Cluster& c, const Line& l, std::uint32_t p) const {
     // point), an orient3d of input doubles rather than the point's exact coordinates.
     if (p >= pos.size() && l.kind == LineKind::kThrough) {
       const PointDef& d = points[p - pos.size()];
-      if (d.kind == PointKind::kLpi && plane_of[cluster_of[d.c]] == plane_of[cluster_of[c.ref]] &&
+      if (d.kind == PointKind::kLpi && plane_key(cluster_of[d.c]) == plane_key(cluster_of[c.ref]) &&
           orient3d(pos[d.a], pos[d.b], pos[l.a], pos[l.b]) == 0)
         return 0;
     }
@@ -579,9 +580,9 @@ namespace {
 
 std::uint32_t Arrangement::lpi_point(std::uint32_t p, std::uint32_t q, std::uint32_t cluster) {
   if (p > q) std::swap(p, q);
-  const std::uint32_t plane = plane_of[cluster];
+  const std::uint32_t plane = plane_key(cluster);
   auto [it, fresh] = lpi_ids_.try_emplace({ordered(p, q), plane}, 0);
-  if (fresh) it->second = new_point({PointKind::kLpi, p, q, clusters[plane].ref}, nullptr);
+  if (fresh) it->second = new_point({PointKind::kLpi, p, q, cluster_ref(plane)}, nullptr);
   return it->second;
 }
 
@@ -880,7 +881,7 @@ void Arrangement::intersect(int threads) {
   // The candidate pairs in pieces of the tree, tested on threads, their events
   // applied in the tree's order (the same at any thread count).
   const std::vector<Bvh::Piece> pieces = bvh.pair_pieces(kPairPieces);
-  const std::vector<PairEvents> events =
+  std::vector<PairEvents> events =
       parallel_jobs<PairEvents>(pieces.size(), threads, [&](std::size_t k, PairEvents& out) {
         bvh.pairs(pieces[k], [&](std::uint32_t i, std::uint32_t j) { test_pair(i, j, out); });
       });
@@ -902,12 +903,31 @@ void Arrangement::intersect(int threads) {
   contact_edges.erase(std::unique(contact_edges.begin(), contact_edges.end()), contact_edges.end());
 
   // Clusters: components of the coplanar-overlap relation, numbered by their
-  // smallest triangle.
-  cluster_of.assign(tris.size(), kInvalidIndex);
-  clusters.reserve(tris.size());  // address space only: pages are touched as used
+  // smallest triangle. Only triangles that some event names get a record: the
+  // others stay lone (kLoneCluster | t).
+  std::vector<char> recorded(tris.size(), 0);
+  for (const PairEvents& e : events) {
+    for (auto [x, y] : e.coplanar) recorded[x] = recorded[y] = 1;
+    for (auto [x, y] : e.same_plane) recorded[x] = recorded[y] = 1;
+  }
+  for (auto [t, v] : touching) recorded[t] = 1;
+  for (auto [i, j, which] : crossing) recorded[i] = recorded[j] = 1;
+  // A plane's triangles (same_plane) are recorded together, so that they share one
+  // plane key (plane_of).
+  {
+    std::vector<char> root_recorded(tris.size(), 0);
+    for (std::uint32_t t = 0; t < tris.size(); ++t)
+      if (recorded[t]) root_recorded[same_plane.find(t)] = 1;
+    for (std::uint32_t t = 0; t < tris.size(); ++t)
+      if (root_recorded[same_plane.find(t)]) recorded[t] = 1;
+  }
+  std::vector<PairEvents>().swap(events);
+  cluster_of.resize(tris.size());
+  for (std::uint32_t t = 0; t < tris.size(); ++t) cluster_of[t] = kLoneCluster | t;
   for (std::uint32_t t = 0; t < tris.size(); ++t) {
+    if (!recorded[t]) continue;
     const std::uint32_t r = coplanar.find(t);
-    if (cluster_of[r] == kInvalidIndex) {
+    if (is_lone(cluster_of[r])) {
       cluster_of[r] = static_cast<std::uint32_t>(clusters.size());
       clusters.emplace_back();
     }
@@ -916,27 +936,21 @@ void Arrangement::intersect(int threads) {
   }
   for (Cluster& c : clusters) {
     c.ref = c.tris()[0];
-    const Tri& r = tris[c.ref];
-    const Vec3 p0 = pos[r.v[0]], p1 = pos[r.v[1]], p2 = pos[r.v[2]];
-    c.k = dominant_axis(cross(p1 - p0, p2 - p0));
-    c.nk_sign = orient2d_projected(p0, p1, p2, c.k);
-    if (c.nk_sign == 0) {  // the rounded normal misled: take an axis that is exact
-      for (int k = 0; k < 3 && c.nk_sign == 0; ++k) {
-        c.k = k;
-        c.nk_sign = orient2d_projected(p0, p1, p2, k);
-      }
-    }
+    orient_cluster(c);
     c.touched = c.tris().size() > 1;
   }
   // A plane's clusters take the cluster of its smallest triangle (whatever the
   // order of the joins was).
   plane_of.resize(clusters.size());
-  std::vector<std::uint32_t> first(tris.size(), kInvalidIndex);
-  for (std::uint32_t t = 0; t < tris.size(); ++t) {
-    std::uint32_t& f = first[same_plane.find(t)];
-    if (f == kInvalidIndex) f = cluster_of[t];
-    plane_of[cluster_of[t]] = f;
+  {
+    FlatMap<std::uint32_t, std::uint32_t> first;  // by same_plane root
+    for (std::uint32_t t = 0; t < tris.size(); ++t) {
+      if (!recorded[t]) continue;
+      auto [it, fresh] = first.try_emplace(same_plane.find(t), cluster_of[t]);
+      plane_of[cluster_of[t]] = it->second;
+    }
   }
+  std::vector<char>().swap(recorded);
 
   for (auto [t, v] : touching) {
     const Tri& x = tris[t];
@@ -960,6 +974,28 @@ void Arrangement::intersect(int threads) {
   // The quads' fourth vertices serve the pair tests alone (sides_of).
   std::vector<std::uint32_t>().swap(quad_other);
   std::vector<std::int8_t>().swap(quad_side);
+}
+
+void Arrangement::orient_cluster(Cluster& c) const {
+  const Tri& r = tris[c.ref];
+  const Vec3 p0 = pos[r.v[0]], p1 = pos[r.v[1]], p2 = pos[r.v[2]];
+  c.k = dominant_axis(cross(p1 - p0, p2 - p0));
+  c.nk_sign = orient2d_projected(p0, p1, p2, c.k);
+  if (c.nk_sign == 0) {  // the rounded normal misled: take an axis that is exact
+    for (int k = 0; k < 3 && c.nk_sign == 0; ++k) {
+      c.k = k;
+      c.nk_sign = orient2d_projected(p0, p1, p2, k);
+    }
+  }
+}
+
+const Cluster& Arrangement::cluster(std::uint32_t ci, Cluster& scratch) const {
+  if (!is_lone(ci)) return clusters[ci];
+  scratch = Cluster();
+  scratch.add_tri(ci & ~kLoneCluster);
+  scratch.ref = ci & ~kLoneCluster;
+  orient_cluster(scratch);
+  return scratch;
 }
 
 bool Arrangement::may_be_diagonal(const Tri& t, std::uint32_t p, std::uint32_t q) const {
@@ -991,7 +1027,7 @@ void Arrangement::add_pair(std::uint32_t t, std::uint32_t b) {
   auto drop_new_points = [&] {
     while (points.size() > points_before) {
       const PointDef d = points.back();
-      lpi_ids_.erase({ordered(d.a, d.b), plane_of[cluster_of[d.c]]});
+      lpi_ids_.erase({ordered(d.a, d.b), plane_key(cluster_of[d.c])});
       exact3.erase(static_cast<std::uint32_t>(pos.size() + points.size() - 1));  // the id is reused
       points.pop_back();
       h3f.pop_back();
@@ -1089,7 +1125,8 @@ void Arrangement::split_wires() {
       if (sp * sq < 0) {
         // Through the plane: where it meets the plane, if inside the closed triangle.
         const std::uint32_t ci = cluster_of[ti];
-        const Cluster& cl = clusters[ci];
+        Cluster lone;
+        const Cluster& cl = cluster(ci, lone);
         const int o = orient2(cl, t.v[0], t.v[1], t.v[2]);
         const std::uint32_t x = lpi_point(w.p, w.q, ci);
         bool inside = true;
@@ -1155,6 +1192,14 @@ void Arrangement::split_wires() {
 void Arrangement::release_loops() {
   loop_table.clear();
   for (SoupFace& f : faces) f.loop_count = 0;
+}
+
+void Arrangement::release_all() {
+  auto free = [](auto&... x) { ((x = std::decay_t<decltype(x)>()), ...); };
+  free(pos, tris, quad_other, quad_side, open_edges, faces, loop_table, wires, wire_pieces, wire_boxes,
+       wire_bvh, meets, plane_joins, edge_uses, bvh, cluster_of, plane_of, clusters, points, h3f, h2f,
+       edge_points, contact_edges, near_other, alone_in, key_ids, has_edge_key, key_parent, exact3,
+       lpi_ids_);
 }
 
 void Arrangement::release_pieces(bool keep_tree) {

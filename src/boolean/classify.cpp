@@ -89,7 +89,8 @@ class RayCaster {
   void cast(const RepPoint& r, Windings& w) const {
     // Along the axis closest to the piece's normal: the ray leaves the piece's plane
     // at once, so the edges lying in that plane are not met edge-on.
-    const Cluster& c = a_.clusters[r.cluster];
+    Cluster lone;
+    const Cluster& c = a_.cluster(r.cluster, lone);
     run(PieceStart{a_, r}, c.k, &a_.tris[c.ref], r.cluster, w);
   }
   // At a free point, its two sides are one: the point is shifted by an infinitesimal
@@ -248,10 +249,10 @@ class RayCaster {
       if (std::find(on.begin(), on.end(), p) != on.end()) return 0;
       return orient3d(a_.pos[t.v[0]], a_.pos[t.v[1]], a_.pos[t.v[2]], a_.pos[p]);
     }
-    const std::uint32_t plane = a_.plane_of[a_.cluster_of[ti]];
+    const std::uint32_t plane = a_.plane_key(a_.cluster_of[ti]);
     const PointDef& d = a_.points[p - a_.pos.size()];
-    if (d.kind == PointKind::kLpi && a_.plane_of[a_.cluster_of[d.c]] == plane) return 0;
-    if (d.kind == PointKind::kCross && a_.plane_of[d.a] == plane) return 0;
+    if (d.kind == PointKind::kLpi && a_.plane_key(a_.cluster_of[d.c]) == plane) return 0;
+    if (d.kind == PointKind::kCross && a_.plane_key(d.a) == plane) return 0;
     // A point of the line ab (an edge's line meeting a plane, two segments meeting)
     // is on the plane when a and b are (the point may lie beyond them: a chord runs
     // across a whole piece).
@@ -571,7 +572,8 @@ RepPoint rep_of(const Arrangement& a, std::uint32_t ci, const Piece& p) {
 // all the triangles it is tested against (`xf`, `ws`); the slower stages only for a
 // side the filter leaves open.
 bool covers(const Arrangement& a, std::uint32_t t, const RepPoint& r, const H3<Fp>& xf, int ws) {
-  const Cluster& c = a.clusters[r.cluster];
+  Cluster lone;
+  const Cluster& c = a.cluster(r.cluster, lone);
   const int k = c.k, i = (k + 1) % 3, j = (k + 2) % 3;
   const Tri& tri = a.tris[t];
   const int o = orient2d_projected(a.pos[tri.v[0]], a.pos[tri.v[1]], a.pos[tri.v[2]], k);
@@ -678,8 +680,8 @@ std::vector<std::uint32_t> shared_rays(const Arrangement& a, const std::vector<s
     if (v < a.pos.size()) keys_with_vertex.push_back(key);
   std::sort(keys_with_vertex.begin(), keys_with_vertex.end());
   const auto cut_alone = [&](std::uint32_t t) {
-    const Cluster& c = a.clusters[a.cluster_of[t]];
-    return c.touched && c.tris().size() == 1;
+    const std::uint32_t ci = a.cluster_of[t];
+    return !Arrangement::is_lone(ci) && a.clusters[ci].touched && a.clusters[ci].tris().size() == 1;
   };
   std::vector<std::uint64_t> good;  // edges across which groups may form
   uses.edges.each_edge([&](std::uint32_t p, std::uint32_t q, std::span<const EdgeUseTable::Use> at) {
@@ -940,7 +942,7 @@ Selection classify_and_select(const Arrangement& a, const Expr& expr, const Opti
   // Untouched triangles, a patch at a time.
   const std::vector<char>& on_other_edge = uses.on_other_edge;
   UnionFind patches(a.tris.size());
-  auto untouched = [&](std::uint32_t t) { return !a.clusters[a.cluster_of[t]].touched; };
+  auto untouched = [&](std::uint32_t t) { return !a.cluster_touched(a.cluster_of[t]); };
   uses.edges.each_edge([&](std::uint32_t p, std::uint32_t q, std::span<const EdgeUseTable::Use> at) {
     if (at.size() != 2) return;
     const EdgeUseTable::Use &x = at[0], &y = at[1];
