@@ -543,14 +543,15 @@ Arrangement::Arrangement(std::vector<Vec3> positions, std::vector<Tri> triangles
       plane_joins(std::move(joins)),
       edge_uses(std::move(edges)) {
   embedded.resize(operands, 0);
-  std::vector<FloatBox> boxes(tris.size());
-  std::vector<std::uint32_t> groups(tris.size(), Bvh::kNoGroup);  // an embedded operand's
+  // Made unset and filled on the threads (their pages first touched there).
+  RawVector<FloatBox> boxes(tris.size());
+  RawVector<std::uint32_t> groups(tris.size());  // an embedded operand's triangles: one group
   parallel_ranges<char>(tris.size(), threads, [&](std::size_t lo, std::size_t hi, char&) {
     for (std::size_t t = lo; t < hi; ++t) {
       Box b;
       for (std::uint32_t v : tris[t].v) b.add(pos[v]);
       boxes[t] = FloatBox::around(b);
-      if (embedded[tris[t].operand]) groups[t] = tris[t].operand;
+      groups[t] = embedded[tris[t].operand] ? tris[t].operand : Bvh::kNoGroup;
     }
   });
   bvh = Bvh(std::move(boxes), std::move(groups), threads);

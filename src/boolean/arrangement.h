@@ -33,6 +33,7 @@
 #include "boolean/flat_map.h"
 #include "cellforge/geom/bvh.h"
 #include "cellforge/geom/implicit.h"
+#include "cellforge/geom/memory.h"
 #include "cellforge/geom/vec.h"
 #include "cellforge/ids.h"
 
@@ -326,7 +327,8 @@ class EdgeUseTable {
   // The edges of triangles (ids: triangles).
   EdgeUseTable(std::span<const Tri> tris, std::size_t n_points);
   // The edges each_edge(emit) gives by emit(p, q, id) (p != q, both below n_points;
-  // id below 2^31), in increasing id: called twice, to count and to fill.
+  // id below 2^31), in increasing id: called twice, to count and to fill (the uses
+  // made unset, not zeroed first).
   template <class EachEdge>
   EdgeUseTable(std::size_t n_points, EachEdge&& each_edge) : start_(n_points + 1, 0) {
     each_edge([&](std::uint32_t p, std::uint32_t q, std::uint32_t) { ++start_[std::min(p, q) + 1]; });
@@ -357,13 +359,13 @@ class EdgeUseTable {
   std::span<const Use> uses(std::uint32_t p, std::uint32_t q) const;
   void clear() {
     std::vector<std::uint32_t>().swap(start_);
-    std::vector<Use>().swap(uses_);
+    RawVector<Use>().swap(uses_);
   }
 
  private:
   void sort_rows();  // each row by q, stably
   std::vector<std::uint32_t> start_;  // by point: its row uses_[start_[p]] .. uses_[start_[p + 1]]
-  std::vector<Use> uses_;
+  RawVector<Use> uses_;
 };
 
 // Which operands' triangles certainly form one closed surface embedded in space,

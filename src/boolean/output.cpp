@@ -21,6 +21,7 @@
 #include <unordered_map>
 #include <unordered_set>
 
+#include "boolean/parallel.h"
 #include "boolean/stages.h"
 #include "cellforge/geom/predicates.h"
 #include "cellforge/geom/winding.h"
@@ -831,18 +832,22 @@ Result<BooleanResult> build_result(Arrangement& a, Selection selection, const Ex
   if (options.keep_lower_dim) a.find_alone_vertices();  // for only_operand_near
   // 0. The loops of the faces nothing cut, copied from the input now that the pieces
   // are freed (LoopSource).
-  for (OutPoly& p : polys) {
-    if (p.source == LoopSource::kFace) {
-      for (const auto l : a.loops_of(a.faces[a.tris[p.tri].input_face])) p.loops.emplace_back(l.begin(), l.end());
-    } else if (p.source == LoopSource::kTriangle) {
-      p.loops.emplace_back(a.tris[p.tri].v.begin(), a.tris[p.tri].v.end());
-    } else {
-      continue;
+  // On threads: each face's own lists.
+  parallel_ranges<char>(polys.size(), threads, [&](std::size_t lo, std::size_t hi, char&) {
+    for (std::size_t i = lo; i < hi; ++i) {
+      OutPoly& p = polys[i];
+      if (p.source == LoopSource::kFace) {
+        for (const auto l : a.loops_of(a.faces[a.tris[p.tri].input_face])) p.loops.emplace_back(l.begin(), l.end());
+      } else if (p.source == LoopSource::kTriangle) {
+        p.loops.emplace_back(a.tris[p.tri].v.begin(), a.tris[p.tri].v.end());
+      } else {
+        continue;
+      }
+      if (p.normal_sign < 0)
+        for (auto& loop : p.loops) std::reverse(loop.begin(), loop.end());
+      p.source = LoopSource::kMade;
     }
-    if (p.normal_sign < 0)
-      for (auto& loop : p.loops) std::reverse(loop.begin(), loop.end());
-    p.source = LoopSource::kMade;
-  }
+  });
   // A non-regularized result casts rays below, which read the planar quads' loops
   // (Arrangement::plane_vertices).
   if (!options.keep_lower_dim) a.release_loops();

@@ -140,7 +140,8 @@ TEST(Bvh, FloatBoxesReportASupersetWithinAFloatsUnit) {
 }
 
 // The tree built on several threads is the one built on one: the same pairs, in the
-// same order (the Boolean's events are applied in that order).
+// same order (the Boolean's events are applied in that order). 70,000 boxes: above the
+// size that splits the build and the one that sorts in slices (three: uneven slices).
 TEST(Bvh, ThreadsBuildTheSameTree) {
   std::mt19937_64 rng(11);
   std::uniform_real_distribution<double> at(0, 1000), size(0, 8);
@@ -153,16 +154,18 @@ TEST(Bvh, ThreadsBuildTheSameTree) {
     c.boxes.push_back(b);
     c.groups.push_back(rng() % 3 == 0 ? Bvh::kNoGroup : static_cast<std::uint32_t>(rng() % 3));
   }
-  std::vector<FloatBox> boxes;
+  RawVector<FloatBox> boxes;
   for (const Box& b : c.boxes) boxes.push_back(FloatBox::around(b));
+  const RawVector<std::uint32_t> groups(c.groups.begin(), c.groups.end());
   auto pairs_of = [&](int threads) {
     std::vector<std::array<std::uint32_t, 2>> out;
-    Bvh(boxes, c.groups, threads).pairs([&](std::uint32_t i, std::uint32_t j) { out.push_back({i, j}); });
+    Bvh(boxes, groups, threads).pairs([&](std::uint32_t i, std::uint32_t j) { out.push_back({i, j}); });
     return out;
   };
   const auto one = pairs_of(1);
   EXPECT_FALSE(one.empty());
   EXPECT_EQ(pairs_of(2), one);
+  EXPECT_EQ(pairs_of(3), one);
   EXPECT_EQ(pairs_of(4), one);
 }
 

@@ -31,6 +31,7 @@
 #include <utility>
 #include <vector>
 
+#include "cellforge/geom/memory.h"
 #include "cellforge/geom/vec.h"
 
 namespace cellforge::inline geom {
@@ -53,7 +54,7 @@ struct Box {
 
 // A box in floats, rounded outward from a Box (Bvh's storage).
 struct FloatBox {
-  std::array<float, 3> lo{}, hi{};
+  std::array<float, 3> lo, hi;  // unset until made (around): arrays of them are filled in place
   // The float next below (above) f, f finite or infinite: one step of its bits.
   static float below(float f) {
     if (f == 0) return -std::numeric_limits<float>::denorm_min();
@@ -101,13 +102,14 @@ class Bvh {
 
   explicit Bvh(std::vector<Box> boxes) : Bvh(std::move(boxes), {}) {}
   // groups[i] is box i's group or kNoGroup; empty: no groups.
-  Bvh(const std::vector<Box>& boxes, std::vector<std::uint32_t> groups, int threads = 1)
-      : Bvh(rounded(boxes), std::move(groups), threads) {}
+  Bvh(const std::vector<Box>& boxes, const std::vector<std::uint32_t>& groups, int threads = 1)
+      : Bvh(rounded(boxes), RawVector<std::uint32_t>(groups.begin(), groups.end()), threads) {}
   // The boxes rounded already (FloatBox::around), built on up to `threads` threads
   // (the tree the same at any count: its two halves are built apart below the top).
-  Bvh(std::vector<FloatBox> boxes, std::vector<std::uint32_t> groups, int threads = 1)
+  // RawVectors, so that a caller fills them on its threads without zeroing them first.
+  Bvh(RawVector<FloatBox> boxes, RawVector<std::uint32_t> groups, int threads = 1)
       : boxes_(std::move(boxes)), groups_(std::move(groups)) {
-    morton_order();
+    morton_order(threads);
     nodes_.resize(node_count(static_cast<std::uint32_t>(boxes_.size())));
     if (!boxes_.empty()) build(0, 0, static_cast<std::uint32_t>(boxes_.size()), threads);
   }
@@ -214,11 +216,12 @@ class Bvh {
   // are in none).
   static constexpr std::uint32_t kMixed = 0xfffffffeu;
   // Nodes in preorder: an inner node's left child is the next node.
+  // Every field is set by build() (the nodes are made unset: RawVector).
   struct Node {
-    FloatBox box;                      // its boxes' box
-    std::uint32_t begin = 0, end = 0;  // its boxes: order_[begin] .. order_[end - 1]
-    std::uint32_t right = 0;           // the right child; 0 for a leaf
-    std::uint32_t group = kNoGroup;
+    FloatBox box;              // its boxes' box
+    std::uint32_t begin, end;  // its boxes: order_[begin] .. order_[end - 1]
+    std::uint32_t right;       // the right child; 0 for a leaf
+    std::uint32_t group;
     bool leaf() const { return right == 0; }
     bool overlaps(const Node& o) const { return box.overlaps(o.box); }
   };
@@ -234,16 +237,28 @@ class Bvh {
     return a.group == b.group && a.group != kNoGroup && a.group != kMixed;
   }
 
-  static std::vector<FloatBox> rounded(const std::vector<Box>& boxes) {
-    std::vector<FloatBox> out(boxes.size());
+  static RawVector<FloatBox> rounded(const std::vector<Box>& boxes) {
+    RawVector<FloatBox> out(boxes.size());
     for (std::size_t i = 0; i < boxes.size(); ++i) out[i] = FloatBox::around(boxes[i]);
     return out;
   }
+  // work(k) for k in [0, count), k = 0 on this thread, the others on threads of their own.
+  template <class Work>
+  static void on_threads(int count, Work&& work) {
+    std::vector<std::thread> others;
+    for (int k = 1; k < count; ++k) others.emplace_back([&work, k] { work(k); });
+    work(0);
+    for (std::thread& t : others) t.join();
+  }
   // order_: the boxes by the Morton code of their centres, ties in index order.
-  void morton_order() {
-    order_.resize(boxes_.size());
-    for (std::size_t i = 0; i < order_.size(); ++i) order_[i] = static_cast<std::uint32_t>(i);
-    if (order_.size() > 1) sort_by_morton(0, static_cast<std::uint32_t>(order_.size()), 0);
+  void morton_order(int threads) {
+    const std::size_t n = boxes_.size();
+    order_.resize(n);
+    const int slices = n >= (1u << 16) ? std::max(1, threads) : 1;
+    on_threads(slices, [&](int s) {
+      for (std::size_t i = n * s / slices; i < n * (s + 1) / slices; ++i) order_[i] = static_cast<std::uint32_t>(i);
+    });
+    if (order_.size() > 1) sort_by_morton(0, static_cast<std::uint32_t>(order_.size()), 0, threads);
   }
   // order_[begin, end) (its ids ascending) by the Morton code of the centres, ten bits
   // an axis over these boxes' own bounds, ties by id: three stable counting passes of
@@ -251,20 +266,37 @@ class Bvh {
   // a leaf's boxes in one cell is ordered again over its own bounds, up to four times
   // deep, so that a box far from the rest cannot crowd them all into one cell (which
   // would leave them in index order, and the tree's nodes as wide as the model).
-  // Only the tree's shape depends on it, never what the tree reports.
-  void sort_by_morton(std::uint32_t begin, std::uint32_t end, int depth) {
+  // Only the tree's shape depends on it, never what the tree reports. A long run is
+  // sorted on `threads` threads, each taking a slice of the keys: in a counting pass
+  // each slice's keys of a digit go after those of the slices before it, so the order
+  // is the one thread's, whatever the count.
+  void sort_by_morton(std::uint32_t begin, std::uint32_t end, int depth, int threads = 1) {
     const std::size_t n = end - begin;
-    std::array<float, 3> lo{}, hi{};
-    for (int d = 0; d < 3; ++d) {
-      lo[d] = std::numeric_limits<float>::infinity();
-      hi[d] = -lo[d];
-    }
-    for (std::uint32_t k = begin; k < end; ++k)
+    const int slices = n >= (1u << 16) ? std::max(1, threads) : 1;
+    auto slice = [&](int k) { return std::pair<std::size_t, std::size_t>{n * k / slices, n * (k + 1) / slices}; };
+    // The centres' bounds (twice the centres: no halving), slice by slice.
+    std::vector<std::array<float, 6>> bounds(slices);
+    on_threads(slices, [&](int s) {
+      std::array<float, 6>& b = bounds[s];
       for (int d = 0; d < 3; ++d) {
-        const FloatBox& b = boxes_[order_[k]];
-        const float c = b.lo[d] + b.hi[d];  // twice the centre
-        lo[d] = std::min(lo[d], c);
-        hi[d] = std::max(hi[d], c);
+        b[d] = std::numeric_limits<float>::infinity();
+        b[3 + d] = -b[d];
+      }
+      const auto [lo_i, hi_i] = slice(s);
+      for (std::size_t k = lo_i; k < hi_i; ++k)
+        for (int d = 0; d < 3; ++d) {
+          const FloatBox& x = boxes_[order_[begin + k]];
+          const float c = x.lo[d] + x.hi[d];
+          b[d] = std::min(b[d], c);
+          b[3 + d] = std::max(b[3 + d], c);
+        }
+    });
+    std::array<float, 3> lo = {bounds[0][0], bounds[0][1], bounds[0][2]};
+    std::array<float, 3> hi = {bounds[0][3], bounds[0][4], bounds[0][5]};
+    for (const auto& b : bounds)
+      for (int d = 0; d < 3; ++d) {
+        lo[d] = std::min(lo[d], b[d]);
+        hi[d] = std::max(hi[d], b[3 + d]);
       }
     std::array<double, 3> scale{};
     bool spread_out = false;
@@ -282,33 +314,46 @@ class Bvh {
       x = (x | (x << 2)) & 0x09249249u;
       return x;
     };
-    std::vector<std::uint64_t> keys(n);  // code << 32 | id
-    for (std::size_t i = 0; i < n; ++i) {
-      const std::uint32_t id = order_[begin + i];
-      std::uint32_t code = 0;
-      for (int d = 0; d < 3; ++d) {
-        const double c = static_cast<double>(boxes_[id].lo[d] + boxes_[id].hi[d]) - lo[d];
-        const double q = std::clamp(c * scale[d], 0.0, 1023.0);  // NaN: not >= 0, cell 0
-        code |= spread(q >= 0 ? static_cast<std::uint32_t>(q) : 0u) << d;
+    RawVector<std::uint64_t> keys(n);  // code << 32 | id
+    on_threads(slices, [&](int s) {
+      const auto [lo_i, hi_i] = slice(s);
+      for (std::size_t i = lo_i; i < hi_i; ++i) {
+        const std::uint32_t id = order_[begin + i];
+        std::uint32_t code = 0;
+        for (int d = 0; d < 3; ++d) {
+          const double c = static_cast<double>(boxes_[id].lo[d] + boxes_[id].hi[d]) - lo[d];
+          const double q = std::clamp(c * scale[d], 0.0, 1023.0);  // NaN: not >= 0, cell 0
+          code |= spread(q >= 0 ? static_cast<std::uint32_t>(q) : 0u) << d;
+        }
+        keys[i] = (static_cast<std::uint64_t>(code) << 32) | id;
       }
-      keys[i] = (static_cast<std::uint64_t>(code) << 32) | id;
-    }
+    });
     if (n <= 4096) {
       std::sort(keys.begin(), keys.end());  // the same order: ids are distinct
     } else {
-      std::vector<std::uint64_t> other(n);
-      std::vector<std::uint32_t> count(1024);
+      RawVector<std::uint64_t> other(n);
+      std::vector<std::array<std::uint32_t, 1024>> count(slices);  // by slice, by digit
       for (int pass = 0; pass < 3; ++pass) {
         const int shift = 32 + 10 * pass;
-        std::fill(count.begin(), count.end(), 0u);
-        for (std::uint64_t k : keys) ++count[(k >> shift) & 1023];
+        on_threads(slices, [&](int s) {
+          count[s].fill(0);
+          const auto [lo_i, hi_i] = slice(s);
+          for (std::size_t i = lo_i; i < hi_i; ++i) ++count[s][(keys[i] >> shift) & 1023];
+        });
         std::uint32_t sum = 0;
-        for (std::uint32_t& c : count) sum += std::exchange(c, sum);
-        for (std::uint64_t k : keys) other[count[(k >> shift) & 1023]++] = k;
+        for (int digit = 0; digit < 1024; ++digit)
+          for (int s = 0; s < slices; ++s) sum += std::exchange(count[s][digit], sum);
+        on_threads(slices, [&](int s) {
+          const auto [lo_i, hi_i] = slice(s);
+          for (std::size_t i = lo_i; i < hi_i; ++i) other[count[s][(keys[i] >> shift) & 1023]++] = keys[i];
+        });
         keys.swap(other);
       }
     }
-    for (std::size_t i = 0; i < n; ++i) order_[begin + i] = static_cast<std::uint32_t>(keys[i]);
+    on_threads(slices, [&](int s) {
+      const auto [lo_i, hi_i] = slice(s);
+      for (std::size_t i = lo_i; i < hi_i; ++i) order_[begin + i] = static_cast<std::uint32_t>(keys[i]);
+    });
     if (depth >= 4) return;
     for (std::size_t i = 0; i < n;) {
       std::size_t j = i + 1;
@@ -326,6 +371,7 @@ class Bvh {
     nodes_[id].begin = begin;
     nodes_[id].end = end;
     if (end - begin <= 8) {
+      nodes_[id].right = 0;
       FloatBox box = boxes_[order_[begin]];
       std::uint32_t group = group_of(order_[begin]);
       for (std::uint32_t k = begin; k < end; ++k) {
@@ -395,10 +441,10 @@ class Bvh {
     if (boxes_[i].overlaps(boxes_[j])) f(std::min(i, j), std::max(i, j));
   }
 
-  std::vector<FloatBox> boxes_;
-  std::vector<std::uint32_t> groups_;
-  std::vector<std::uint32_t> order_;
-  std::vector<Node> nodes_;
+  RawVector<FloatBox> boxes_;
+  RawVector<std::uint32_t> groups_;
+  RawVector<std::uint32_t> order_;
+  RawVector<Node> nodes_;
 };
 
 }  // namespace cellforge::inline geom

@@ -11,6 +11,12 @@
 // glibc's malloc does that for its heap under the tunable glibc.malloc.hugetlb=1,
 // which it reads from the environment when the program starts and never again.
 #pragma once
+#include <cstddef>
+#include <memory>
+#include <new>
+#include <type_traits>
+#include <utility>
+#include <vector>
 
 namespace cellforge::inline geom {
 
@@ -37,5 +43,33 @@ void keep_freed_memory();
 // Puts back the GLIBC_TUNABLES that the program had before prefer_huge_pages, for a
 // program it is about to start that should run as it would on its own.
 void restore_tunables_for_children();
+
+// An allocator whose construct() with no arguments default-initializes: a vector of a
+// trivially constructible type resized through it is left as the allocation gives it,
+// not zeroed. A big array that is filled anyway is then written once, not twice, and
+// first touched where it is filled (on threads, where the filling is), not in a pass of
+// its own on one thread: 56 MB of boxes and groups for two spheres of 10^6 triangles
+// took 0.11-0.18 s to zero on this machine, where fresh memory costs 2-3 ms a MB.
+template <class T>
+struct DefaultInitAllocator : std::allocator<T> {
+  template <class U>
+  struct rebind {
+    using other = DefaultInitAllocator<U>;
+  };
+  DefaultInitAllocator() = default;
+  template <class U>
+  DefaultInitAllocator(const DefaultInitAllocator<U>&) noexcept {}
+  template <class U>
+  void construct(U* p) noexcept(std::is_nothrow_default_constructible_v<U>) {
+    ::new (static_cast<void*>(p)) U;
+  }
+  template <class U, class... Args>
+  void construct(U* p, Args&&... args) {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+};
+// A vector whose resize(n) leaves trivially constructible elements unset.
+template <class T>
+using RawVector = std::vector<T, DefaultInitAllocator<T>>;
 
 }  // namespace cellforge::inline geom
