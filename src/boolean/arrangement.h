@@ -28,9 +28,11 @@
 #include <span>
 #include <type_traits>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include "boolean/flat_map.h"
+#include "boolean/parallel.h"
 #include "cellforge/geom/bvh.h"
 #include "cellforge/geom/implicit.h"
 #include "cellforge/geom/memory.h"
@@ -325,22 +327,40 @@ class EdgeUseTable {
   };
   EdgeUseTable() = default;
   // The edges of triangles (ids: triangles).
-  EdgeUseTable(std::span<const Tri> tris, std::size_t n_points);
-  // The edges each_edge(emit) gives by emit(p, q, id) (p != q, both below n_points;
-  // id below 2^31), in increasing id: called twice, to count and to fill (the uses
-  // made unset, not zeroed first).
-  template <class EachEdge>
-  EdgeUseTable(std::size_t n_points, EachEdge&& each_edge) : start_(n_points + 1, 0) {
-    each_edge([&](std::uint32_t p, std::uint32_t q, std::uint32_t) { ++start_[std::min(p, q) + 1]; });
-    for (std::size_t v = 0; v < n_points; ++v) start_[v + 1] += start_[v];
-    uses_.resize(start_[n_points]);
-    {
-      std::vector<std::uint32_t> at(start_.begin(), start_.end() - 1);
-      each_edge([&](std::uint32_t p, std::uint32_t q, std::uint32_t id) {
-        uses_[at[std::min(p, q)]++] = {std::max(p, q), id << 1 | (p < q ? 1u : 0u)};
-      });
+  EdgeUseTable(std::span<const Tri> tris, std::size_t n_points, int threads = 1);
+  // The edges that edges_of(lo, hi, emit) gives for the ids in [lo, hi), by emit(p, q,
+  // id) (p != q, both below n_points; id below 2^31) in increasing id: called twice on
+  // each of up to `threads` ranges of [0, n_ids), on threads, to count and to fill.
+  // Range k's uses of a row go after those of the ranges before it, so a row lists its
+  // uses in id order (then sorted by q, stably): the same table at any thread count.
+  template <class EdgesOf>
+  EdgeUseTable(std::size_t n_points, std::size_t n_ids, EdgesOf&& edges_of, int threads = 1)
+      : start_(n_points + 1, 0) {
+    const std::size_t parts =
+        std::max<std::size_t>(1, std::min<std::size_t>(static_cast<std::size_t>(thread_count(threads)), n_ids / 4096));
+    auto range = [&](std::size_t k) { return std::pair{n_ids * k / parts, n_ids * (k + 1) / parts}; };
+    // at[k][v]: range k's uses of row v, counted, then where the next one goes.
+    std::vector<std::vector<std::uint32_t>> at(parts, std::vector<std::uint32_t>(n_points, 0));
+    on_threads(parts, [&](std::size_t k) {
+      const auto [lo, hi] = range(k);
+      std::vector<std::uint32_t>& count = at[k];
+      edges_of(lo, hi, [&](std::uint32_t p, std::uint32_t q, std::uint32_t) { ++count[std::min(p, q)]; });
+    });
+    for (std::size_t v = 0; v < n_points; ++v) {
+      std::uint32_t next = start_[v];
+      for (std::size_t k = 0; k < parts; ++k) next += std::exchange(at[k][v], next);
+      start_[v + 1] = next;
     }
-    sort_rows();
+    uses_.resize(start_[n_points]);
+    on_threads(parts, [&](std::size_t k) {
+      const auto [lo, hi] = range(k);
+      std::vector<std::uint32_t>& next = at[k];
+      edges_of(lo, hi, [&](std::uint32_t p, std::uint32_t q, std::uint32_t id) {
+        uses_[next[std::min(p, q)]++] = {std::max(p, q), id << 1 | (p < q ? 1u : 0u)};
+      });
+    });
+    at.clear();
+    sort_rows(threads);
   }
 
   std::size_t size() const { return uses_.size(); }
@@ -363,7 +383,7 @@ class EdgeUseTable {
   }
 
  private:
-  void sort_rows();  // each row by q, stably
+  void sort_rows(int threads);  // each row by q, stably
   std::vector<std::uint32_t> start_;  // by point: its row uses_[start_[p]] .. uses_[start_[p + 1]]
   RawVector<Use> uses_;
 };

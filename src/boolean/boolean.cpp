@@ -233,27 +233,33 @@ bool strictly_convex(const std::vector<Vec3>& pos, std::span<const std::uint32_t
 }  // namespace
 
 // arrangement.h.
-EdgeUseTable::EdgeUseTable(std::span<const Tri> tris, std::size_t n_points)
-    : EdgeUseTable(n_points, [&](auto&& emit) {
-        for (std::uint32_t i = 0; i < tris.size(); ++i)
-          for (int e = 0; e < 3; ++e) emit(tris[i].v[e], tris[i].v[(e + 1) % 3], i);
-      }) {}
+EdgeUseTable::EdgeUseTable(std::span<const Tri> tris, std::size_t n_points, int threads)
+    : EdgeUseTable(
+          n_points, tris.size(),
+          [&](std::size_t lo, std::size_t hi, auto&& emit) {
+            for (auto i = static_cast<std::uint32_t>(lo); i < hi; ++i)
+              for (int e = 0; e < 3; ++e) emit(tris[i].v[e], tris[i].v[(e + 1) % 3], i);
+          },
+          threads) {}
 
 // Rows are short (a vertex's edges to larger ends): insertion sort, stable, but for
-// the few long ones.
-void EdgeUseTable::sort_rows() {
+// the few long ones. Ranges of rows on threads.
+void EdgeUseTable::sort_rows(int threads) {
   const auto by_q = [](const Use& x, const Use& y) { return x.q < y.q; };
-  for (std::size_t v = 0; v + 1 < start_.size(); ++v) {
-    if (start_[v + 1] - start_[v] < 2) continue;
-    Use* b = uses_.data() + start_[v];
-    Use* e = uses_.data() + start_[v + 1];
-    if (e - b > 32) {
-      std::stable_sort(b, e, by_q);
-      continue;
+  const std::size_t rows = start_.empty() ? 0 : start_.size() - 1;
+  parallel_ranges<char>(rows, threads, [&](std::size_t lo, std::size_t hi, char&) {
+    for (std::size_t v = lo; v < hi; ++v) {
+      if (start_[v + 1] - start_[v] < 2) continue;
+      Use* b = uses_.data() + start_[v];
+      Use* e = uses_.data() + start_[v + 1];
+      if (e - b > 32) {
+        std::stable_sort(b, e, by_q);
+        continue;
+      }
+      for (Use* x = b + 1; x < e; ++x)
+        for (Use* y = x; y > b && by_q(*y, *(y - 1)); --y) std::swap(*y, *(y - 1));
     }
-    for (Use* x = b + 1; x < e; ++x)
-      for (Use* y = x; y > b && by_q(*y, *(y - 1)); --y) std::swap(*y, *(y - 1));
-  }
+  });
 }
 
 std::span<const EdgeUseTable::Use> EdgeUseTable::uses(std::uint32_t p, std::uint32_t q) const {
@@ -504,7 +510,7 @@ Result<Arrangement> make_soup(std::span<const Model* const> operands, int thread
     }
   });
   // The operands whose own tiles need not be tested against each other.
-  EdgeUseTable edges(tris, pos.size());
+  EdgeUseTable edges(tris, pos.size(), threads);
   std::vector<std::array<std::uint32_t, 2>> plane_joins;
   std::vector<char> embedded = embedded_operands(pos, tris, edges, closed_only, threads, plane_joins);
   return Arrangement(std::move(pos), std::move(tris), std::move(faces), std::move(loops),

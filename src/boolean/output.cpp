@@ -942,12 +942,15 @@ Result<BooleanResult> build_result(Arrangement& a, Selection selection, const Ex
   // 3. Merge coplanar neighbours.
   // Every edge use of the faces' loops (OutPolys, or MeshFaces: anything with loops),
   // by edge, then face.
-  auto edge_uses = [](const auto& ps, std::size_t n_points) {
-    return EdgeUseTable(n_points, [&](auto&& emit) {
-      for (std::uint32_t f = 0; f < ps.size(); ++f)
-        for (const auto& loop : ps[f].loops)
-          for (std::size_t i = 0; i < loop.size(); ++i) emit(loop[i], loop[(i + 1) % loop.size()], f);
-    });
+  auto edge_uses = [&](const auto& ps, std::size_t n_points) {
+    return EdgeUseTable(
+        n_points, ps.size(),
+        [&](std::size_t lo, std::size_t hi, auto&& emit) {
+          for (auto f = static_cast<std::uint32_t>(lo); f < hi; ++f)
+            for (const auto& loop : ps[f].loops)
+              for (std::size_t i = 0; i < loop.size(); ++i) emit(loop[i], loop[(i + 1) % loop.size()], f);
+        },
+        threads);
   };
   {
     struct Join {  // an edge of two faces that may merge
