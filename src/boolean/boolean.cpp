@@ -382,14 +382,15 @@ Result<Arrangement> make_soup(std::span<const Model* const> operands, int thread
       if (m.first_end(v).edge.is_valid()) vid(v);
     const std::size_t before = tris.size();
     const std::vector<FaceId> face_ids = face_list(m);
-    const FaceTiles tiled =
-        triangulate_faces(m, face_ids, threads, [&](FaceId f) {
-          return !(m.front_volume(f).is_valid() && m.back_volume(f).is_valid());
-        });
+    // Its tiles, about: a face of loops of n_1 ... n_k corners has n_1 + ... + n_k +
+    // 2k - 4 (each face is tiled where it is read, below, not in a pass before it that
+    // kept every tile in an array of its own: 16 MB a sphere of 10^6 triangles).
+    const std::size_t tile_estimate = static_cast<std::size_t>(std::max<std::int64_t>(
+        0, static_cast<std::int64_t>(m.num_edge_uses() + 2 * m.num_loops()) - 4 * static_cast<std::int64_t>(m.num_faces())));
     // Room for this operand's tiles, growing geometrically: an exact reserve per
     // operand copies the whole soup once per operand (a plate and 1,000 cylinders).
-    if (tris.capacity() < tris.size() + tiled.tiles.size())
-      tris.reserve(std::max(tris.size() + tiled.tiles.size(), 2 * tris.capacity()));
+    if (tris.capacity() < tris.size() + tile_estimate)
+      tris.reserve(std::max(tris.size() + tile_estimate, 2 * tris.capacity()));
     // The faces on threads: the first range of them writes the soup's own lists, each
     // later range lists of its own, appended in order after it (their indices shifted),
     // so that the lists are the ones one thread makes and one thread copies nothing.
@@ -403,12 +404,14 @@ Result<Arrangement> make_soup(std::span<const Model* const> operands, int thread
     };
     auto read_faces = [&](std::size_t lo, std::size_t hi, FacePart& out) {
       std::vector<std::uint32_t> scratch;                // a loop being read
+      std::vector<std::array<VertexId, 3>> triangles;    // a face's tiling
       std::vector<std::array<std::uint32_t, 3>> tiles;  // a face's triangles
       for (std::size_t fi = lo; fi < hi; ++fi) {
         const FaceId f = face_ids[fi];
-        const auto triangles = tiled[fi];
         const bool front = m.front_volume(f).is_valid(), back = m.back_volume(f).is_valid();
         if (front && back) continue;  // a face between two of its cells: inside it
+        triangles.clear();
+        io::triangulate_face(m, f, triangles);
         SoupFace sf;
         sf.operand = k;
         sf.face = f.value;
@@ -451,7 +454,7 @@ Result<Arrangement> make_soup(std::span<const Model* const> operands, int thread
         parallel_ranges<FacePart>(face_ids.size(), threads, [&](std::size_t lo, std::size_t hi, FacePart& part) {
           if (lo > 0) {
             part.faces.reserve(hi - lo);
-            part.tris.reserve(tiled.begin[hi] - tiled.begin[lo]);
+            part.tris.reserve(tile_estimate * (hi - lo) / face_ids.size() + 16);
           }
           read_faces(lo, hi, lo == 0 ? soup_lists : part);
         });
