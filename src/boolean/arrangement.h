@@ -364,10 +364,17 @@ class EdgeUseTable {
   }
 
   std::size_t size() const { return uses_.size(); }
+  std::size_t rows() const { return start_.empty() ? 0 : start_.size() - 1; }
   // f(p, q, uses) for every edge, by p, then q.
   template <class F>
   void each_edge(F&& f) const {
-    for (std::uint32_t p = 0; p + 1 < start_.size(); ++p)
+    each_edge_from(0, rows(), f);
+  }
+  // The same for the edges whose smaller end p is in [lo, hi): ranges of rows for
+  // threads.
+  template <class F>
+  void each_edge_from(std::size_t lo, std::size_t hi, F&& f) const {
+    for (auto p = static_cast<std::uint32_t>(lo); p < hi; ++p)
       for (std::uint32_t i = start_[p], end = start_[p + 1]; i < end;) {
         std::uint32_t j = i + 1;
         while (j < end && uses_[j].q == uses_[i].q) ++j;

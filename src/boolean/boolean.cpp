@@ -289,16 +289,24 @@ std::vector<char> embedded_operands(const std::vector<Vec3>& pos, std::span<cons
   const std::size_t operands = candidates.size();
   std::vector<char> ok(candidates);
   // 1, for all operands at once: in each edge's uses, an operand's are one each way.
-  edges.each_edge([&](std::uint32_t, std::uint32_t, std::span<const EdgeUseTable::Use> uses) {
-    for (const EdgeUseTable::Use& x : uses) {
-      const std::uint32_t k = tris[x.tri()].operand;
-      if (!ok[k]) continue;
-      int forward = 0, backward = 0;
-      for (const EdgeUseTable::Use& y : uses)
-        if (tris[y.tri()].operand == k) (y.forward() ? forward : backward) += 1;
-      if (forward != 1 || backward != 1) ok[k] = 0;
-    }
-  });
+  // Ranges of edges on threads, each with its own verdicts, joined after.
+  const std::vector<std::vector<char>> open_in =
+      parallel_ranges<std::vector<char>>(edges.rows(), threads, [&](std::size_t lo, std::size_t hi, std::vector<char>& open) {
+        open.assign(operands, 0);
+        edges.each_edge_from(lo, hi, [&](std::uint32_t, std::uint32_t, std::span<const EdgeUseTable::Use> uses) {
+          for (const EdgeUseTable::Use& x : uses) {
+            const std::uint32_t k = tris[x.tri()].operand;
+            if (!ok[k] || open[k]) continue;
+            int forward = 0, backward = 0;
+            for (const EdgeUseTable::Use& y : uses)
+              if (tris[y.tri()].operand == k) (y.forward() ? forward : backward) += 1;
+            if (forward != 1 || backward != 1) open[k] = 1;
+          }
+        });
+      });
+  for (const std::vector<char>& open : open_in)
+    for (std::size_t k = 0; k < operands; ++k)
+      if (open[k]) ok[k] = 0;
   // 2 and 3, an operand at a time (its triangles are consecutive).
   std::vector<std::uint32_t> begin(operands + 1, static_cast<std::uint32_t>(tris.size()));
   for (std::size_t t = tris.size(); t-- > 0;) begin[tris[t].operand] = static_cast<std::uint32_t>(t);
@@ -328,19 +336,25 @@ std::vector<char> embedded_operands(const std::vector<Vec3>& pos, std::span<cons
   });
   for (std::size_t k = 0; k < operands; ++k) ok[k] = ok[k] && star[k];
   // The certified operands' neighbours in one plane, from different faces (a planar
-  // face's tiles are joined whole).
-  edges.each_edge([&](std::uint32_t, std::uint32_t, std::span<const EdgeUseTable::Use> uses) {
-    for (std::size_t i = 0; i < uses.size(); ++i)
-      for (std::size_t j = i + 1; j < uses.size(); ++j) {
-        const Tri& a = tris[uses[i].tri()];
-        const Tri& b = tris[uses[j].tri()];
-        if (a.operand != b.operand || !ok[a.operand] || a.input_face == b.input_face) continue;
-        std::uint32_t w = b.v[0];
-        for (std::uint32_t v : b.v)
-          if (v != a.v[0] && v != a.v[1] && v != a.v[2]) w = v;
-        if (orient3d(pos[a.v[0]], pos[a.v[1]], pos[a.v[2]], pos[w]) == 0) joins.push_back({uses[i].tri(), uses[j].tri()});
-      }
-  });
+  // face's tiles are joined whole): ranges of edges on threads, their lists in order.
+  if (std::none_of(ok.begin(), ok.end(), [](char x) { return x != 0; })) return ok;
+  using Joins = std::vector<std::array<std::uint32_t, 2>>;
+  const std::vector<Joins> found =
+      parallel_ranges<Joins>(edges.rows(), threads, [&](std::size_t lo, std::size_t hi, Joins& out) {
+        edges.each_edge_from(lo, hi, [&](std::uint32_t, std::uint32_t, std::span<const EdgeUseTable::Use> uses) {
+          for (std::size_t i = 0; i < uses.size(); ++i)
+            for (std::size_t j = i + 1; j < uses.size(); ++j) {
+              const Tri& a = tris[uses[i].tri()];
+              const Tri& b = tris[uses[j].tri()];
+              if (a.operand != b.operand || !ok[a.operand] || a.input_face == b.input_face) continue;
+              std::uint32_t w = b.v[0];
+              for (std::uint32_t v : b.v)
+                if (v != a.v[0] && v != a.v[1] && v != a.v[2]) w = v;
+              if (orient3d(pos[a.v[0]], pos[a.v[1]], pos[a.v[2]], pos[w]) == 0) out.push_back({uses[i].tri(), uses[j].tri()});
+            }
+        });
+      });
+  for (const Joins& part : found) joins.insert(joins.end(), part.begin(), part.end());
   return ok;
 }
 
