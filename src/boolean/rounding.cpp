@@ -159,9 +159,11 @@ bool nudge_rounding(MeshInput& in, const std::vector<char>& inexact,
   // positions alone).
   const std::size_t nf = in.faces.size();
   std::vector<char> moved_face(nf, 0);
-  for (std::uint32_t f = 0; f < nf; ++f)
-    for (const auto& loop : in.faces[f].loops)
-      for (std::uint32_t v : loop) moved_face[f] |= inexact[v];
+  parallel_ranges<char>(nf, threads, [&](std::size_t lo, std::size_t hi, char&) {
+    for (std::size_t f = lo; f < hi; ++f)
+      for (const auto& loop : in.faces[f].loops)
+        for (std::uint32_t v : loop) moved_face[f] |= inexact[v];
+  });
   std::vector<std::vector<Tri3>> tiles(nf);
   std::vector<char> tiled(nf, 0);
   auto tile = [&](const std::vector<std::uint32_t>& fs) {
@@ -245,14 +247,16 @@ bool nudge_rounding(MeshInput& in, const std::vector<char>& inexact,
     suspects.erase(std::unique(suspects.begin(), suspects.end()), suspects.end());
     if (suspects.empty()) return true;
 
+    // A suspect is a rounded vertex: its faces are among those with a rounded corner.
     std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> faces_at;  // suspect -> faces
     for (std::uint32_t f = 0; f < in.faces.size(); ++f)
-      for (const auto& loop : in.faces[f].loops)
-        for (std::uint32_t v : loop)
-          if (std::binary_search(suspects.begin(), suspects.end(), v)) {
-            auto& list = faces_at[v];
-            if (list.empty() || list.back() != f) list.push_back(f);
-          }
+      if (moved_face[f])
+        for (const auto& loop : in.faces[f].loops)
+          for (std::uint32_t v : loop)
+            if (std::binary_search(suspects.begin(), suspects.end(), v)) {
+              auto& list = faces_at[v];
+              if (list.empty() || list.back() != f) list.push_back(f);
+            }
     bool changed = false;
     retile.clear();
     std::vector<std::uint32_t> scratch;

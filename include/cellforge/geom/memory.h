@@ -31,13 +31,16 @@ void prefer_huge_pages(char** argv);
 
 // Keeps memory that the program frees for its own later allocations instead of giving
 // it back to the system (glibc's mallopt: no trimming of the heap's top below 1 GiB,
-// blocks below 8 MiB from the heap): a large Boolean allocates and frees its arrays
-// stage by stage, and the next stage then reuses pages already faulted in. Blocks of
-// 8 MiB and more get mappings of their own, returned when freed: kept in the heap, a
-// big array freed early left a hole that later arrays of other sizes did not fit, and
-// the peak grew by it (sphere - sphere fn 1024: 593 MB with every block in the heap,
-// 523 MB so). For a program that runs one large job, not for a long-lived one whose
-// memory use falls for good.
+// blocks below 32 MiB, glibc's largest threshold, from the heap): a large Boolean
+// allocates and frees its arrays stage by stage, and the next stage then reuses pages
+// already faulted in. Blocks of 32 MiB and more get mappings of their own, returned
+// when freed: kept in the heap, a big array freed early left a hole that later arrays
+// of other sizes did not fit, and the peak grew by it (sphere - sphere fn 1024, on
+// 2026-12-03: 593 MB with every block in the heap, 523 MB with blocks of 8 MiB and
+// more mapped). On 2026-12-07 blocks from 8 to 32 MiB were moved to the heap: the
+// peak 353 -> 358 MB there, the run on two threads 1.25-1.44 -> 1.24-1.30 s (each
+// thread's arena reuses its own freed blocks). For a program that runs one large
+// job, not for a long-lived one whose memory use falls for good.
 void keep_freed_memory();
 
 // Puts back the GLIBC_TUNABLES that the program had before prefer_huge_pages, for a
