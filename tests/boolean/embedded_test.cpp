@@ -154,6 +154,48 @@ TEST(EmbeddedSurface, EdgeUsesAreGroupedByEdgeThenTriangle) {
   none.each_edge([](std::uint32_t, std::uint32_t, std::span<const EdgeUseTable::Use>) { ADD_FAILURE(); });
 }
 
+// The table and the certificate made on threads (ranges of triangles, of rows, of
+// edges) are the ones made on one: every edge's uses in the same order, the same
+// verdicts and the same plane joins, in order. 32,000 triangles: above the size that
+// splits the table's ranges; three threads: uneven ranges.
+TEST(EmbeddedSurface, ThreadsMakeTheSameTableAndVerdicts) {
+  Model sphere, box;
+  ASSERT_TRUE(shape::make_sphere(sphere, {.r = 10, .faceting = {.fn = 180}}).ok());
+  ASSERT_TRUE(shape::make_cube(box, {.size = {30, 30, 30}}).ok());
+  Tiles all = tiles_of(sphere);
+  const Tiles b = tiles_of(box);
+  const auto base = static_cast<std::uint32_t>(all.pos.size());
+  for (Vec3 p : b.pos) all.pos.push_back(p + Vec3{-15, -15, 20});
+  for (Tri x : b.tris) {
+    for (std::uint32_t& v : x.v) v += base;
+    x.operand = 1;
+    x.input_face += 100000;
+    all.tris.push_back(x);
+  }
+  ASSERT_GT(all.tris.size(), 30000u);
+  auto listing = [&](int threads) {
+    std::vector<std::array<std::uint32_t, 4>> out;  // p, q, triangle, forward
+    EdgeUseTable(all.tris, all.pos.size(), threads)
+        .each_edge([&](std::uint32_t p, std::uint32_t q, std::span<const EdgeUseTable::Use> uses) {
+          for (const EdgeUseTable::Use& u : uses) out.push_back({p, q, u.tri(), u.forward() ? 1u : 0u});
+        });
+    return out;
+  };
+  const auto one = listing(1);
+  EXPECT_EQ(one.size(), 3 * all.tris.size());
+  EXPECT_EQ(listing(2), one);
+  EXPECT_EQ(listing(3), one);
+  auto verdicts = [&](int threads) {
+    std::vector<std::array<std::uint32_t, 2>> joins;
+    const std::vector<char> ok =
+        embedded_operands(all.pos, all.tris, EdgeUseTable(all.tris, all.pos.size(), threads), {1, 1}, threads, joins);
+    return std::pair{ok, joins};
+  };
+  const auto [ok, joins] = verdicts(1);
+  EXPECT_EQ(ok, (std::vector<char>{1, 1}));
+  EXPECT_EQ(verdicts(3), std::pair(ok, joins));
+}
+
 TEST(EmbeddedSurface, WhatCouldMeetItselfIsRefused) {
   // A torus: closed and embedded, but no point sees every face from inside.
   Model torus;
