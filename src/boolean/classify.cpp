@@ -674,7 +674,7 @@ struct AxisLineSegments {
 };
 
 std::vector<std::uint32_t> shared_rays(const Arrangement& a, const std::vector<std::array<std::uint32_t, 2>>& jobs,
-                                       const EdgeUses& uses) {
+                                       const EdgeUses& uses, int threads) {
   std::vector<std::uint32_t> keys_with_vertex;
   for (auto [key, v] : a.edge_points)
     if (v < a.pos.size()) keys_with_vertex.push_back(key);
@@ -683,18 +683,26 @@ std::vector<std::uint32_t> shared_rays(const Arrangement& a, const std::vector<s
     const std::uint32_t ci = a.cluster_of[t];
     return !Arrangement::is_lone(ci) && a.clusters[ci].touched && a.clusters[ci].tris().size() == 1;
   };
-  std::vector<std::uint64_t> good;  // edges across which groups may form
-  uses.edges.each_edge([&](std::uint32_t p, std::uint32_t q, std::span<const EdgeUseTable::Use> at) {
-    if (at.size() != 2) return;
-    const EdgeUseTable::Use &x = at[0], &y = at[1];
-    if (!cut_alone(x.tri()) || !cut_alone(y.tri()) || x.forward() == y.forward() ||
-        a.tris[x.tri()].operand != a.tris[y.tri()].operand)
-      return;
-    if (uses.on_other_edge[p] || uses.on_other_edge[q] || a.is_contact_edge(p, q)) return;
-    const std::uint32_t key = a.find_edge_key(p, q);
-    if (key != kInvalidIndex && std::binary_search(keys_with_vertex.begin(), keys_with_vertex.end(), key)) return;
-    good.push_back(ordered(p, q));
-  });
+  // Edges across which groups may form: ranges of edges on threads, joined in order.
+  std::vector<std::uint64_t> good;
+  {
+    const std::vector<std::vector<std::uint64_t>> parts = parallel_ranges<std::vector<std::uint64_t>>(
+        uses.edges.rows(), threads, [&](std::size_t lo, std::size_t hi, std::vector<std::uint64_t>& out) {
+          uses.edges.each_edge_from(lo, hi, [&](std::uint32_t p, std::uint32_t q, std::span<const EdgeUseTable::Use> at) {
+            if (at.size() != 2) return;
+            const EdgeUseTable::Use &x = at[0], &y = at[1];
+            if (!cut_alone(x.tri()) || !cut_alone(y.tri()) || x.forward() == y.forward() ||
+                a.tris[x.tri()].operand != a.tris[y.tri()].operand)
+              return;
+            if (uses.on_other_edge[p] || uses.on_other_edge[q] || a.is_contact_edge(p, q)) return;
+            const std::uint32_t key = a.find_edge_key(p, q);
+            if (key != kInvalidIndex && std::binary_search(keys_with_vertex.begin(), keys_with_vertex.end(), key))
+              return;
+            out.push_back(ordered(p, q));
+          });
+        });
+    for (const auto& part : parts) good.insert(good.end(), part.begin(), part.end());
+  }
   // The pieces' sides along those edges: (edge, the side's two points, job).
   struct Side {
     std::uint64_t edge, part;
@@ -851,7 +859,7 @@ Selection classify_and_select(const Arrangement& a, const Expr& expr, const Opti
   // (pages are touched as used), not grown by doubling and copying.
   out.reserve(jobs.size() + a.faces.size());
   const EdgeUses uses = edge_uses(a);
-  const std::vector<std::uint32_t> ray_of = shared_rays(a, jobs, uses);
+  const std::vector<std::uint32_t> ray_of = shared_rays(a, jobs, uses, threads);
   // Clusters of many triangles (coplanar faces of many operands: a Menger sponge's
   // planes): a tree of their triangles' boxes, so that a piece tests only the
   // triangles whose boxes hold its corners' box.

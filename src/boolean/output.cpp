@@ -957,13 +957,20 @@ Result<BooleanResult> build_result(Arrangement& a, Selection selection, const Ex
       std::uint64_t key;
       std::uint32_t f, g;
     };
+    // Ranges of edges on threads, their lists joined in order.
     std::vector<Join> joins;
-    edge_uses(polys, a.pos.size() + a.points.size())
-        .each_edge([&](std::uint32_t p, std::uint32_t q, std::span<const EdgeUseTable::Use> at) {
-          if (at.size() == 2 && at[0].tri() != at[1].tri() && at[0].forward() != at[1].forward() &&
-              same_plane(a, polys[at[0].tri()], polys[at[1].tri()]))
-            joins.push_back({ordered(p, q), at[0].tri(), at[1].tri()});
-        });
+    {
+      const EdgeUseTable uses = edge_uses(polys, a.pos.size() + a.points.size());
+      const std::vector<std::vector<Join>> parts = parallel_ranges<std::vector<Join>>(
+          uses.rows(), threads, [&](std::size_t lo, std::size_t hi, std::vector<Join>& out) {
+            uses.each_edge_from(lo, hi, [&](std::uint32_t p, std::uint32_t q, std::span<const EdgeUseTable::Use> at) {
+              if (at.size() == 2 && at[0].tri() != at[1].tri() && at[0].forward() != at[1].forward() &&
+                  same_plane(a, polys[at[0].tri()], polys[at[1].tri()]))
+                out.push_back({ordered(p, q), at[0].tri(), at[1].tri()});
+            });
+          });
+      for (const std::vector<Join>& part : parts) joins.insert(joins.end(), part.begin(), part.end());
+    }
     // Non-regularized: not across an edge whose verdict differs from the faces' (a cut
     // in a face of the set: a wire of the subtrahend lying on it).
     std::vector<char> joined(joins.size(), 1);
@@ -1168,17 +1175,20 @@ Result<BooleanResult> build_result(Arrangement& a, Selection selection, const Ex
   // Face-connected shells (across edges two faces use), each of positive volume a
   // cell, each of negative volume a cavity of the innermost cell around it, by the
   // exact nesting of the shells (geom/winding.h) on their rounded triangles.
-  auto assign_shell_cells = [&](MeshInput& in, const std::vector<OutPoly>& polys, int) {
+  auto assign_shell_cells = [&](MeshInput& in, const std::vector<OutPoly>& polys) {
     UnionFind shells(polys.size());
     edge_uses(in.faces, in.positions.size())
         .each_edge([&](std::uint32_t, std::uint32_t, std::span<const EdgeUseTable::Use> at) {
           if (at.size() == 2) shells.unite(at[0].tri(), at[1].tri());
         });
+    // Each face's share on threads (its loops' in order), summed by shell in face order.
+    std::vector<double> share(polys.size(), 0);
+    parallel_ranges<char>(polys.size(), threads, [&](std::size_t lo, std::size_t hi, char&) {
+      for (std::size_t f = lo; f < hi; ++f)
+        for (const auto& loop : in.faces[f].loops) share[f] += loop_volume6(in.positions, loop);
+    });
     std::vector<double> volume(polys.size(), 0);
-    for (std::uint32_t f = 0; f < polys.size(); ++f) {
-      const std::uint32_t s = shells.find(f);
-      for (const auto& loop : in.faces[f].loops) volume[s] += loop_volume6(in.positions, loop);
-    }
+    for (std::uint32_t f = 0; f < polys.size(); ++f) volume[shells.find(f)] += share[f];
     std::vector<int> cell(polys.size(), -1);
     for (std::uint32_t s = 0; s < polys.size(); ++s)
       if (shells.find(s) == s && volume[s] > 0) cell[s] = in.volumes++;
@@ -1252,7 +1262,7 @@ Result<BooleanResult> build_result(Arrangement& a, Selection selection, const Ex
   // Regularized: face-connected shells, each of positive volume a cell, each of
   // negative volume a cavity. Otherwise the cells come from the built model's regions
   // (io/volumes.h), where the radial order at every edge is known.
-  if (!closed) assign_shell_cells(in, polys, threads);
+  if (!closed) assign_shell_cells(in, polys);
   std::vector<char> inexact(in.positions.size(), 0);
   for (std::uint32_t i = 0; i < point_of.size(); ++i) inexact[i] = !a.rounds_exactly(point_of[i]);
   // The repair's last check tiles each face as the exporters tile the face it becomes
@@ -1281,8 +1291,10 @@ Result<BooleanResult> build_result(Arrangement& a, Selection selection, const Ex
     // here on: both go before the model is built, which is when the memory peaks
     // (the arrangement held 110 MB, the selection 34, for two spheres of 10^6
     // triangles).
-    sources.reserve(polys.size());
-    for (const OutPoly& p : polys) sources.push_back(source_of(p));
+    sources.resize(polys.size());
+    parallel_ranges<char>(polys.size(), threads, [&](std::size_t lo, std::size_t hi, char&) {
+      for (std::size_t f = lo; f < hi; ++f) sources[f] = source_of(polys[f]);
+    });
     a.release_all();
     std::vector<OutPoly>().swap(polys);
   }
