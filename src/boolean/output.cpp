@@ -928,7 +928,7 @@ Result<BooleanResult> build_result(Arrangement& a, Selection selection, const Ex
       }
       p.loops[l] = std::move(out);
     }
-    std::vector<std::vector<std::uint32_t>>().swap(p.keys);  // read no more
+    p.keys.clear();  // read no more
   }
 
   // 2b. Non-regularized: the edges and points of the arrangement that are in the set
