@@ -336,8 +336,10 @@ class EdgeUseTable {
   template <class EdgesOf>
   EdgeUseTable(std::size_t n_points, std::size_t n_ids, EdgesOf&& edges_of, int threads = 1)
       : start_(n_points + 1, 0) {
-    const std::size_t parts =
-        std::max<std::size_t>(1, std::min<std::size_t>(static_cast<std::size_t>(thread_count(threads)), n_ids / 4096));
+    // At most eight ranges: each keeps a count a point (a many-core machine would
+    // otherwise hold hundreds of MB of them for a big table).
+    const std::size_t parts = std::max<std::size_t>(
+        1, std::min<std::size_t>({static_cast<std::size_t>(thread_count(threads)), 8, n_ids / 4096}));
     auto range = [&](std::size_t k) { return std::pair{n_ids * k / parts, n_ids * (k + 1) / parts}; };
     // at[k][v]: range k's uses of row v, counted, then where the next one goes.
     std::vector<std::vector<std::uint32_t>> at(parts, std::vector<std::uint32_t>(n_points, 0));

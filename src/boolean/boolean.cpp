@@ -526,6 +526,10 @@ Result<Arrangement> make_soup(std::span<const Model* const> operands, int thread
                  strictly_convex(pos, f_loops[0], t0);
     }
   });
+  // Triangle ids, and a lone triangle's cluster id kLoneCluster | t, fit 31 bits.
+  if (tris.size() >= Arrangement::kLoneCluster - 1)
+    return Error{ErrorCode::kInvalidInput, "boolean: the operands have " + std::to_string(tris.size()) +
+                                               " triangles; at most 2^31 - 2 can be combined"};
   // The operands whose own tiles need not be tested against each other.
   EdgeUseTable edges(tris, pos.size(), threads);
   std::vector<std::array<std::uint32_t, 2>> plane_joins;

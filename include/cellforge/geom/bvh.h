@@ -254,6 +254,7 @@ class Bvh {
   void morton_order(int threads) {
     const std::size_t n = boxes_.size();
     order_.resize(n);
+    // threads: the count, not 0 for all (the callers resolve it).
     const int slices = n >= (1u << 16) ? std::max(1, threads) : 1;
     on_threads(slices, [&](int s) {
       for (std::size_t i = n * s / slices; i < n * (s + 1) / slices; ++i) order_[i] = static_cast<std::uint32_t>(i);
