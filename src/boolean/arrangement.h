@@ -384,6 +384,19 @@ class EdgeUseTable {
         i = j;
       }
   }
+  // What f(p, q, uses, out) pushes into `out` for every edge, found on `threads`
+  // threads by ranges of rows and joined in the edges' order (the same list at any
+  // count).
+  template <class T, class F>
+  std::vector<T> gather(int threads, F&& f) const {
+    const std::vector<std::vector<T>> parts =
+        parallel_ranges<std::vector<T>>(rows(), threads, [&](std::size_t lo, std::size_t hi, std::vector<T>& out) {
+          each_edge_from(lo, hi, [&](std::uint32_t p, std::uint32_t q, std::span<const Use> uses) { f(p, q, uses, out); });
+        });
+    std::vector<T> all;
+    for (const std::vector<T>& part : parts) all.insert(all.end(), part.begin(), part.end());
+    return all;
+  }
   // The uses of edge {p, q} (either order); empty when no triangle has it.
   std::span<const Use> uses(std::uint32_t p, std::uint32_t q) const;
   void clear() {

@@ -246,8 +246,7 @@ EdgeUseTable::EdgeUseTable(std::span<const Tri> tris, std::size_t n_points, int 
 // the few long ones. Ranges of rows on threads.
 void EdgeUseTable::sort_rows(int threads) {
   const auto by_q = [](const Use& x, const Use& y) { return x.q < y.q; };
-  const std::size_t rows = start_.empty() ? 0 : start_.size() - 1;
-  parallel_ranges<char>(rows, threads, [&](std::size_t lo, std::size_t hi, char&) {
+  parallel_ranges<char>(rows(), threads, [&](std::size_t lo, std::size_t hi, char&) {
     for (std::size_t v = lo; v < hi; ++v) {
       if (start_[v + 1] - start_[v] < 2) continue;
       Use* b = uses_.data() + start_[v];
@@ -338,23 +337,20 @@ std::vector<char> embedded_operands(const std::vector<Vec3>& pos, std::span<cons
   // The certified operands' neighbours in one plane, from different faces (a planar
   // face's tiles are joined whole): ranges of edges on threads, their lists in order.
   if (std::none_of(ok.begin(), ok.end(), [](char x) { return x != 0; })) return ok;
-  using Joins = std::vector<std::array<std::uint32_t, 2>>;
-  const std::vector<Joins> found =
-      parallel_ranges<Joins>(edges.rows(), threads, [&](std::size_t lo, std::size_t hi, Joins& out) {
-        edges.each_edge_from(lo, hi, [&](std::uint32_t, std::uint32_t, std::span<const EdgeUseTable::Use> uses) {
-          for (std::size_t i = 0; i < uses.size(); ++i)
-            for (std::size_t j = i + 1; j < uses.size(); ++j) {
-              const Tri& a = tris[uses[i].tri()];
-              const Tri& b = tris[uses[j].tri()];
-              if (a.operand != b.operand || !ok[a.operand] || a.input_face == b.input_face) continue;
-              std::uint32_t w = b.v[0];
-              for (std::uint32_t v : b.v)
-                if (v != a.v[0] && v != a.v[1] && v != a.v[2]) w = v;
-              if (orient3d(pos[a.v[0]], pos[a.v[1]], pos[a.v[2]], pos[w]) == 0) out.push_back({uses[i].tri(), uses[j].tri()});
-            }
-        });
+  const auto found = edges.gather<std::array<std::uint32_t, 2>>(
+      threads, [&](std::uint32_t, std::uint32_t, std::span<const EdgeUseTable::Use> uses, auto& out) {
+        for (std::size_t i = 0; i < uses.size(); ++i)
+          for (std::size_t j = i + 1; j < uses.size(); ++j) {
+            const Tri& a = tris[uses[i].tri()];
+            const Tri& b = tris[uses[j].tri()];
+            if (a.operand != b.operand || !ok[a.operand] || a.input_face == b.input_face) continue;
+            std::uint32_t w = b.v[0];
+            for (std::uint32_t v : b.v)
+              if (v != a.v[0] && v != a.v[1] && v != a.v[2]) w = v;
+            if (orient3d(pos[a.v[0]], pos[a.v[1]], pos[a.v[2]], pos[w]) == 0) out.push_back({uses[i].tri(), uses[j].tri()});
+          }
       });
-  for (const Joins& part : found) joins.insert(joins.end(), part.begin(), part.end());
+  joins.insert(joins.end(), found.begin(), found.end());
   return ok;
 }
 

@@ -683,26 +683,19 @@ std::vector<std::uint32_t> shared_rays(const Arrangement& a, const std::vector<s
     const std::uint32_t ci = a.cluster_of[t];
     return !Arrangement::is_lone(ci) && a.clusters[ci].touched && a.clusters[ci].tris().size() == 1;
   };
-  // Edges across which groups may form: ranges of edges on threads, joined in order.
-  std::vector<std::uint64_t> good;
-  {
-    const std::vector<std::vector<std::uint64_t>> parts = parallel_ranges<std::vector<std::uint64_t>>(
-        uses.edges.rows(), threads, [&](std::size_t lo, std::size_t hi, std::vector<std::uint64_t>& out) {
-          uses.edges.each_edge_from(lo, hi, [&](std::uint32_t p, std::uint32_t q, std::span<const EdgeUseTable::Use> at) {
-            if (at.size() != 2) return;
-            const EdgeUseTable::Use &x = at[0], &y = at[1];
-            if (!cut_alone(x.tri()) || !cut_alone(y.tri()) || x.forward() == y.forward() ||
-                a.tris[x.tri()].operand != a.tris[y.tri()].operand)
-              return;
-            if (uses.on_other_edge[p] || uses.on_other_edge[q] || a.is_contact_edge(p, q)) return;
-            const std::uint32_t key = a.find_edge_key(p, q);
-            if (key != kInvalidIndex && std::binary_search(keys_with_vertex.begin(), keys_with_vertex.end(), key))
-              return;
-            out.push_back(ordered(p, q));
-          });
-        });
-    for (const auto& part : parts) good.insert(good.end(), part.begin(), part.end());
-  }
+  // Edges across which groups may form, found on threads.
+  const std::vector<std::uint64_t> good = uses.edges.gather<std::uint64_t>(
+      threads, [&](std::uint32_t p, std::uint32_t q, std::span<const EdgeUseTable::Use> at, auto& out) {
+        if (at.size() != 2) return;
+        const EdgeUseTable::Use &x = at[0], &y = at[1];
+        if (!cut_alone(x.tri()) || !cut_alone(y.tri()) || x.forward() == y.forward() ||
+            a.tris[x.tri()].operand != a.tris[y.tri()].operand)
+          return;
+        if (uses.on_other_edge[p] || uses.on_other_edge[q] || a.is_contact_edge(p, q)) return;
+        const std::uint32_t key = a.find_edge_key(p, q);
+        if (key != kInvalidIndex && std::binary_search(keys_with_vertex.begin(), keys_with_vertex.end(), key)) return;
+        out.push_back(ordered(p, q));
+      });
   // The pieces' sides along those edges: (edge, the side's two points, job).
   struct Side {
     std::uint64_t edge, part;
