@@ -11,13 +11,14 @@
 // A predicate is written once as a template over the number type and evaluated
 // first on Fp, then on Dd (double-double with an error bound), and on Dyadic only
 // when neither can decide: decide() below. Dyadic is an exact dyadic rational m * 2^e with an arbitrary-precision
-// integer m (GMP): the predicates on implicit points reach degree 30 in the input
+// integer m (GMP's mpn arithmetic): the predicates on implicit points reach degree 30 in the input
 // coordinates, beyond what expansions of doubles hold without underflow.
 #pragma once
 #include <gmp.h>
 
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <utility>
 
 #include "cellforge/geom/expansion.h"  // two_sum
@@ -107,78 +108,93 @@ inline int sign_of(const Dd& a) {
   return (a.hi == 0 && a.lo == 0 && a.e == 0) ? 0 : kUncertain;
 }
 
-// m * 2^e exactly.
+// m * 2^e exactly, m a signed integer of any size: the last stage of decide(). The
+// magnitude is a little-endian array of 64-bit limbs held inside the number up to
+// kInline limbs (a predicate's temporaries never touch the heap: the GMP integers
+// used before spent half of an exact evaluation in malloc and free) and on the heap
+// beyond; the arithmetic is GMP's mpn layer, which allocates nothing. A double's
+// mantissa is stored with its trailing zero bits moved into the exponent, so that
+// small integers and halves make short products.
 class Dyadic {
  public:
-  Dyadic() { mpz_init(m_); }
-  Dyadic(double d) {  // NOLINT(google-explicit-constructor): doubles are exact
-    int e = 0;
-    const double f = std::frexp(d, &e);  // d = f 2^e, |f| in [0.5, 1)
-    mpz_init_set_d(m_, std::ldexp(f, 53));
-    e_ = e - 53;
-  }
-  Dyadic(const Dyadic& o) : e_(o.e_) { mpz_init_set(m_, o.m_); }
-  Dyadic(Dyadic&& o) noexcept : e_(o.e_) {
-    mpz_init(m_);
-    mpz_swap(m_, o.m_);
-  }
-  Dyadic& operator=(Dyadic o) {
-    mpz_swap(m_, o.m_);
-    std::swap(e_, o.e_);
+  static constexpr int kInline = 14;
+
+  Dyadic() = default;
+  Dyadic(double d);  // NOLINT(google-explicit-constructor): doubles are exact
+  Dyadic(const Dyadic& o) { copy_from(o); }
+  Dyadic(Dyadic&& o) noexcept { move_from(o); }
+  Dyadic& operator=(const Dyadic& o) {
+    if (this != &o) copy_from(o);
     return *this;
   }
-  ~Dyadic() { mpz_clear(m_); }
+  Dyadic& operator=(Dyadic&& o) noexcept {
+    if (this != &o) {
+      release();
+      move_from(o);
+    }
+    return *this;
+  }
+  ~Dyadic() { release(); }
 
-  int sign() const { return mpz_sgn(m_); }
+  int sign() const { return (size_ > 0) - (size_ < 0); }
   // The value within a relative 2^-52 (the mantissa is truncated to 53 bits).
-  double to_double() const {
-    long exp = 0;
-    const double d = mpz_get_d_2exp(&exp, m_);
-    return std::ldexp(d, static_cast<int>(exp + e_));
-  }
+  double to_double() const;
 
-  friend Dyadic operator*(const Dyadic& a, const Dyadic& b) {
-    Dyadic r;
-    mpz_mul(r.m_, a.m_, b.m_);
-    r.e_ = a.e_ + b.e_;
-    return r;
-  }
+  friend Dyadic operator*(const Dyadic& a, const Dyadic& b);
   friend Dyadic operator+(const Dyadic& a, const Dyadic& b) { return add(a, b, false); }
   friend Dyadic operator-(const Dyadic& a, const Dyadic& b) { return add(a, b, true); }
   friend Dyadic operator-(const Dyadic& a) {
     Dyadic r(a);
-    mpz_neg(r.m_, r.m_);
+    r.size_ = -r.size_;
     return r;
   }
 
  private:
-  static Dyadic add(const Dyadic& a, const Dyadic& b, bool negate_b) {
-    Dyadic r;
-    if (mpz_sgn(b.m_) == 0) {
-      mpz_set(r.m_, a.m_);
-      r.e_ = a.e_;
-    } else if (mpz_sgn(a.m_) == 0) {
-      mpz_set(r.m_, b.m_);
-      if (negate_b) mpz_neg(r.m_, r.m_);
-      r.e_ = b.e_;
-    } else {  // the one of larger exponent shifted down to the other's
-      const bool a_up = a.e_ >= b.e_;
-      const Dyadic& up = a_up ? a : b;
-      const Dyadic& other = a_up ? b : a;
-      mpz_mul_2exp(r.m_, up.m_, static_cast<mp_bitcnt_t>(up.e_ - other.e_));
-      if (!a_up && negate_b) mpz_neg(r.m_, r.m_);  // r is a, b or -b, shifted
-      if (a_up && negate_b) {
-        mpz_sub(r.m_, r.m_, other.m_);
-      } else {
-        mpz_add(r.m_, r.m_, other.m_);
-      }
-      r.e_ = other.e_;
+  static Dyadic add(const Dyadic& a, const Dyadic& b, bool negate_b);
+  // Room for n limbs, the value dropped.
+  void reserve(int n) {
+    if (n <= cap_) return;
+    release();
+    limbs_ = new mp_limb_t[static_cast<std::size_t>(n)];
+    cap_ = n;
+  }
+  void release() {
+    if (limbs_ != inline_) delete[] limbs_;
+    limbs_ = inline_;
+    cap_ = kInline;
+  }
+  void copy_from(const Dyadic& o) {
+    const int n = o.size_ < 0 ? -o.size_ : o.size_;
+    reserve(n);
+    for (int i = 0; i < n; ++i) limbs_[i] = o.limbs_[i];
+    size_ = o.size_;
+    e_ = o.e_;
+  }
+  void move_from(Dyadic& o) {  // *this holds no heap block
+    if (o.limbs_ != o.inline_) {
+      limbs_ = o.limbs_;
+      cap_ = o.cap_;
+      o.limbs_ = o.inline_;
+      o.cap_ = kInline;
+    } else {
+      const int n = o.size_ < 0 ? -o.size_ : o.size_;
+      for (int i = 0; i < n; ++i) inline_[i] = o.inline_[i];
     }
-    return r;
+    size_ = o.size_;
+    e_ = o.e_;
+  }
+  // Drops zero limbs at the top; the sign is `negative`.
+  void set_size(int n, bool negative) {
+    while (n > 0 && limbs_[n - 1] == 0) --n;
+    size_ = negative ? -n : n;
+    if (n == 0) e_ = 0;
   }
 
-  mpz_t m_;
+  mp_limb_t* limbs_ = inline_;
+  int size_ = 0;  // the number of limbs in use, negated for a negative value
+  int cap_ = kInline;
   long e_ = 0;
+  mp_limb_t inline_[kInline];
 };
 
 inline int sign_of(const Dyadic& a) { return a.sign(); }
