@@ -139,7 +139,15 @@ H3<T> Arrangement::point3(std::uint32_t p) const {
   if constexpr (std::is_same_v<T, Fp>) {
     return h3f[p - pos.size()];
   } else if constexpr (std::is_same_v<T, Dd>) {
-    return compute3<T>(*this, points[p - pos.size()]);
+    {
+      std::shared_lock read(*exact3_lock);
+      auto it = near3.find(p);
+      if (it != near3.end()) return it->second;
+    }
+    const H3<T> h = compute3<T>(*this, points[p - pos.size()]);
+    std::unique_lock write(*exact3_lock);
+    near3.emplace(p, h);
+    return h;
   } else {
     {
       std::shared_lock read(*exact3_lock);
@@ -161,7 +169,18 @@ H2<T> Arrangement::point2(const Cluster& c, std::uint32_t p) const {
       if constexpr (std::is_same_v<T, Fp>) {
         return h2f[p - pos.size()];
       } else {
-        return cross2(coeffs<T>(c, c.lines()[d.b]), coeffs<T>(c, c.lines()[d.c]));
+        auto& cache = [&]() -> auto& {
+          if constexpr (std::is_same_v<T, Dd>) return near2; else return exact2;
+        }();
+        {
+          std::shared_lock read(*exact3_lock);
+          auto it = cache.find(p);
+          if (it != cache.end()) return it->second;
+        }
+        const H2<T> h = cross2(coeffs<T>(c, c.lines()[d.b]), coeffs<T>(c, c.lines()[d.c]));
+        std::unique_lock write(*exact3_lock);
+        cache.emplace(p, h);
+        return h;
       }
     }
   }
@@ -1029,7 +1048,11 @@ void Arrangement::add_pair(std::uint32_t t, std::uint32_t b) {
     while (points.size() > points_before) {
       const PointDef d = points.back();
       lpi_ids_.erase({ordered(d.a, d.b), plane_key(cluster_of[d.c])});
-      exact3.erase(static_cast<std::uint32_t>(pos.size() + points.size() - 1));  // the id is reused
+      const auto id = static_cast<std::uint32_t>(pos.size() + points.size() - 1);  // the id is reused
+      exact3.erase(id);
+      near3.erase(id);
+      near2.erase(id);
+      exact2.erase(id);
       points.pop_back();
       h3f.pop_back();
       h2f.pop_back();
@@ -1200,7 +1223,7 @@ void Arrangement::release_all() {
   free(pos, tris, quad_other, quad_side, open_edges, faces, loop_table, wires, wire_pieces, wire_boxes,
        wire_bvh, meets, plane_joins, edge_uses, bvh, cluster_of, plane_of, clusters, points, h3f, h2f,
        edge_points, contact_edges, near_other, alone_in, key_ids, has_edge_key, key_parent, exact3,
-       lpi_ids_);
+       near3, near2, exact2, lpi_ids_);
 }
 
 void Arrangement::release_pieces(bool keep_tree) {

@@ -548,6 +548,12 @@ class Arrangement {
   // Exact homogeneous coordinates of points that needed them, computed once; the lock
   // lets stages on threads share it.
   mutable std::unordered_map<std::uint32_t, H3<Dyadic>> exact3;
+  // Their double-double coordinates, for points the filter left undecided (a point on a
+  // line or plane by coincidence is asked again and again): under the same lock.
+  mutable std::unordered_map<std::uint32_t, H3<Dd>> near3;
+  // The same for crossing points in their own cluster's projection (point2).
+  mutable std::unordered_map<std::uint32_t, H2<Dd>> near2;
+  mutable std::unordered_map<std::uint32_t, H2<Dyadic>> exact2;
   mutable std::unique_ptr<std::shared_mutex> exact3_lock = std::make_unique<std::shared_mutex>();
 
   // ---- exact evaluation
