@@ -117,7 +117,7 @@ inline int sign_of(const Dd& a) {
 // small integers and halves make short products.
 class Dyadic {
  public:
-  static constexpr int kInline = 14;
+  static constexpr int kInline = 8;
 
   Dyadic() = default;
   Dyadic(double d);  // NOLINT(google-explicit-constructor): doubles are exact
