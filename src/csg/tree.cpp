@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <functional>
 #include <memory>
@@ -69,39 +70,40 @@ Model copy_transformed(const Model& src, const shape::Transform& t) {
 std::vector<FaceId> copy_into(Model& out, const Model& src, const shape::Transform& t) {
   std::vector<FaceId> faces(src.face_slots());
   const bool flip = t.determinant() < 0;
+  // Source id -> index in the group's mesh, by slot (every part of a build is copied
+  // at least once: maps by slot and the group index keep it linear).
+  constexpr std::uint32_t kNone = UINT32_MAX;
+  std::vector<std::uint32_t> vertex(src.vertex_slots(), kNone), volume;
   for (GroupId g : src.groups()) {
     MeshInput mesh;
     std::vector<FaceId> face_ids;
     mesh.group_name = src.name(g);
-    std::unordered_map<std::uint32_t, std::uint32_t> vertex, volume;
-    for (VertexId v : src.vertices()) {
-      if (src.group_of(v) != g) continue;
+    mesh.positions.reserve(src.num_vertices(g));
+    for (VertexId v : src.vertices(g)) {
       vertex[v.value] = static_cast<std::uint32_t>(mesh.positions.size());
       mesh.positions.push_back(t.apply(src.position(v)));
     }
-    for (VolumeId c : src.volumes()) {
-      if (src.group_of(c) == g) volume[c.value] = static_cast<std::uint32_t>(mesh.volumes++);
+    for (VolumeId c : src.volumes(g)) {
+      if (volume.size() <= c.value) volume.resize(c.value + 1, kNone);
+      volume[c.value] = static_cast<std::uint32_t>(mesh.volumes++);
     }
-    for (FaceId f : src.faces()) {
-      if (src.group_of(f) != g) continue;
+    mesh.faces.reserve(src.num_faces(g));
+    face_ids.reserve(src.num_faces(g));
+    for (FaceId f : src.faces(g)) {
       MeshFace face;
       for (LoopId l : src.loops_of(f)) {
         if (src.is_point_loop(l)) continue;
         face.loops.emplace_back();
-        for (VertexId v : src.loop_vertices(l)) face.loops.back().push_back(vertex.at(v.value));
+        for (VertexId v : src.loop_vertices(l)) face.loops.back().push_back(vertex[v.value]);
         if (flip) std::reverse(face.loops.back().begin(), face.loops.back().end());
       }
-      if (src.front_volume(f).is_valid())
-        face.front = static_cast<int>(volume.at(src.front_volume(f).value));
-      if (src.back_volume(f).is_valid())
-        face.back = static_cast<int>(volume.at(src.back_volume(f).value));
+      if (src.front_volume(f).is_valid()) face.front = static_cast<int>(volume[src.front_volume(f).value]);
+      if (src.back_volume(f).is_valid()) face.back = static_cast<int>(volume[src.back_volume(f).value]);
       mesh.faces.push_back(std::move(face));
       face_ids.push_back(f);
     }
-    for (EdgeId e : src.edges()) {
-      if (src.group_of(e) == g && src.is_wire(e)) {
-        mesh.wires.push_back({vertex.at(src.start_of(e).value), vertex.at(src.end_of(e).value)});
-      }
+    for (EdgeId e : src.edges(g)) {
+      if (src.is_wire(e)) mesh.wires.push_back({vertex[src.start_of(e).value], vertex[src.end_of(e).value]});
     }
     auto built = build_mesh(out, mesh);
     if (!built) continue;  // the source was built by build_mesh too; this cannot fail
