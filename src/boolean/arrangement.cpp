@@ -666,12 +666,16 @@ void vertices_on_edges(const Arrangement& A, const Tri& a, const Tri& b, const i
   for (int k = 0; k < 3; ++k) {
     if (o[k] != 0) continue;
     const std::uint32_t v = b.v[k];
+    // A corner of a (the soup has no degenerate triangle) is on no edge of a.
+    if (v == a.v[0] || v == a.v[1] || v == a.v[2]) continue;
     const Vec3 pv = A.pos[v];
     for (int e = 0; e < 3; ++e) {
       const std::uint32_t p = a.v[e], q = a.v[(e + 1) % 3];
-      if (v == p || v == q) continue;
       const Vec3 pp = A.pos[p], pq = A.pos[q];
-      if (!collinear3d(pp, pq, pv)) continue;
+      // A point of segment pq lies in its box (exactly: coordinates are compared).
+      bool in_box = true;
+      for (int d = 0; d < 3; ++d) in_box &= std::min(pp[d], pq[d]) <= pv[d] && pv[d] <= std::max(pp[d], pq[d]);
+      if (!in_box || !collinear3d(pp, pq, pv)) continue;
       if (compare_along(pp, pq, pp, pv) > 0 && compare_along(pp, pq, pv, pq) > 0) record(p, q, v);
     }
   }

@@ -1,5 +1,6 @@
 #include "cellforge/csg/tree_json.h"
 
+#include <charconv>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -44,6 +45,14 @@ std::string quote(const std::string& s) {
   return out + "\"";
 }
 
+// x appended as num(x) writes it (std::to_chars: the shortest text that reads back as x).
+template <class T>
+void append_number(std::string& out, T x) {
+  char buf[64];
+  const auto r = std::to_chars(buf, buf + sizeof buf, x);
+  out.append(buf, r.ptr);
+}
+
 std::string vec3(Vec3 v) { return "[" + num(v.x) + ", " + num(v.y) + ", " + num(v.z) + "]"; }
 
 void write(const Node& n, std::string& out, bool positions) {
@@ -80,20 +89,28 @@ void write(const Node& n, std::string& out, bool positions) {
       break;
     case NodeKind::kPolyhedron:
     case NodeKind::kPolygon: {
+      // Appended in place, number by number (a surface() of a 50 x 50 image is 2,500
+      // points, and content_key writes a subtree at each level it is asked for).
+      const int dims = n.kind == NodeKind::kPolygon ? 2 : 3;
       std::string pts = "[";
+      pts.reserve(n.points.size() * 16 * static_cast<std::size_t>(dims));
       for (std::size_t i = 0; i < n.points.size(); ++i) {
-        if (i) pts += ", ";
-        pts += n.kind == NodeKind::kPolygon
-                   ? "[" + num(n.points[i].x) + ", " + num(n.points[i].y) + "]"
-                   : vec3(n.points[i]);
+        pts += i ? ", [" : "[";
+        for (int d = 0; d < dims; ++d) {
+          if (d) pts += ", ";
+          append_number(pts, n.points[i][d]);
+        }
+        pts += ']';
       }
       field("points", pts + "]");
       std::string fs = "[";
       for (std::size_t i = 0; i < n.faces.size(); ++i) {
         fs += i ? ", [" : "[";
-        for (std::size_t j = 0; j < n.faces[i].size(); ++j)
-          fs += (j ? ", " : "") + std::to_string(n.faces[i][j]);
-        fs += "]";
+        for (std::size_t j = 0; j < n.faces[i].size(); ++j) {
+          if (j) fs += ", ";
+          append_number(fs, n.faces[i][j]);
+        }
+        fs += ']';
       }
       field(n.kind == NodeKind::kPolygon ? "paths" : "faces", fs + "]");
       break;

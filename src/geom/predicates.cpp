@@ -103,16 +103,15 @@ int orient2d_projected(Vec3 a, Vec3 b, Vec3 c, int drop_axis) {
 
 bool collinear3d(Vec3 a, Vec3 b, Vec3 c) {
   // (b - a) x (c - a) == 0, one component (one projection) at a time, the largest
-  // rounded component first: a triangle in a plane parallel to an axis projects
+  // rounded component first (picked, not sorted: a million calls a heightfield): a triangle in a plane parallel to an axis projects
   // along it to a segment, whose exact test would come first for nothing.
   const Vec3 u = b - a, v = c - a;
   const double n[3] = {std::fabs(u.y * v.z - u.z * v.y), std::fabs(u.z * v.x - u.x * v.z),
                        std::fabs(u.x * v.y - u.y * v.x)};
-  int order[3] = {0, 1, 2};
-  std::sort(order, order + 3, [&](int x, int y) { return n[x] > n[y]; });
-  for (int axis : order) {
-    if (orient2d_projected(a, b, c, axis) != 0) return false;
-  }
+  const int first = n[0] >= n[1] ? (n[0] >= n[2] ? 0 : 2) : (n[1] >= n[2] ? 1 : 2);
+  if (orient2d_projected(a, b, c, first) != 0) return false;
+  for (int axis = 0; axis < 3; ++axis)
+    if (axis != first && orient2d_projected(a, b, c, axis) != 0) return false;
   return true;
 }
 
