@@ -334,7 +334,7 @@ class Builder {
       std::vector<const Model*> operands;
       for (std::size_t i : members[c]) operands.push_back(&parts[i].model);
       const auto start = Clock::now();
-      auto r = boolean::apply(boolean::Op::kUnion, operands);
+      auto r = boolean::apply(boolean::Op::kUnion, operands, boolean_options());
       stats_.boolean_seconds += seconds_since(start);
       ++stats_.booleans;
       stats_.boolean_operands += operands.size();
@@ -518,7 +518,7 @@ class Builder {
     std::vector<const Model*> operands;
     for (const Leaf& l : leaves) operands.push_back(&l.model);
     const auto start = Clock::now();
-    auto r = boolean::evaluate(operands, expr);
+    auto r = boolean::evaluate(operands, expr, boolean_options());
     stats_.boolean_seconds += seconds_since(start);
     ++stats_.booleans;
     stats_.boolean_operands += operands.size();
@@ -577,7 +577,7 @@ class Builder {
       operands.push_back(&moved[i]);
     }
     const auto start = Clock::now();
-    auto r = boolean::evaluate(operands, expr);
+    auto r = boolean::evaluate(operands, expr, boolean_options());
     stats_.boolean_seconds += seconds_since(start);
     ++stats_.booleans;
     ++stats_.booleans_in_frame;
@@ -730,6 +730,12 @@ class Builder {
   // met again in this build (GEB.scad's letters, built as a part and projected) is
   // built once.
   Model build_children(const Node& n) { return build_children_colored(n, std::nullopt).model; }
+
+  boolean::Options boolean_options() const {
+    boolean::Options o;
+    o.threads = options_.threads;
+    return o;
+  }
 
   // The same with the color of each face (`color` where the subtree gives none).
   Built build_children_colored(const Node& n, const Color& color) {

@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 
 #include "cellforge/csg/evaluator.h"
 #include "cellforge/csg/parser.h"
@@ -510,6 +511,26 @@ TEST(Command, ExitCodes) {
   EXPECT_EQ(cellforge(dir + "ok.scad -o out.xyz"), 2);
   EXPECT_EQ(cellforge(dir + "ok.scad --report yaml"), 2);
   EXPECT_EQ(cellforge(dir + "ok.scad -D novalue"), 2);
+  EXPECT_EQ(cellforge(dir + "ok.scad -D s=2 --threads 0"), 2);
+}
+
+// The Booleans' thread count changes nothing in the result, byte for byte (a part with
+// enough triangles that the stages do go on threads).
+TEST(Command, ThreadsBuildTheSameFile) {
+  const std::string dir = testing::TempDir() + "cf_build_threads/";
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir + "part.scad") << "difference() { sphere(10, $fn = 96); for (i = [0:7]) rotate(45 * i)\n"
+                                      "  translate([8, 0, 0]) cylinder(r = 2, h = 30, center = true, $fn = 48); }\n";
+  ASSERT_EQ(cellforge(dir + "part.scad --threads 1 -o " + dir + "one.stl"), 0);
+  ASSERT_EQ(cellforge(dir + "part.scad --threads 3 -o " + dir + "three.stl"), 0);
+  auto bytes = [](const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  const std::string one = bytes(dir + "one.stl");
+  EXPECT_GT(one.size(), 100000u);
+  EXPECT_EQ(one, bytes(dir + "three.stl"));
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

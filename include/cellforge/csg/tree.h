@@ -118,6 +118,9 @@ struct BuildOptions {
   std::string cache_dir;
   // Called as the top-level parts are built: (parts done, parts in all).
   std::function<void(std::size_t, std::size_t)> progress;
+  // Threads for each Boolean's stages (boolean::Options::threads; 0: every hardware
+  // thread). The result is the same at any count, bit for bit.
+  int threads = 1;
 };
 
 struct BuildStats {
