@@ -625,7 +625,7 @@ Result<BooleanResult> evaluate(std::span<const Model* const> operands, const Exp
   if (!result) return result.error();
 
   t = Clock::now();
-  if (report.rounding_self_intersections == kRoundingUnchecked)
+  if (report.rounding_self_intersections == kRoundingUnchecked && options.check_rounding)
     report.rounding_self_intersections = rounding_crossings(result->model, result->rounded, options.threads);
   report.seconds.check = seconds_since(t);
   report.exact_fallbacks = exact_evaluations() - exact_before;

@@ -653,29 +653,124 @@ Result<Shape2D> projection(const Model& solid, const ProjectionOptions& options)
     Model slab;
     if (auto built = build_mesh(slab, mesh); !built) return built.error();
     const Model* ms[] = {&solid, &slab};
-    auto r = evaluate(ms, Expr::over(Op::kIntersection, 2));
+    // Only the section is read, by the planar Boolean, exactly: no rounding check.
+    Options unchecked;
+    unchecked.check_rounding = false;
+    auto r = evaluate(ms, Expr::over(Op::kIntersection, 2), unchecked);
     if (!r) return r.error();
     return read_plane(r->model, &r->sources);
   }
-  // The shadow: the union of the faces that look up (outward normal with z > 0).
+  return shadow(solid, false);
+}
+
+// The shadow: the union of the faces that look up (outward normal with z > 0), the
+// points they cover at least once. With `by_faces` that union of every such face
+// (the planar arrangement of all their edges); otherwise, as projection() does it,
+// from their boundary alone. A point's cover count is the sum of the winding numbers
+// of those faces' loops about it (each looks up: counterclockwise seen from above),
+// and winding numbers add as chains do: an edge two of the faces share, run once each
+// way, cancels. What is left, the edges of the faces with no neighbour among them
+// (the silhouette and the rims of overhangs), winds about each point its cover count,
+// and the shadow is where that is positive: the rule planar_boolean reads an operand
+// by. A terrain of thousands of faces has a boundary of a few hundred edges.
+Result<Shape2D> shadow(const Model& solid, bool by_faces) {
   std::vector<Region> faces;
+  std::unordered_map<std::uint64_t, int> net;  // (lower id, higher id): uses lower -> higher minus the reverse
+  std::unordered_map<std::uint32_t, Vec2> at;
   for (FaceId f : solid.faces()) {
     const bool front = solid.front_volume(f).is_valid(), back = solid.back_volume(f).is_valid();
     if (front == back) continue;
     Region r;
+    std::vector<std::vector<VertexId>> ids;
     for (LoopId l : solid.loops_of(f)) {
       if (solid.is_point_loop(l)) continue;
+      std::vector<VertexId> vs = solid.loop_vertices(l);
+      if (front) std::reverse(vs.begin(), vs.end());
       std::vector<Vec2> loop;
-      for (const Vec3& p : solid.loop_points(l)) loop.push_back({p.x, p.y});
-      if (front) std::reverse(loop.begin(), loop.end());
+      for (VertexId v : vs) loop.push_back({solid.position(v).x, solid.position(v).y});
       r.loops.push_back(std::move(loop));
+      ids.push_back(std::move(vs));
     }
     // A face that is not vertical projects one to one (its edges stay edges).
     if (r.loops.empty() || area_sign(r.loops[0]) <= 0) continue;
-    faces.push_back(std::move(r));
+    if (by_faces) {
+      faces.push_back(std::move(r));
+      continue;
+    }
+    for (const auto& vs : ids)
+      for (std::size_t i = 0; i < vs.size(); ++i) {
+        const std::uint32_t u = vs[i].value, v = vs[(i + 1) % vs.size()].value;
+        if (u == v) continue;
+        at.try_emplace(u, Vec2{solid.position(vs[i]).x, solid.position(vs[i]).y});
+        net[(std::uint64_t{std::min(u, v)} << 32) | std::max(u, v)] += u < v ? 1 : -1;
+      }
   }
-  if (faces.empty()) return Shape2D{};
-  return normalized(std::move(faces));
+  if (by_faces) return faces.empty() ? Shape2D{} : normalized(std::move(faces));
+  // The remaining edges, each as often as it is left over, in cycles: from a vertex,
+  // along any unused edge out of it, until a vertex of the walk comes again.
+  std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> out;
+  std::vector<std::uint64_t> keys;
+  for (const auto& [key, n] : net)
+    if (n != 0) keys.push_back(key);
+  std::sort(keys.begin(), keys.end());  // the same cycles from run to run
+  for (std::uint64_t key : keys) {
+    const int n = net[key];
+    const auto lo = static_cast<std::uint32_t>(key >> 32), hi = static_cast<std::uint32_t>(key);
+    for (int k = 0; k < std::abs(n); ++k) out[n > 0 ? lo : hi].push_back(n > 0 ? hi : lo);
+  }
+  std::vector<std::uint32_t> starts;
+  for (const auto& [v, list] : out) starts.push_back(v);
+  std::sort(starts.begin(), starts.end());
+  Region holes;  // clockwise cycles, read as holes of a region whose outer loop has no area
+  std::vector<Region> regions;
+  std::vector<std::uint32_t> walk;
+  std::unordered_map<std::uint32_t, std::size_t> on_walk;
+  // A vertex has as many edges out as in (every face loop is closed), so a walk that
+  // reaches a vertex with none left out has closed every cycle it opened.
+  const auto emit = [&](std::vector<Vec2> loop) {
+    if (loop.size() < 3) return;
+    if (area_sign(loop) > 0) {
+      regions.push_back(Region{{std::move(loop)}});
+    } else {
+      holes.loops.push_back(std::move(loop));
+    }
+  };
+  for (const std::uint32_t start : starts) {
+    while (!out[start].empty()) {
+      walk.assign(1, start);
+      on_walk.clear();
+      on_walk[start] = 0;
+      for (std::uint32_t x = start; !(walk.size() == 1 && out[start].empty());) {
+        auto& next = out[x];
+        if (next.empty())
+          return Error{ErrorCode::kPrecondition, "projection: the boundary of the faces that look up is not closed"};
+        const std::uint32_t y = next.back();
+        next.pop_back();
+        x = y;
+        const auto it = on_walk.find(y);
+        if (it == on_walk.end()) {
+          on_walk[y] = walk.size();
+          walk.push_back(y);
+          continue;
+        }
+        // A cycle: the walk from y on; the walk up to y goes on from there.
+        const std::size_t from = it->second;
+        std::vector<Vec2> loop;
+        for (std::size_t k = from; k < walk.size(); ++k) loop.push_back(at.at(walk[k]));
+        for (std::size_t k = from + 1; k < walk.size(); ++k) on_walk.erase(walk[k]);
+        walk.resize(from + 1);
+        emit(std::move(loop));
+      }
+    }
+  }
+  if (regions.empty()) return Shape2D{};
+  if (!holes.loops.empty()) {
+    // Outer loop: a point and back, no area and no winding (planar.h).
+    const Vec2 p = holes.loops[0][0], q = holes.loops[0][1];
+    holes.loops.insert(holes.loops.begin(), std::vector<Vec2>{p, q, p});
+    regions.push_back(std::move(holes));
+  }
+  return normalized(std::move(regions));
 }
 
 }  // namespace cellforge::boolean

@@ -1260,10 +1260,11 @@ Result<BooleanResult> build_result(Arrangement& a, Selection selection, const Ex
   for (std::uint32_t i = 0; i < point_of.size(); ++i) inexact[i] = !a.rounds_exactly(point_of[i]);
   // The repair's last check tiles each face as the exporters tile the face it becomes
   // (tile_face), so a clean check there is the count on the built model.
-  const bool clean = nudge_rounding(
-      in, inexact,
-      [&](std::uint32_t i, int axis) { return a.coordinate_is(point_of[i], axis, in.positions[i][axis]); },
-      threads);
+  const bool clean = options.check_rounding &&
+                     nudge_rounding(
+                         in, inexact,
+                         [&](std::uint32_t i, int axis) { return a.coordinate_is(point_of[i], axis, in.positions[i][axis]); },
+                         threads);
   if (clean) report.rounding_self_intersections = 0;  // else kRoundingUnchecked (evaluate)
   // Provenance, by face as given to the builder.
   auto source_of = [&](const OutPoly& p) {

@@ -24,4 +24,9 @@ Result<Evaluated2D> planar_boolean(std::span<const shape::Shape2D> operands, con
 // Operands must be non-empty and their loops of nonzero area.
 Result<Evaluated2D> lifted_boolean(std::span<const shape::Shape2D> operands, const Expr& expr);
 
+// projection()'s shadow of a solid (ops2d.cpp): from the boundary of its faces that
+// look up, or with `by_faces` as the union of those faces themselves (the route
+// projection took before, kept for the tests).
+Result<shape::Shape2D> shadow(const topo::Model& solid, bool by_faces);
+
 }  // namespace cellforge::boolean

@@ -3,8 +3,12 @@
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <map>
+#include <mutex>
+#include <optional>
+#include <unordered_map>
 
 #include "cellforge/shape/faceting.h"
 
@@ -617,18 +621,55 @@ void fnv1a(std::uint64_t& h, const char* data, std::size_t size) {
   }
 }
 
-// Every imported file's path, size and bytes, in tree order.
+// A file's bytes digested (FNV-1a) with their count; nullopt when it cannot be read.
+// Memoized by path, size and modification time: every subtree above an import asks
+// for its key (projection.scad hashed its 730 kB STL some fifty times).
+struct FileDigest {
+  std::uint64_t hash = 0;
+  std::size_t length = 0;
+};
+std::optional<FileDigest> file_digest(const std::string& path) {
+  std::error_code ec;
+  const auto size = std::filesystem::file_size(path, ec);
+  const auto time = ec ? std::filesystem::file_time_type{} : std::filesystem::last_write_time(path, ec);
+  if (ec) return std::nullopt;
+  struct Entry {
+    std::uintmax_t size;
+    std::filesystem::file_time_type time;
+    FileDigest digest;
+  };
+  static std::mutex lock;
+  static std::unordered_map<std::string, Entry> memo;
+  {
+    std::lock_guard hold(lock);
+    if (auto it = memo.find(path); it != memo.end() && it->second.size == size && it->second.time == time)
+      return it->second.digest;
+  }
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return std::nullopt;
+  FileDigest d;
+  d.hash = 1469598103934665603ull;
+  char buf[1 << 16];
+  while (in) {
+    in.read(buf, sizeof buf);
+    fnv1a(d.hash, buf, static_cast<std::size_t>(in.gcount()));
+    d.length += static_cast<std::size_t>(in.gcount());
+  }
+  std::lock_guard hold(lock);
+  memo[path] = {size, time, d};
+  return d;
+}
+
+// Every imported file's path and digest, in tree order.
 void hash_imports(const Node& n, std::uint64_t& h, std::size_t& length) {
   if (n.kind == NodeKind::kImport) {
-    std::ifstream in(n.path, std::ios::binary);
-    std::string tag = in ? "\nfile " + n.path + "\n" : "\nunreadable " + n.path + "\n";
+    const std::optional<FileDigest> d = file_digest(n.path);
+    const std::string tag = d ? "\nfile " + n.path + "\n" : "\nunreadable " + n.path + "\n";
     fnv1a(h, tag.data(), tag.size());
     length += tag.size();
-    char buf[1 << 16];
-    while (in) {
-      in.read(buf, sizeof buf);
-      fnv1a(h, buf, static_cast<std::size_t>(in.gcount()));
-      length += static_cast<std::size_t>(in.gcount());
+    if (d) {
+      fnv1a(h, reinterpret_cast<const char*>(&d->hash), sizeof d->hash);
+      length += d->length;
     }
   }
   for (const NodePtr& c : n.children) hash_imports(*c, h, length);

@@ -659,6 +659,80 @@ TEST(Projection, CutOnTheBoundaryFollowsTheSolidAbove) {
   EXPECT_TRUE(none->empty());
 }
 
+// A box of the given sizes with its lowest corner at the origin, turned and moved by t.
+Model turned_box(Vec3 size, const shape::Transform& t) {
+  std::vector<Vec3> p;
+  for (const Vec3 c : {Vec3{0, 0, 0}, Vec3{1, 0, 0}, Vec3{1, 1, 0}, Vec3{0, 1, 0}, Vec3{0, 0, 1}, Vec3{1, 0, 1},
+                       Vec3{1, 1, 1}, Vec3{0, 1, 1}})
+    p.push_back(t.apply({c.x * size.x, c.y * size.y, c.z * size.z}));
+  Model m;
+  // Triangles: a turn rounds the corners off the quads' planes.
+  auto built = shape::make_polyhedron(m, {.points = p,
+                                          .faces = {{0, 1, 2}, {0, 2, 3}, {4, 7, 6}, {4, 6, 5}, {0, 4, 5}, {0, 5, 1},
+                                                    {1, 5, 6}, {1, 6, 2}, {2, 6, 7}, {2, 7, 3}, {3, 7, 4}, {3, 4, 0}}});
+  EXPECT_TRUE(built.ok()) << built.error().message;
+  return m;
+}
+
+// projection() takes the shadow from the boundary of the faces that look up (their
+// shared edges cancel; the rest winds about each point as often as the faces cover
+// it). The union of those faces themselves, the route it took before, must give the
+// same point set: on boxes turned every way, united or cut from one another (faces
+// that overlap in the plane, overhangs, holes), and on a C whose slot floor lies
+// under its top.
+TEST(Projection, ShadowFromTheBoundaryIsTheUnionOfTheFacesThatLookUp) {
+  const auto same = [](const Shape2D& a, const Shape2D& b) {
+    return op(Op::kDifference, {a, b}).empty() && op(Op::kDifference, {b, a}).empty();
+  };
+  std::mt19937_64 rng(1207);
+  std::uniform_real_distribution<double> angle(0, 360), place(-1.5, 1.5), size(0.5, 3);
+  int holes = 0;
+  for (int round = 0; round < 40; ++round) {
+    std::vector<Model> boxes;
+    for (int k = 0; k < 3; ++k)
+      boxes.push_back(turned_box({size(rng), size(rng), size(rng)},
+                                 shape::Transform::translate({place(rng), place(rng), place(rng)}) *
+                                     shape::Transform::rotate_xyz({angle(rng), angle(rng), angle(rng)})));
+    const Model* ops[] = {&boxes[0], &boxes[1], &boxes[2]};
+    const Expr e = round % 2 == 0 ? Expr::over(Op::kUnion, 3)
+                                  : Expr::op(Op::kDifference, {Expr::of(0), Expr::of(1), Expr::of(2)});
+    auto r = evaluate(ops, e);
+    ASSERT_OK(r);
+    auto from_boundary = shadow(r->model, false);
+    auto by_faces = shadow(r->model, true);
+    ASSERT_OK(from_boundary);
+    ASSERT_OK(by_faces);
+    EXPECT_TRUE(same(*from_boundary, *by_faces)) << "round " << round;
+    EXPECT_EQ(from_boundary->empty(), r->model.num_faces() == 0) << "round " << round;
+    for (const Region& g : from_boundary->regions) holes += static_cast<int>(g.loops.size()) - 1;
+  }
+  // A C: 3 x 1 x 3 with a slot 2 deep and 1 high cut from its side at mid height.
+  Model block = turned_box({3, 1, 3}, shape::Transform::identity());
+  Model slot = turned_box({2, 2, 1}, shape::Transform::translate({1, -0.5, 1}));
+  const Model* ops[] = {&block, &slot};
+  auto c = apply(Op::kDifference, ops);
+  ASSERT_OK(c);
+  auto from_boundary = shadow(c->model, false);
+  ASSERT_OK(from_boundary);
+  EXPECT_TRUE(same(*from_boundary, *shadow(c->model, true)));
+  EXPECT_DOUBLE_EQ(area(*from_boundary), 3);
+  ASSERT_EQ(from_boundary->regions.size(), 1u);
+  EXPECT_EQ(from_boundary->regions[0].loops[0].size(), 4u);
+  // A frame: a 3 x 3 x 1 block with a 1 x 1 hole through it; its shadow has the hole.
+  Model frame = turned_box({3, 3, 1}, shape::Transform::identity());
+  Model hole = turned_box({1, 1, 3}, shape::Transform::translate({1, 1, -1}));
+  const Model* frame_ops[] = {&frame, &hole};
+  auto f = apply(Op::kDifference, frame_ops);
+  ASSERT_OK(f);
+  auto ring = shadow(f->model, false);
+  ASSERT_OK(ring);
+  EXPECT_TRUE(same(*ring, *shadow(f->model, true)));
+  EXPECT_DOUBLE_EQ(area(*ring), 8);
+  ASSERT_EQ(ring->regions.size(), 1u);
+  EXPECT_EQ(ring->regions[0].loops.size(), 2u);
+  RecordProperty("holes", holes);
+}
+
 TEST(Projection, SphereCutAndShadowAreTheEquatorialPolygon) {
   // fn = 16: 8 rings at polar angles 180 (i + 0.5) / 8; rings 3 and 4 (78.75 and
   // 101.25 degrees) have one radius, so the band between them is vertical.

@@ -65,6 +65,12 @@ struct Options {
   // through the convex pieces it crosses. The same point sets, with more vertices
   // and slower; for comparisons (tests, benchmarks).
   bool convex_split = false;
+  // The result's rounded vertices checked exactly for crossings they made, and moved
+  // to a neighbouring double where that removes them (stages.h). false: rounded to
+  // nearest and not checked (Report::rounding_self_intersections is then SIZE_MAX),
+  // for a caller that reads the result again exactly rather than using it as a solid
+  // (projection(cut = true) takes the section's faces to the planar Boolean).
+  bool check_rounding = true;
 };
 
 // Where a result face came from.
