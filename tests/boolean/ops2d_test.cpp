@@ -706,30 +706,31 @@ TEST(Projection, ShadowFromTheBoundaryIsTheUnionOfTheFacesThatLookUp) {
     EXPECT_EQ(from_boundary->empty(), r->model.num_faces() == 0) << "round " << round;
     for (const Region& g : from_boundary->regions) holes += static_cast<int>(g.loops.size()) - 1;
   }
+  // A box with a box cut from it, at the origin and at `at`: its shadow, which must be
+  // the faces' union too.
+  const auto cut_shadow = [&](Vec3 size, Vec3 cut, Vec3 at) {
+    Model block = turned_box(size, shape::Transform::identity());
+    Model taken = turned_box(cut, shape::Transform::translate(at));
+    const Model* ops[] = {&block, &taken};
+    auto r = apply(Op::kDifference, ops);
+    EXPECT_TRUE(r.ok());
+    if (!r.ok()) return Shape2D{};
+    auto from_boundary = shadow(r->model, false);
+    EXPECT_TRUE(from_boundary.ok());
+    if (!from_boundary.ok()) return Shape2D{};
+    EXPECT_TRUE(same(*from_boundary, *shadow(r->model, true)));
+    return *from_boundary;
+  };
   // A C: 3 x 1 x 3 with a slot 2 deep and 1 high cut from its side at mid height.
-  Model block = turned_box({3, 1, 3}, shape::Transform::identity());
-  Model slot = turned_box({2, 2, 1}, shape::Transform::translate({1, -0.5, 1}));
-  const Model* ops[] = {&block, &slot};
-  auto c = apply(Op::kDifference, ops);
-  ASSERT_OK(c);
-  auto from_boundary = shadow(c->model, false);
-  ASSERT_OK(from_boundary);
-  EXPECT_TRUE(same(*from_boundary, *shadow(c->model, true)));
-  EXPECT_DOUBLE_EQ(area(*from_boundary), 3);
-  ASSERT_EQ(from_boundary->regions.size(), 1u);
-  EXPECT_EQ(from_boundary->regions[0].loops[0].size(), 4u);
+  const Shape2D c = cut_shadow({3, 1, 3}, {2, 2, 1}, {1, -0.5, 1});
+  EXPECT_DOUBLE_EQ(area(c), 3);
+  ASSERT_EQ(c.regions.size(), 1u);
+  EXPECT_EQ(c.regions[0].loops[0].size(), 4u);
   // A frame: a 3 x 3 x 1 block with a 1 x 1 hole through it; its shadow has the hole.
-  Model frame = turned_box({3, 3, 1}, shape::Transform::identity());
-  Model hole = turned_box({1, 1, 3}, shape::Transform::translate({1, 1, -1}));
-  const Model* frame_ops[] = {&frame, &hole};
-  auto f = apply(Op::kDifference, frame_ops);
-  ASSERT_OK(f);
-  auto ring = shadow(f->model, false);
-  ASSERT_OK(ring);
-  EXPECT_TRUE(same(*ring, *shadow(f->model, true)));
-  EXPECT_DOUBLE_EQ(area(*ring), 8);
-  ASSERT_EQ(ring->regions.size(), 1u);
-  EXPECT_EQ(ring->regions[0].loops.size(), 2u);
+  const Shape2D ring = cut_shadow({3, 3, 1}, {1, 1, 3}, {1, 1, -1});
+  EXPECT_DOUBLE_EQ(area(ring), 8);
+  ASSERT_EQ(ring.regions.size(), 1u);
+  EXPECT_EQ(ring.regions[0].loops.size(), 2u);
   RecordProperty("holes", holes);
 }
 
