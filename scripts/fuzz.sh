@@ -40,20 +40,36 @@ for fmt in $FORMATS; do
 done
 cmake --build "$OUT" -j "$JOBS" --target "${targets[@]}"
 
-status=0
+# One fuzzer per core at a time (each is one process); reports in the order of FORMATS.
+run_one() {
+  local fmt=$1 bin=$OUT/bin/fuzz_$1 corpus=$OUT/corpus/$1 crashes=$OUT/crashes/$1 rc=0
+  ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 \
+    "$bin" -max_total_time="$SECONDS_EACH" -max_len=65536 -timeout=10 -rss_limit_mb=2048 \
+    -artifact_prefix="$crashes/" -print_final_stats=1 "$corpus" > "$OUT/fuzz_$fmt.log" 2>&1 || rc=$?
+  echo $rc > "$OUT/fuzz_$fmt.rc"
+}
+running=0
 for fmt in $FORMATS; do
-  bin=$OUT/bin/fuzz_$fmt
   corpus=$OUT/corpus/$fmt
-  crashes=$OUT/crashes/$fmt
-  mkdir -p "$corpus" "$crashes"
+  mkdir -p "$corpus" "$OUT/crashes/$fmt"
+  rm -f "$OUT/fuzz_$fmt.rc"
   cp "$ROOT"/tests/data/*."$fmt" "$corpus"/ 2>/dev/null || true
   cp "$ROOT"/tests/fuzz/found/*."$fmt" "$corpus"/ 2>/dev/null || true
   [ "$fmt" = scad ] && cp "$ROOT"/tests/scad/*.scad "$ROOT"/tests/scad/lib/*.scad "$corpus"/
   echo "fuzz.sh: $fmt for ${SECONDS_EACH}s on $(ls "$corpus" | wc -l) inputs"
-  if ! ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 \
-       "$bin" -max_total_time="$SECONDS_EACH" -max_len=65536 -timeout=10 -rss_limit_mb=2048 \
-       -artifact_prefix="$crashes/" -print_final_stats=1 "$corpus" > "$OUT/fuzz_$fmt.log" 2>&1; then
-    echo "fuzz.sh: $fmt FAILED; see $OUT/fuzz_$fmt.log and $crashes/"
+  run_one "$fmt" &
+  running=$((running + 1))
+  if [ "$running" -ge "$JOBS" ]; then
+    wait -n || true
+    running=$((running - 1))
+  fi
+done
+wait || true
+
+status=0
+for fmt in $FORMATS; do
+  if [ "$(cat "$OUT/fuzz_$fmt.rc" 2>/dev/null || echo missing)" != 0 ]; then
+    echo "fuzz.sh: $fmt FAILED; see $OUT/fuzz_$fmt.log and $OUT/crashes/$fmt/"
     tail -n 30 "$OUT/fuzz_$fmt.log"
     status=1
   else

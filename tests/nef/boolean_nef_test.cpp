@@ -637,9 +637,9 @@ TEST(BooleanNefOpen, BoxMinusAPyramidTouchingItsFaceAtACorner) {
 // sanitizers (./test.sh's second run: a Debug build, some 20 times slower) the first 600
 // seeds look for memory errors; the agreement itself is the normal build's.
 #if defined(__SANITIZE_ADDRESS__)
-constexpr std::uint64_t kOpenRandomSeeds = 600;
+constexpr std::uint64_t kOpenRandomSeeds = 300;
 #else
-constexpr std::uint64_t kOpenRandomSeeds = 6000;
+constexpr std::uint64_t kOpenRandomSeeds = 3000;
 #endif
 TEST(BooleanNefOpen, RandomBoxesAndPyramids) { random_cases(false, {1, kOpenRandomSeeds}); }
 
