@@ -264,6 +264,16 @@ int Arrangement::side(const Cluster& c, const Line& l, std::uint32_t p) const {
   int s = sign_of(l.A * hf.u + l.B * hf.v + l.C * hf.w);
   if (const int ws = sign_of(hf.w); s != kUncertain && ws != kUncertain) return s * ws;
   if (s == kUncertain) {
+    // A line u = x (or v = x) with x a known double, and a point whose coordinate
+    // there is known too (the common undecided case: a point on an axis-parallel
+    // line, whose zero no filter can tell): A (u - x) with A's sign known.
+    if (l.fixed != 0) {
+      double x = 0;
+      if (known_coordinate(p, (c.k + l.fixed) % 3, x))
+        return (x < l.at ? -1 : (x > l.at ? 1 : 0)) * (l.fixed == 1 ? l.sign_a : l.sign_b);
+    }
+    // An input vertex and the line through two: orient2d of their doubles.
+    if (p < pos.size() && l.kind == LineKind::kThrough) return orient2d_projected(pos[l.a], pos[l.b], pos[p], c.k);
     // Where segment ab meets this cluster's plane, on the line through input vertices
     // e, f in it: exactly when ab and ef are coplanar (ab crosses the plane at one
     // point), an orient3d of input doubles rather than the point's exact coordinates.
@@ -289,6 +299,10 @@ int Arrangement::along(const Cluster& c, const Line& l, std::uint32_t p, std::ui
   const H2<Fp> a = point2<Fp>(c, p), b = point2<Fp>(c, q);
   const int fs = sign_of(poly(a, b)), wa = sign_of(a.w), wb = sign_of(b.w);
   if (fs != kUncertain && wa != kUncertain && wb != kUncertain) return fs * wa * wb * dir;
+  // Both coordinates known doubles (points on axis-parallel lines): compared as such.
+  if (double x, y; known_coordinate(p, (c.k + (use_u ? 1 : 2)) % 3, x) &&
+                   known_coordinate(q, (c.k + (use_u ? 1 : 2)) % 3, y))
+    return (x < y ? -1 : (x > y ? 1 : 0)) * dir;
   const int s = decide([&]<class T>() { return poly(point2<T>(c, p), point2<T>(c, q)); });
   return s * w2_sign(c, p) * w2_sign(c, q) * dir;
 }
@@ -650,6 +664,30 @@ std::uint32_t Arrangement::add_line(Cluster& c, Line l) {
   if (sb == kUncertain) sb = decide([&]<class T>() { return line_coeffs<T>(*this, c, l)[1]; });
   l.sign_a = static_cast<std::int8_t>(sa);
   l.sign_b = static_cast<std::int8_t>(sb);
+  // A u + C = 0 (B exactly 0) or B v + C = 0: the double it fixes, where one is known.
+  if (sa == 0 || sb == 0) {
+    const int ax = (c.k + (sb == 0 ? 1 : 2)) % 3;
+    const auto constant = [&](std::uint32_t s, std::uint32_t t) { return pos[s][ax] == pos[t][ax]; };
+    bool known = false;
+    switch (l.kind) {
+      case LineKind::kThrough:
+        known = constant(l.a, l.b);  // (true here: B or A is exactly 0)
+        if (known) l.at = pos[l.a][ax];
+        break;
+      case LineKind::kTrace: {
+        const Tri& o = tris[l.a];
+        known = constant(o.v[0], o.v[1]) && constant(o.v[0], o.v[2]);
+        if (known) l.at = pos[o.v[0]][ax];
+        break;
+      }
+      case LineKind::kAxisU:
+      case LineKind::kAxisV:
+        known = true;
+        l.at = l.c;
+        break;
+    }
+    if (known) l.fixed = static_cast<std::int8_t>(sb == 0 ? 1 : 2);
+  }
   c.lines().push_back(std::move(l));
   return static_cast<std::uint32_t>(c.lines().size() - 1);
 }

@@ -178,6 +178,11 @@ struct Line {
   double c = 0;                // kAxisU: u = c; kAxisV: v = c
   Fp A, B, C;                  // the coefficients, filtered
   std::int8_t sign_a = 0, sign_b = 0;  // the signs of A and B, exactly (add_line)
+  // 1: the line is u = at, 2: v = at, a double known exactly (an axis line, an edge
+  // whose ends share that coordinate, the trace of a plane perpendicular to that
+  // axis); 0: neither (add_line). Sides on it then compare one known coordinate.
+  std::int8_t fixed = 0;
+  double at = 0;
   std::uint32_t key = 0;       // global line key (Arrangement::line_key)
   std::vector<std::uint32_t> points;  // points found on it
 
