@@ -511,6 +511,7 @@ Result<Arrangement> make_soup(std::span<const Model* const> operands, int thread
         f.quad = true;
         f.fold = static_cast<std::int8_t>(orient3d(pos[q[0]], pos[q[1]], pos[q[2]], pos[q[3]]));
         f.planar = f.fold == 0;
+        f.convex = f.planar && f.tris.size() == 2 && strictly_convex(pos, q, tris[f.tris[0]]);
         continue;
       }
       const Tri& t0 = tris[f.tris[0]];

@@ -89,9 +89,11 @@ struct SplitScratch {
     std::uint32_t line, p, q;
     auto operator<=>(const Segment&) const = default;
   };
-  struct TriSides {
-    std::uint32_t line[3];
-    int inner[3];  // the side of the opposite corner
+  struct TriSides {  // a triangle's edges, or a convex quad's when both its tiles are here
+    std::uint32_t line[4];
+    std::uint32_t end[4][2];
+    int inner[4];  // the side of the triangle's (or quad's) other corners
+    int n;
   };
   struct Edge {
     std::uint32_t a, b, line;  // local vertices (roots)
@@ -207,15 +209,40 @@ bool Arrangement::split_cluster_graph(std::uint32_t ci, SplitScratch& scratch) {
     const Tri& tri = tris[t];
     auto [at, fresh] = tri_sides.try_emplace(t);
     TriSides& ts = at->second;
-    if (fresh)
-      for (int e = 0; e < 3; ++e) {
-        ts.line[e] = through_line(tri.v[e], tri.v[(e + 1) % 3]);
-        ts.inner[e] = side_of(ts.line[e], tri.v[(e + 2) % 3]);
+    if (fresh) {
+      // A tile of a strictly convex quad whose diagonal is open (the other tile is in
+      // this cluster, and nothing else uses the diagonal): the quad's four edges, so
+      // that a cut across the quad is one segment, with no point on the diagonal.
+      const SoupFace& f = faces[tri.input_face];
+      int open = -1;
+      for (int e = 0; e < 3; ++e)
+        if (open_edges[t] & (1u << e)) open = e;
+      ts.n = 0;
+      if (f.quad && f.convex && open >= 0) {
+        const auto loop = loops_of(f)[0];
+        for (int e = 0; e < 4; ++e) {
+          const std::uint32_t a = loop[e], b = loop[(e + 1) % 4];
+          ts.end[e][0] = a;
+          ts.end[e][1] = b;
+          ts.line[e] = through_line(a, b);
+          ts.inner[e] = side_of(ts.line[e], loop[(e + 2) % 4]);
+        }
+        ts.n = 4;
+      } else {
+        for (int e = 0; e < 3; ++e) {
+          ts.end[e][0] = tri.v[e];
+          ts.end[e][1] = tri.v[(e + 1) % 3];
+          ts.line[e] = through_line(tri.v[e], tri.v[(e + 1) % 3]);
+          ts.inner[e] = side_of(ts.line[e], tri.v[(e + 2) % 3]);
+        }
+        ts.n = 3;
       }
+    }
     const std::uint32_t* el = ts.line;
-    int sp[3], sq[3];
+    const int n = ts.n;
+    int sp[4], sq[4];
     bool inside = true;
-    for (int e = 0; e < 3; ++e) {
+    for (int e = 0; e < n; ++e) {
       sp[e] = side_of(el[e], p) * ts.inner[e];
       sq[e] = side_of(el[e], q) * ts.inner[e];
       if (sp[e] < 0 && sq[e] < 0) return;
@@ -225,20 +252,20 @@ bool Arrangement::split_cluster_graph(std::uint32_t ci, SplitScratch& scratch) {
       segments.push_back({line, p, q});
       return;
     }
-    for (int e = 0; e < 3; ++e) {
+    for (int e = 0; e < n; ++e) {
       if (sp[e] > 0 || sq[e] > 0) continue;  // both on the line, or one outside, one on it
       if (sp[e] == 0 && sq[e] == 0) continue;
       const std::uint32_t x = sp[e] == 0 ? p : q;
       const int* sx = sp[e] == 0 ? sp : sq;
-      if (sx[0] >= 0 && sx[1] >= 0 && sx[2] >= 0) touching.push_back({x, line});
+      if (std::all_of(sx, sx + n, [](int v) { return v >= 0; })) touching.push_back({x, line});
       return;
     }
     const int dir = along_of(line, p, q);  // -1: p first along the line
     if (dir == 0) return;
     std::uint32_t in_p = p, in_q = q;  // the ends, moved in
-    for (int e = 0; e < 3; ++e) {
+    for (int e = 0; e < n; ++e) {
       if (sp[e] >= 0 && sq[e] >= 0) continue;
-      const std::uint32_t a = tri.v[e], b = tri.v[(e + 1) % 3];
+      const std::uint32_t a = ts.end[e][0], b = ts.end[e][1];
       // Where the line crosses el: at a or b when it passes through that corner (no
       // second name for the input vertex), else their crossing point.
       const std::uint32_t x = side_of(line, a) == 0 ? a : (side_of(line, b) == 0 ? b : cross_of(line, el[e]));
