@@ -259,6 +259,7 @@ bool nudge_rounding(MeshInput& in, const std::vector<char>& inexact,
             }
     bool changed = false;
     retile.clear();
+    std::vector<char> stale(nf, 0);  // a vertex of the face moved in this round
     std::vector<std::uint32_t> scratch;
     for (std::uint32_t v : suspects) {
       std::vector<std::uint32_t>& fs = faces_at[v];
@@ -272,6 +273,20 @@ bool nudge_rounding(MeshInput& in, const std::vector<char>& inexact,
         Tiling t;
         for (std::uint32_t f : fs)
           for (const Tri3& x : tile_face(in, in.faces[f])) t.push_back({f, x});
+        return t;
+      };
+      // The same, with v where it is: the round's tilings where none of a face's
+      // vertices has moved since (a face with many holes, such as a cut through a
+      // Menger sponge, is around many suspects, and tiling it is the most of a check).
+      const auto tiling_here = [&] {
+        Tiling t;
+        for (std::uint32_t f : fs) {
+          if (stale[f]) {
+            tiles[f] = tile_face(in, in.faces[f]);
+            stale[f] = 0;
+          }
+          for (const Tri3& x : tiles[f]) t.push_back({f, x});
+        }
         return t;
       };
       const auto crosses = [&](const Tri3& x, const Tri3& y) {
@@ -312,7 +327,7 @@ bool nudge_rounding(MeshInput& in, const std::vector<char>& inexact,
       // it is, on which only v's tiles move and only their pairs count, and the best
       // place is checked on its own tiling when that differs.
       constexpr std::size_t kRetileAtEveryPlace = 256;
-      const Tiling first = tiling();
+      const Tiling first = tiling_here();
       const bool retiling = first.size() <= kRetileAtEveryPlace;
       const std::vector<std::pair<Tri3, Tri3>> pairs = pairs_of(first, !retiling);
       // The pairs that cross with v at its best place so far (while that place has
@@ -382,6 +397,7 @@ bool nudge_rounding(MeshInput& in, const std::vector<char>& inexact,
       if (!(in.positions[v] == start)) {
         changed = true;
         retile.insert(retile.end(), fs.begin(), fs.end());
+        for (std::uint32_t f : fs) stale[f] = 1;
       }
     }
     if (!changed) {
