@@ -55,6 +55,23 @@ bool Expr::contains(const std::vector<bool>& inside) const {
   return false;
 }
 
+Expr Expr::flattened() const {
+  if (kind == Kind::kOperand) return *this;
+  Expr out{kind, operand, {}};
+  for (std::size_t i = 0; i < children.size(); ++i) {
+    Expr c = children[i].flattened();
+    // What a child may be spliced as: the same operation, or for a difference its
+    // first child's difference and the unions it takes away.
+    const Kind splice = kind != Kind::kDifference ? kind : (i == 0 ? Kind::kDifference : Kind::kUnion);
+    if (c.kind == splice && !c.children.empty()) {
+      for (Expr& g : c.children) out.children.push_back(std::move(g));
+    } else {
+      out.children.push_back(std::move(c));
+    }
+  }
+  return out;
+}
+
 int Expr::max_operand() const {
   int m = kind == Kind::kOperand ? operand : -1;
   for (const Expr& c : children) m = std::max(m, c.max_operand());

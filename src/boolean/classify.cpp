@@ -420,11 +420,12 @@ class RayCaster {
 
 // The expression on the windings of a point's two sides. A flat expression (one
 // union, intersection or difference of distinct operands, as a run of OpenSCAD's set
-// operations becomes) is decided from the operands the ray met alone; any other
-// through Expr::contains.
+// operations becomes once nested runs are made one) is decided from the operands the
+// ray met alone; any other through Expr::contains.
 class Selector {
  public:
-  Selector(const Expr& expr, std::size_t operands) : expr_(expr), member_(operands, 0) {
+  Selector(const Expr& e, std::size_t operands) : expr_(e.flattened()), member_(operands, 0) {
+    const Expr& expr = expr_;
     flat_ = expr.kind != Expr::Kind::kOperand && !expr.children.empty();
     for (const Expr& c : expr.children) {
       flat_ &= c.kind == Expr::Kind::kOperand && c.operand >= 0 &&
@@ -514,7 +515,7 @@ class Selector {
     return false;
   }
 
-  const Expr& expr_;
+  const Expr expr_;
   std::vector<char> member_;
   bool flat_ = false;
   std::uint32_t first_ = 0;

@@ -44,6 +44,12 @@ struct Expr {
   static Expr over(Op o, int n);
   // Whether a point inside exactly the operands marked in `inside` is in the result.
   bool contains(const std::vector<bool>& inside) const;
+  // The same set with nested runs of one operation made one: a union's unions and an
+  // intersection's intersections spliced in, and a difference's first difference and
+  // the unions it takes away (A - (B u C) - D = A - B - C - D); a child with no children
+  // stays (an empty intersection is empty). The classification decides a flat
+  // expression from the operands a ray met alone.
+  Expr flattened() const;
   // The largest operand index named, or -1.
   int max_operand() const;
 };
