@@ -41,6 +41,39 @@ int filtered_sign(double value, double bound) {
   return 0;
 }
 
+// The exact stage's common case, points close together (neighbours on a mesh's
+// lines): when the four differences are exact doubles, the determinant is the
+// difference of two products p - q, each held exactly by a double and an fma
+// residual. Two products that round apart differ in that order (each lies within
+// half a spacing of its rounding, and a tie rounds both one way); equal roundings
+// leave the residuals, whose rounded difference has the exact one's sign. Products
+// that overflow or come near the subnormals (where a residual may be inexact) are
+// left to the expansions (kUndecided).
+constexpr int kUndecided = 2;
+
+bool exact_difference(double x, double y, double& d) {
+  d = x - y;
+  const double yv = x - d;  // Two_Diff's tail: zero exactly when d is exact
+  const double dv = d + yv;
+  return (yv - y) + (x - dv) == 0;
+}
+
+int orient2d_two_products(Vec2 a, Vec2 b, Vec2 c) {
+  double ux, uy, vx, vy;
+  if (!exact_difference(b.x, a.x, ux) || !exact_difference(c.y, a.y, vy) ||
+      !exact_difference(b.y, a.y, uy) || !exact_difference(c.x, a.x, vx))
+    return kUndecided;
+  const double p = ux * vy, q = uy * vx;
+  constexpr double kTiny = 0x1p-900, kHuge = 0x1p+1000;
+  const auto safe = [&](double x, double m, double n) {
+    return m == 0 || n == 0 || (std::fabs(x) > kTiny && std::fabs(x) < kHuge);
+  };
+  if (!safe(p, ux, vy) || !safe(q, uy, vx)) return kUndecided;
+  if (p != q) return p > q ? 1 : -1;
+  const double rp = std::fma(ux, vy, -p), rq = std::fma(uy, vx, -q);
+  return (rp > rq) - (rp < rq);
+}
+
 int orient2d_exact(Vec2 a, Vec2 b, Vec2 c) {
   const auto det =
       exact_diff(b.x, a.x) * exact_diff(c.y, a.y) - exact_diff(b.y, a.y) * exact_diff(c.x, a.x);
@@ -72,6 +105,7 @@ int orient2d(Vec2 a, Vec2 b, Vec2 c) {
   if (s != 0) return s;
   // Three points on one axis-parallel line: 0 without the exact stage.
   if ((a.x == b.x && a.x == c.x) || (a.y == b.y && a.y == c.y)) return 0;
+  if (const int t = orient2d_two_products(a, b, c); t != kUndecided) return t;
   return orient2d_exact(a, b, c);
 }
 

@@ -193,6 +193,33 @@ TEST(Orient2d, PermutationsOverRandomCases) {
   EXPECT_GE(zeros, 2000);  // every lattice case is collinear
 }
 
+// Points a few units apart with full 53-bit mantissas: their differences are exact
+// (Sterbenz), their products are not, and many triples are collinear or within a
+// unit of it, the cases orient2d decides from two products and their fma residuals.
+// Beside them, the same triples moved far apart (inexact differences: the expansions).
+TEST(Orient2d, CloseTriplesMatchTheOracle) {
+  std::mt19937_64 rng(20261207);
+  std::uniform_real_distribution<double> unit(1.0, 2.0);
+  int zeros = 0, near = 0;
+  for (int n = 0; n < 200000; ++n) {
+    const double scale = std::ldexp(1.0, static_cast<int>(rng() % 40) - 20);
+    const Vec2 a{unit(rng) * scale, unit(rng) * scale};
+    const Vec2 d{unit(rng) * scale * 0.25, unit(rng) * scale * 0.25};
+    const int t = static_cast<int>(rng() % 4) - 1;
+    Vec2 b{a.x + d.x, a.y + d.y}, c{a.x + t * d.x, a.y + t * d.y};
+    if (rng() % 2) c.x = std::nextafter(c.x, rng() % 2 ? 10.0 * scale : 0.0);
+    if (n % 5 == 0) b = {b.x * 1e10, b.y * -3e9};
+    const int want = oracle_orient2d(a, b, c);
+    ASSERT_EQ(orient2d(a, b, c), want) << n;
+    ASSERT_EQ(orient2d(b, c, a), want) << n;
+    ASSERT_EQ(orient2d(c, b, a), -want) << n;
+    zeros += want == 0;
+    near += want != 0 && naive_orient2d(a, b, c) != want;
+  }
+  EXPECT_GT(zeros, 10000);
+  RecordProperty("naive_wrong", near);
+}
+
 // ---- orient3d ---------------------------------------------------------------------
 
 TEST(Orient3d, SignConvention) {
