@@ -809,7 +809,7 @@ void Arrangement::test_pair(std::uint32_t i, std::uint32_t j, PairEvents& ev) co
   // Two tiles of one face that share an edge lie on either side of it: they meet in
   // it alone, and they are coplanar exactly when the face is planar (decided once).
   // Tiles of one strictly convex face meet only in their shared edges and corners.
-  if (a.input_face == b.input_face && faces[a.input_face].convex) return;
+  if (a.input_face == b.input_face && faces[a.input_face].simple) return;
   const bool one_face = a.input_face == b.input_face && shared == 2;
   if (one_face && !faces[a.input_face].planar) return;
   int ob[3] = {0, 0, 0}, pos_b = 0, neg_b = 0;
@@ -937,7 +937,7 @@ void Arrangement::intersect(int threads) {
   // Tiles of a planar face lie in one plane (those of a strictly convex face are never
   // tested as pairs, nor any two of an embedded operand's triangles).
   for (const SoupFace& f : faces)
-    if (f.convex || (f.planar && embedded[f.operand]))
+    if (f.simple || (f.planar && embedded[f.operand]))
       for (std::uint32_t t : f.tris) same_plane.unite(f.tris[0], t);
   for (auto [x, y] : plane_joins) same_plane.unite(x, y);
   // The candidate pairs in pieces of the tree, tested on threads, their events

@@ -164,6 +164,10 @@ struct SoupFace {
   // tiles meet only in their shared edges and corners, so no pair of them is tested
   // (they are joined as one plane instead).
   bool convex = false;
+  // Planar, and its tiles meet only in their shared edges and corners: convex, or
+  // certified so (boolean.cpp, simple_face: the loops simple and apart, every tile
+  // turning one way). No pair of its tiles is tested.
+  bool simple = false;
   // A face of one loop of four vertices (a quad of a faceted curved primitive; the
   // loop is loops_of(f)[0]), and the sign of orient3d over that loop in its order, so
   // that any tile's test of the fourth vertex is a permutation of it (sides_of).

@@ -245,9 +245,148 @@ bool strictly_convex(const std::vector<Vec3>& pos, std::span<const std::uint32_t
   return changes == 2;
 }
 
-// ---------------------------------------------------------------- embedded operands
-
 }  // namespace
+
+// ---------------------------------------------------------------- simple faces
+
+// stages.h. Decided exactly in the projection along k, an axis where the face has area:
+//  1. every tile turns the same way, strictly;
+//  2. every tile edge is used by two tiles in opposite directions, or by one tile and
+//     is an edge of a loop, and every loop edge is such an edge once;
+//  3. the loops' vertices are distinct and no two loop edges meet but consecutive ones
+//     at their common corner (the loops are simple and apart);
+//  4. exactly one loop turns the tiles' way (its lowest corner turns so), the others
+//     the other way.
+// By 1 and 2 the number of tiles over a point off their edges is the winding number of
+// the loops about it; by 3 and 4 that is 0 or 1. So tile interiors never overlap, and a
+// corner of one tile inside another's edge, or edges crossing, would cover some point
+// twice. Faces whose loop edges' boxes meet too often (more than 32 candidate pairs an
+// edge) are not certified: their pairs are tested as before.
+bool simple_face(const std::vector<Vec3>& pos, const FaceLoops& loops, std::span<const Tri> tris,
+                 const TileRange& tiles) {
+  if (tiles.empty()) return false;
+  const Tri& t0 = tris[tiles[0]];
+  int k = 0;
+  while (k < 3 && orient2d_projected(pos[t0.v[0]], pos[t0.v[1]], pos[t0.v[2]], k) == 0) ++k;
+  if (k == 3) return false;
+  const int turn = orient2d_projected(pos[t0.v[0]], pos[t0.v[1]], pos[t0.v[2]], k);
+  // 1.
+  for (std::uint32_t t : tiles)
+    if (orient2d_projected(pos[tris[t].v[0]], pos[tris[t].v[1]], pos[tris[t].v[2]], k) != turn) return false;
+  // 2: tile edges (smaller end, larger end, +1 if drawn from the smaller) against the
+  // loop edges (smaller, larger).
+  struct Use {
+    std::uint64_t edge;
+    int dir;
+    bool operator<(const Use& o) const { return edge < o.edge || (edge == o.edge && dir < o.dir); }
+  };
+  const auto key = [](std::uint32_t p, std::uint32_t q) {
+    return (static_cast<std::uint64_t>(std::min(p, q)) << 32) | std::max(p, q);
+  };
+  std::vector<Use> uses;
+  uses.reserve(tiles.size() * 3);
+  for (std::uint32_t t : tiles)
+    for (int e = 0; e < 3; ++e) {
+      const std::uint32_t p = tris[t].v[e], q = tris[t].v[(e + 1) % 3];
+      uses.push_back({key(p, q), p < q ? 1 : -1});
+    }
+  std::sort(uses.begin(), uses.end());
+  std::vector<Use> boundary;  // used once: the direction the tiles run it
+  for (std::size_t i = 0; i < uses.size();) {
+    std::size_t j = i;
+    while (j < uses.size() && uses[j].edge == uses[i].edge) ++j;
+    if (j - i == 1) {
+      boundary.push_back(uses[i]);
+    } else if (j - i != 2 || uses[i].dir == uses[i + 1].dir) {
+      return false;
+    }
+    i = j;
+  }
+  std::vector<std::uint64_t> loop_edges;
+  std::vector<std::uint32_t> corners;
+  for (const auto loop : loops) {
+    if (loop.size() < 3) return false;
+    for (std::size_t i = 0; i < loop.size(); ++i) {
+      loop_edges.push_back(key(loop[i], loop[(i + 1) % loop.size()]));
+      corners.push_back(loop[i]);
+    }
+  }
+  std::sort(loop_edges.begin(), loop_edges.end());
+  if (loop_edges.size() != boundary.size()) return false;
+  for (std::size_t i = 0; i < boundary.size(); ++i)
+    if (boundary[i].edge != loop_edges[i]) return false;
+  // 3. Corners distinct; then pairs of loop edges by a sweep along the first axis.
+  std::sort(corners.begin(), corners.end());
+  if (std::adjacent_find(corners.begin(), corners.end()) != corners.end()) return false;
+  const int iu = (k + 1) % 3, iv = (k + 2) % 3;
+  struct Seg {
+    double lo, hi, vlo, vhi;
+    std::uint32_t p, q;
+  };
+  std::vector<Seg> segs;
+  segs.reserve(loop_edges.size());
+  for (const auto loop : loops)
+    for (std::size_t i = 0; i < loop.size(); ++i) {
+      const std::uint32_t p = loop[i], q = loop[(i + 1) % loop.size()];
+      segs.push_back({std::min(pos[p][iu], pos[q][iu]), std::max(pos[p][iu], pos[q][iu]),
+                      std::min(pos[p][iv], pos[q][iv]), std::max(pos[p][iv], pos[q][iv]), p, q});
+    }
+  std::sort(segs.begin(), segs.end(), [](const Seg& x, const Seg& y) { return x.lo < y.lo; });
+  const auto o2 = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+    return orient2d_projected(pos[a], pos[b], pos[c], k);
+  };
+  // Collinear a, b, c with b on the segment's line: whether c lies on a's side of b.
+  const auto same_side = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+    const int ax = pos[a][iu] != pos[b][iu] ? iu : iv;
+    return (pos[a][ax] > pos[b][ax]) == (pos[c][ax] > pos[b][ax]);
+  };
+  std::size_t budget = 32 * segs.size();
+  for (std::size_t i = 0; i < segs.size(); ++i)
+    for (std::size_t j = i + 1; j < segs.size() && segs[j].lo <= segs[i].hi; ++j) {
+      const Seg &x = segs[i], &y = segs[j];
+      if (x.vlo > y.vhi || y.vlo > x.vhi) continue;
+      if (budget-- == 0) return false;
+      // Consecutive edges: they meet beyond their corner only folding back on one line.
+      std::uint32_t c = kInvalidIndex, a = 0, b = 0;
+      if (x.q == y.p) c = x.q, a = x.p, b = y.q;
+      if (x.p == y.q) c = x.p, a = x.q, b = y.p;
+      if (x.p == y.p) c = x.p, a = x.q, b = y.q;  // (not in consistently oriented loops)
+      if (x.q == y.q) c = x.q, a = x.p, b = y.p;
+      if (c != kInvalidIndex) {
+        if (o2(a, c, b) == 0 && same_side(a, c, b)) return false;
+        continue;
+      }
+      const int s1 = o2(x.p, x.q, y.p), s2 = o2(x.p, x.q, y.q);
+      if (s1 * s2 > 0) continue;
+      const int s3 = o2(y.p, y.q, x.p), s4 = o2(y.p, y.q, x.q);
+      if (s3 * s4 > 0) continue;
+      if (s1 != 0 || s2 != 0 || s3 != 0 || s4 != 0) return false;  // they cross or touch
+      // On one line: apart only if their spans along it do not meet.
+      const int ax = pos[x.p][iu] != pos[x.q][iu] ? iu : iv;
+      const double xlo = std::min(pos[x.p][ax], pos[x.q][ax]), xhi = std::max(pos[x.p][ax], pos[x.q][ax]);
+      const double ylo = std::min(pos[y.p][ax], pos[y.q][ax]), yhi = std::max(pos[y.p][ax], pos[y.q][ax]);
+      if (!(xhi < ylo || yhi < xlo)) return false;
+    }
+  // 4. A simple loop turns as its lowest corner does; the tiles' direction along the
+  // loop is the loop's own where they run its first edge so.
+  int turning_the_tiles_way = 0;
+  for (const auto loop : loops) {
+    const std::size_t n = loop.size();
+    std::size_t m = 0;
+    for (std::size_t i = 1; i < n; ++i) {
+      const Vec3 &a = pos[loop[i]], &b = pos[loop[m]];
+      if (a[iu] < b[iu] || (a[iu] == b[iu] && a[iv] < b[iv])) m = i;
+    }
+    const int loop_turn = o2(loop[(m + n - 1) % n], loop[m], loop[(m + 1) % n]);
+    const std::uint32_t p = loop[0], q = loop[1];
+    const auto it = std::lower_bound(boundary.begin(), boundary.end(), Use{key(p, q), -2});
+    const int along = it->dir == (p < q ? 1 : -1) ? 1 : -1;  // the tiles run p -> q
+    turning_the_tiles_way += loop_turn * along == turn;
+  }
+  return turning_the_tiles_way == 1;
+}
+
+// ---------------------------------------------------------------- embedded operands
 
 // arrangement.h.
 EdgeUseTable::EdgeUseTable(std::span<const Tri> tris, std::size_t n_points, int threads)
@@ -529,6 +668,7 @@ Result<Arrangement> make_soup(std::span<const Model* const> operands, int thread
         f.fold = static_cast<std::int8_t>(orient3d(pos[q[0]], pos[q[1]], pos[q[2]], pos[q[3]]));
         f.planar = f.fold == 0;
         f.convex = f.planar && f.tris.size() == 2 && strictly_convex(pos, q, tris[f.tris[0]]);
+        f.simple = f.convex;
         continue;
       }
       const Tri& t0 = tris[f.tris[0]];
@@ -538,6 +678,8 @@ Result<Arrangement> make_soup(std::span<const Model* const> operands, int thread
             f.planar = orient3d(pos[t0.v[0]], pos[t0.v[1]], pos[t0.v[2]], pos[v]) == 0;
       f.convex = f.planar && f_loops.size() == 1 && f.tris.size() + 2 == f_loops[0].size() &&
                  strictly_convex(pos, f_loops[0], t0);
+      f.simple = f.convex || (f.planar && f.tris.size() > 2 &&
+                              simple_face(pos, f_loops, tris, f.tris));
     }
   });
   // Triangle ids, and a lone triangle's cluster id kLoneCluster | t, fit 31 bits.

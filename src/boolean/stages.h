@@ -16,6 +16,14 @@
 
 namespace cellforge::boolean {
 
+// Whether the tiles of a planar face (its triangles `tiles` of `tris`, its loops
+// `loops`) meet only in the edges and corners they share, so that no pair of them need
+// be tested: every tile turns one way; its edges pair up inside or run the loops; the
+// loops are simple and apart; exactly one loop turns the tiles' way. Then the tiles
+// over a point number the loops' winding about it, 0 or 1 (boolean.cpp).
+bool simple_face(const std::vector<Vec3>& pos, const FaceLoops& loops, std::span<const Tri> tris,
+                 const TileRange& tiles);
+
 // A face of the result before merging: loops of arrangement points, counterclockwise
 // about the result's outward normal, with the global line key of each edge
 // (kInvalidIndex where none is known).

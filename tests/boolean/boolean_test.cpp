@@ -14,6 +14,7 @@
 #include <random>
 
 #include "boolean/boolean_test_util.h"
+#include "boolean/stages.h"
 #include "cellforge/io/mesh_io.h"
 
 namespace cellforge::testing {
@@ -463,6 +464,145 @@ TEST(Boolean, FlattenedExpressionIsTheSameSet) {
   ASSERT_EQ(flat.kind, Expr::Kind::kDifference);
   ASSERT_EQ(flat.children.size(), 5u);
   for (int k = 0; k < 5; ++k) EXPECT_EQ(flat.children[k].operand, k);
+}
+
+// A prism of height h over a planar region: its caps are single faces (the outer loop
+// and the holes as given), its walls quads.
+Model prism(const std::vector<std::vector<Vec2>>& loops, double h) {
+  MeshInput in;
+  in.volumes = 1;
+  MeshFace bottom, top;
+  for (const auto& loop : loops) {
+    const auto base = static_cast<std::uint32_t>(in.positions.size());
+    const auto n = static_cast<std::uint32_t>(loop.size());
+    for (const Vec2 p : loop) in.positions.push_back({p.x, p.y, 0});
+    for (const Vec2 p : loop) in.positions.push_back({p.x, p.y, h});
+    std::vector<std::uint32_t> lo, hi;
+    for (std::uint32_t i = 0; i < n; ++i) {
+      lo.push_back(base + n - 1 - i);
+      hi.push_back(base + n + i);
+      const std::uint32_t j = (i + 1) % n;
+      in.faces.push_back({{{base + i, base + j, base + n + j, base + n + i}}, -1, 0});
+    }
+    bottom.loops.push_back(lo);
+    top.loops.push_back(hi);
+  }
+  bottom.back = top.back = 0;  // the cell behind the outward faces
+  in.faces.push_back(bottom);
+  in.faces.push_back(top);
+  return build(in);
+}
+
+// Non-convex caps whose tiles are certified to meet only in shared edges and corners
+// (boolean.cpp, simple_face) and are not tested against each other, beside caps that
+// fail the certificate: a self-crossing pentagram, whose centre the loop winds twice
+// round, must come out as the star's outline, its tiles' overlap found by the tests.
+TEST(Boolean, NonConvexCapsSimpleOrNot) {
+  // A comb: a spine [0,9] x [0,1] and teeth [2i, 2i+1] x [1,3], with a hole in the spine.
+  std::vector<Vec2> comb = {{0, 0}, {9, 0}, {9, 3}, {8, 3}, {8, 1}, {7, 1}, {7, 3}, {6, 3}, {6, 1},
+                            {5, 1}, {5, 3}, {4, 3}, {4, 1}, {3, 1}, {3, 3}, {2, 3}, {2, 1}, {1, 1},
+                            {1, 3}, {0, 3}};
+  const Model c = prism({comb}, 1);
+  const Model holed = prism({comb, {{0.5, 0.25}, {0.5, 0.75}, {8.5, 0.75}, {8.5, 0.25}}}, 1);
+  const Model bar = box_model({-1, 2, 0.5}, {10, 2.5, 2});
+  for (const auto& [m, area] : {std::pair{&c, 9.0 + 5 * 2}, std::pair{&holed, 9.0 + 5 * 2 - 4}}) {
+    EXPECT_NEAR(shape::mass_properties(*m).volume, area, 1e-12);
+    const BoolCase i = run(Op::kIntersection, {m, &bar});
+    EXPECT_NEAR(i.volume, 5 * 1 * 0.5 * 0.5, 1e-12);  // five teeth, 1 x 0.5 x 0.5 each
+    const BoolCase u = run(Op::kUnion, {m, &bar});
+    EXPECT_NEAR(u.volume + i.volume, area + 11 * 0.5 * 1.5, 1e-12);
+    const BoolCase d = run(Op::kDifference, {m, &bar});
+    EXPECT_NEAR(d.volume, area - i.volume, 1e-12);
+  }
+  // The pentagram {5/2} and its outline (ten corners; inner radius R cos 72 / cos 36).
+  const double R = 2, r = R * std::cos(0.4 * std::numbers::pi) / std::cos(0.2 * std::numbers::pi);
+  std::vector<Vec2> star, outline;
+  for (int k = 0; k < 5; ++k) {
+    const double a = std::numbers::pi / 2 + k * 4 * std::numbers::pi / 5;
+    star.push_back({R * std::cos(a), R * std::sin(a)});
+  }
+  for (int k = 0; k < 10; ++k) {
+    const double a = std::numbers::pi / 2 + k * std::numbers::pi / 5, rk = k % 2 ? r : R;
+    outline.push_back({rk * std::cos(a), rk * std::sin(a)});
+  }
+  const Model s = prism({star}, 1), o = prism({outline}, 1);
+  const double outline_area = 5 * R * r * std::sin(0.2 * std::numbers::pi);
+  EXPECT_NEAR(shape::mass_properties(o).volume, outline_area, 1e-12);
+  const Model far = box_model({10, 10, 0}, {11, 11, 1});
+  const BoolCase u = run(Op::kUnion, {&s, &far}, false);
+  EXPECT_NEAR(u.volume, outline_area + 1, 1e-9);
+  const Model cut = box_model({-3, -0.1, -1}, {3, 0.1, 2});
+  EXPECT_NEAR(run(Op::kDifference, {&s, &cut}, false).volume,
+              run(Op::kDifference, {&o, &cut}, false).volume, 1e-9);
+}
+
+// The certificate itself (stages.h, simple_face) on hand-made tilings in z = 0.
+TEST(Boolean, SimpleFaceCertificate) {
+  struct Face {
+    std::vector<Vec3> pos;
+    std::vector<boolean::Tri> tris;
+    boolean::LoopTable loops;
+    boolean::TileRange tiles;
+    std::uint32_t loop_count = 0;
+    bool simple() const {
+      return boolean::simple_face(pos, boolean::FaceLoops{&loops, 0, loop_count}, tris, tiles);
+    }
+  };
+  const auto make = [](std::vector<Vec2> pts, std::vector<std::vector<std::uint32_t>> loops,
+                       std::vector<std::array<std::uint32_t, 3>> tiles) {
+    Face f;
+    for (const Vec2 p : pts) f.pos.push_back({p.x, p.y, 0});
+    for (const auto& l : loops) f.loops.add(l);
+    f.loop_count = static_cast<std::uint32_t>(loops.size());
+    for (const auto& t : tiles) {
+      f.tiles.push_back(static_cast<std::uint32_t>(f.tris.size()));
+      f.tris.push_back({t, 0, 0});
+    }
+    return f;
+  };
+  // An L (six corners, four tiles): simple.
+  EXPECT_TRUE(make({{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}}, {{0, 1, 2, 3, 4, 5}},
+                   {{0, 1, 2}, {0, 2, 3}, {0, 3, 4}, {0, 4, 5}})
+                  .simple());
+  // The same tiles, one of them turned over: not.
+  EXPECT_FALSE(make({{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}}, {{0, 1, 2, 3, 4, 5}},
+                    {{0, 1, 2}, {0, 3, 2}, {0, 3, 4}, {0, 4, 5}})
+                   .simple());
+  // A dart (its corner b reflex) cut along b d: simple; along a c, the tile a b c turns
+  // the other way inside a c d, though its edges pair up: not.
+  const std::vector<Vec2> dart = {{0, 0}, {2, 1}, {4, 0}, {2, 3}};
+  EXPECT_TRUE(make(dart, {{0, 1, 2, 3}}, {{0, 1, 3}, {1, 2, 3}}).simple());
+  EXPECT_FALSE(make(dart, {{0, 1, 2, 3}}, {{0, 2, 3}, {0, 1, 2}}).simple());
+  // A square with a square hole, eight tiles round it: simple. The square and a square
+  // island inside it, each tiled on its own (the island covered twice): not.
+  const std::vector<Vec2> frame = {{0, 0}, {3, 0}, {3, 3}, {0, 3}, {1, 1}, {1, 2}, {2, 2}, {2, 1}};
+  const std::vector<std::array<std::uint32_t, 3>> ring = {{0, 1, 7}, {0, 7, 4}, {1, 2, 6}, {1, 6, 7},
+                                                          {2, 3, 5}, {2, 5, 6}, {3, 0, 4}, {3, 4, 5}};
+  EXPECT_TRUE(make(frame, {{0, 1, 2, 3}, {4, 5, 6, 7}}, ring).simple());
+  EXPECT_FALSE(make(frame, {{0, 1, 2, 3}, {4, 7, 6, 5}}, {{0, 1, 2}, {0, 2, 3}, {4, 7, 6}, {4, 6, 5}}).simple());
+  // The pentagram {5/2} with a fan from its centre: every tile turns one way, the edges
+  // pair up and the one loop turns the tiles' way, but it crosses itself (the centre
+  // is covered twice).
+  std::vector<Vec2> star;
+  for (int k = 0; k < 5; ++k) {
+    const double a = std::numbers::pi / 2 + k * 4 * std::numbers::pi / 5;
+    star.push_back({2 * std::cos(a), 2 * std::sin(a)});
+  }
+  star.push_back({0, 0});
+  EXPECT_FALSE(
+      make(star, {{0, 1, 2, 3, 4}}, {{5, 0, 1}, {5, 1, 2}, {5, 2, 3}, {5, 3, 4}, {5, 4, 0}}).simple());
+  // A pentagon fanned the same way: simple.
+  std::vector<Vec2> pentagon;
+  for (int k = 0; k < 5; ++k) {
+    const double a = std::numbers::pi / 2 + k * 2 * std::numbers::pi / 5;
+    pentagon.push_back({2 * std::cos(a), 2 * std::sin(a)});
+  }
+  pentagon.push_back({0, 0});
+  EXPECT_TRUE(
+      make(pentagon, {{0, 1, 2, 3, 4}}, {{5, 0, 1}, {5, 1, 2}, {5, 2, 3}, {5, 3, 4}, {5, 4, 0}}).simple());
+  // A corner of the hole on the outer loop's edge (touching): not.
+  const std::vector<Vec2> touching = {{0, 0}, {3, 0}, {3, 3}, {0, 3}, {1, 0}, {1, 2}, {2, 2}, {2, 1}};
+  EXPECT_FALSE(make(touching, {{0, 1, 2, 3}, {4, 5, 6, 7}}, ring).simple());
 }
 
 TEST(Boolean, FacesKnowWhereTheyCameFrom) {
