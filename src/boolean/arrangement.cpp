@@ -667,16 +667,15 @@ std::uint32_t Arrangement::add_line(Cluster& c, Line l) {
   // A u + C = 0 (B exactly 0) or B v + C = 0: the double it fixes, where one is known.
   if (sa == 0 || sb == 0) {
     const int ax = (c.k + (sb == 0 ? 1 : 2)) % 3;
-    const auto constant = [&](std::uint32_t s, std::uint32_t t) { return pos[s][ax] == pos[t][ax]; };
     bool known = false;
     switch (l.kind) {
-      case LineKind::kThrough:
-        known = constant(l.a, l.b);  // (true here: B or A is exactly 0)
-        if (known) l.at = pos[l.a][ax];
+      case LineKind::kThrough:  // B (or A) is the ends' difference there: exactly 0
+        known = true;
+        l.at = pos[l.a][ax];
         break;
       case LineKind::kTrace: {
         const Tri& o = tris[l.a];
-        known = constant(o.v[0], o.v[1]) && constant(o.v[0], o.v[2]);
+        known = pos[o.v[0]][ax] == pos[o.v[1]][ax] && pos[o.v[0]][ax] == pos[o.v[2]][ax];
         if (known) l.at = pos[o.v[0]][ax];
         break;
       }

@@ -27,6 +27,7 @@
 #include <array>
 #include <cmath>
 #include <optional>
+#include <span>
 #include <utility>
 #include <unordered_map>
 #include <vector>
@@ -217,25 +218,14 @@ bool Arrangement::split_cluster_graph(std::uint32_t ci, SplitScratch& scratch) {
       int open = -1;
       for (int e = 0; e < 3; ++e)
         if (open_edges[t] & (1u << e)) open = e;
-      ts.n = 0;
-      if (f.quad && f.convex && open >= 0) {
-        const auto loop = loops_of(f)[0];
-        for (int e = 0; e < 4; ++e) {
-          const std::uint32_t a = loop[e], b = loop[(e + 1) % 4];
-          ts.end[e][0] = a;
-          ts.end[e][1] = b;
-          ts.line[e] = through_line(a, b);
-          ts.inner[e] = side_of(ts.line[e], loop[(e + 2) % 4]);
-        }
-        ts.n = 4;
-      } else {
-        for (int e = 0; e < 3; ++e) {
-          ts.end[e][0] = tri.v[e];
-          ts.end[e][1] = tri.v[(e + 1) % 3];
-          ts.line[e] = through_line(tri.v[e], tri.v[(e + 1) % 3]);
-          ts.inner[e] = side_of(ts.line[e], tri.v[(e + 2) % 3]);
-        }
-        ts.n = 3;
+      const std::span<const std::uint32_t> corners =
+          f.quad && f.convex && open >= 0 ? loops_of(f)[0] : std::span<const std::uint32_t>(tri.v);
+      ts.n = static_cast<int>(corners.size());
+      for (int e = 0; e < ts.n; ++e) {
+        ts.end[e][0] = corners[e];
+        ts.end[e][1] = corners[(e + 1) % ts.n];
+        ts.line[e] = through_line(ts.end[e][0], ts.end[e][1]);
+        ts.inner[e] = side_of(ts.line[e], corners[(e + 2) % ts.n]);
       }
     }
     const std::uint32_t* el = ts.line;

@@ -51,27 +51,18 @@ int filtered_sign(double value, double bound) {
 // left to the expansions (kUndecided).
 constexpr int kUndecided = 2;
 
-bool exact_difference(double x, double y, double& d) {
-  d = x - y;
-  const double yv = x - d;  // Two_Diff's tail: zero exactly when d is exact
-  const double dv = d + yv;
-  return (yv - y) + (x - dv) == 0;
-}
-
 int orient2d_two_products(Vec2 a, Vec2 b, Vec2 c) {
-  double ux, uy, vx, vy;
-  if (!exact_difference(b.x, a.x, ux) || !exact_difference(c.y, a.y, vy) ||
-      !exact_difference(b.y, a.y, uy) || !exact_difference(c.x, a.x, vx))
-    return kUndecided;
-  const double p = ux * vy, q = uy * vx;
+  const TwoDouble ux = two_diff(b.x, a.x), vy = two_diff(c.y, a.y);
+  const TwoDouble uy = two_diff(b.y, a.y), vx = two_diff(c.x, a.x);
+  if (ux.lo != 0 || vy.lo != 0 || uy.lo != 0 || vx.lo != 0) return kUndecided;
+  const TwoDouble p = two_product(ux.hi, vy.hi), q = two_product(uy.hi, vx.hi);
   constexpr double kTiny = 0x1p-900, kHuge = 0x1p+1000;
   const auto safe = [&](double x, double m, double n) {
     return m == 0 || n == 0 || (std::fabs(x) > kTiny && std::fabs(x) < kHuge);
   };
-  if (!safe(p, ux, vy) || !safe(q, uy, vx)) return kUndecided;
-  if (p != q) return p > q ? 1 : -1;
-  const double rp = std::fma(ux, vy, -p), rq = std::fma(uy, vx, -q);
-  return (rp > rq) - (rp < rq);
+  if (!safe(p.hi, ux.hi, vy.hi) || !safe(q.hi, uy.hi, vx.hi)) return kUndecided;
+  if (p.hi != q.hi) return p.hi > q.hi ? 1 : -1;
+  return (p.lo > q.lo) - (p.lo < q.lo);
 }
 
 int orient2d_exact(Vec2 a, Vec2 b, Vec2 c) {

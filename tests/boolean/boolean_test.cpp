@@ -580,26 +580,21 @@ TEST(Boolean, SimpleFaceCertificate) {
                                                           {2, 3, 5}, {2, 5, 6}, {3, 0, 4}, {3, 4, 5}};
   EXPECT_TRUE(make(frame, {{0, 1, 2, 3}, {4, 5, 6, 7}}, ring).simple());
   EXPECT_FALSE(make(frame, {{0, 1, 2, 3}, {4, 7, 6, 5}}, {{0, 1, 2}, {0, 2, 3}, {4, 7, 6}, {4, 6, 5}}).simple());
-  // The pentagram {5/2} with a fan from its centre: every tile turns one way, the edges
-  // pair up and the one loop turns the tiles' way, but it crosses itself (the centre
-  // is covered twice).
-  std::vector<Vec2> star;
-  for (int k = 0; k < 5; ++k) {
-    const double a = std::numbers::pi / 2 + k * 4 * std::numbers::pi / 5;
-    star.push_back({2 * std::cos(a), 2 * std::sin(a)});
-  }
-  star.push_back({0, 0});
-  EXPECT_FALSE(
-      make(star, {{0, 1, 2, 3, 4}}, {{5, 0, 1}, {5, 1, 2}, {5, 2, 3}, {5, 3, 4}, {5, 4, 0}}).simple());
-  // A pentagon fanned the same way: simple.
-  std::vector<Vec2> pentagon;
-  for (int k = 0; k < 5; ++k) {
-    const double a = std::numbers::pi / 2 + k * 2 * std::numbers::pi / 5;
-    pentagon.push_back({2 * std::cos(a), 2 * std::sin(a)});
-  }
-  pentagon.push_back({0, 0});
-  EXPECT_TRUE(
-      make(pentagon, {{0, 1, 2, 3, 4}}, {{5, 0, 1}, {5, 1, 2}, {5, 2, 3}, {5, 3, 4}, {5, 4, 0}}).simple());
+  // Five corners on a circle, each `step` fifths of a turn after the last, and the
+  // centre, fanned from the centre. Step 2, the pentagram {5/2}: every tile turns one
+  // way, the edges pair up and the one loop turns the tiles' way, but it crosses itself
+  // (the centre is covered twice). Step 1, a pentagon: simple.
+  const auto fanned = [&](int step) {
+    std::vector<Vec2> corners;
+    for (int k = 0; k < 5; ++k) {
+      const double a = std::numbers::pi / 2 + k * step * 2 * std::numbers::pi / 5;
+      corners.push_back({2 * std::cos(a), 2 * std::sin(a)});
+    }
+    corners.push_back({0, 0});
+    return make(corners, {{0, 1, 2, 3, 4}}, {{5, 0, 1}, {5, 1, 2}, {5, 2, 3}, {5, 3, 4}, {5, 4, 0}});
+  };
+  EXPECT_FALSE(fanned(2).simple());
+  EXPECT_TRUE(fanned(1).simple());
   // A corner of the hole on the outer loop's edge (touching): not.
   const std::vector<Vec2> touching = {{0, 0}, {3, 0}, {3, 3}, {0, 3}, {1, 0}, {1, 2}, {2, 2}, {2, 1}};
   EXPECT_FALSE(make(touching, {{0, 1, 2, 3}, {4, 5, 6, 7}}, ring).simple());
