@@ -1079,10 +1079,24 @@ void Arrangement::add_pair(std::uint32_t t, std::uint32_t b) {
   std::uint32_t ends[3];
   int n = 0;
   const std::size_t points_before = points.size();
+  const SoupFace& bf = faces[o.input_face];
+  const bool convex_quad = bf.quad && bf.convex;
   for (int k = 0; k < 3; ++k) {
     const int k1 = (k + 1) % 3;
     if (s[k] == 0) ends[n++] = o.v[k];
-    if (s[k] * s[k1] < 0) ends[n++] = lpi_point(o.v[k], o.v[k1], ct);
+    if (s[k] * s[k1] < 0) {
+      std::uint32_t p = o.v[k], q = o.v[k1];
+      if (convex_quad && may_be_diagonal(o, p, q)) {
+        const std::uint32_t other = bf.tris[0] == b ? bf.tris[1] : bf.tris[0];
+        const Tri& ot = tris[other];
+        const std::uint32_t w = ot.v[0] != p && ot.v[0] != q ? ot.v[0] : (ot.v[1] != p && ot.v[1] != q ? ot.v[1] : ot.v[2]);
+        const int sw = w == a.v[0] || w == a.v[1] || w == a.v[2]
+                           ? 0
+                           : (w == quad_other[t] ? quad_side[t] : PlaneSide(pos[a.v[0]], pos[a.v[1]], pos[a.v[2]])(pos[w]));
+        if (sw != 0) (sw * s[k] < 0 ? q : p) = w;
+      }
+      ends[n++] = lpi_point(p, q, ct);
+    }
   }
   // A point made for a cut that is then dropped is taken back.
   auto drop_new_points = [&] {
