@@ -5,6 +5,10 @@
 # heightmaps through libpng (libpng-dev), linked.
 find_package(PkgConfig REQUIRED)
 pkg_check_modules(CSG_TEXT REQUIRED IMPORTED_TARGET freetype2 harfbuzz fontconfig)
+cellforge_prefer_static()
 pkg_check_modules(CSG_PNG REQUIRED IMPORTED_TARGET libpng)
 target_include_directories(${layer} PRIVATE $<TARGET_PROPERTY:PkgConfig::CSG_TEXT,INTERFACE_INCLUDE_DIRECTORIES>)
 target_link_libraries(${layer} PUBLIC PkgConfig::CSG_PNG)
+if(CELLFORGE_STATIC_DEPS)
+  target_link_libraries(${layer} PUBLIC ZLIB::ZLIB m)  # what libpng's archive needs, after it
+endif()

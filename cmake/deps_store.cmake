@@ -4,8 +4,14 @@
 # not loaded by every run. libpq is found through CMake's FindPostgreSQL or, where that
 # finds nothing, pkg-config; CELLFORGE_LIBPQ is the target, for the test and benchmark
 # programs that call libpq themselves.
+set(suffixes ${CMAKE_FIND_LIBRARY_SUFFIXES})
+cellforge_prefer_static()
 find_package(SQLite3 REQUIRED)
+set(CMAKE_FIND_LIBRARY_SUFFIXES ${suffixes})  # libpq, below, stays shared
 target_link_libraries(${layer} PUBLIC SQLite::SQLite3)
+if(CELLFORGE_STATIC_DEPS)
+  target_link_libraries(${layer} PUBLIC m)  # SQLite's archive needs libm
+endif()
 find_package(PostgreSQL QUIET)
 if(PostgreSQL_FOUND)
   set(CELLFORGE_LIBPQ PostgreSQL::PostgreSQL)

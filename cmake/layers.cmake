@@ -15,6 +15,15 @@
 # that list it in DEPENDS link the ones it would have linked. INTERNAL layers
 # (compare/) are built for tests and benchmarks and are not installed or part of the
 # cellforge library.
+# In a cmake/deps_NAME.cmake, cellforge_prefer_static() makes the finds after it take
+# a library's static archive where there is one (CELLFORGE_STATIC_DEPS; the setting
+# stays within the layer's function).
+macro(cellforge_prefer_static)
+  if(CELLFORGE_STATIC_DEPS)
+    set(CMAKE_FIND_LIBRARY_SUFFIXES .a ${CMAKE_FIND_LIBRARY_SUFFIXES})
+  endif()
+endmacro()
+
 set(CELLFORGE_LAYERS "")          # installed layers, bottom to top
 set(CELLFORGE_INTERNAL_LAYERS "")
 

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "cellforge/geom/filtered.h"
+#include "cellforge/geom/workers.h"
 
 namespace cellforge::boolean {
 
@@ -24,21 +25,11 @@ inline int thread_count(int requested) {
   return static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
 }
 
-// work(k) for k in [0, count), each on its own thread (k = 0 on this one); the exact
-// evaluations made on the others are counted on this one.
+// work(k) for k in [0, count), on the worker threads (geom/workers.h: k's in any
+// order, the exact evaluations made on the others counted on this one).
 template <class Work>
 void on_threads(std::size_t count, Work&& work) {
-  std::vector<std::thread> workers;
-  std::atomic<std::size_t> exact{0};
-  for (std::size_t k = 1; k < count; ++k)
-    workers.emplace_back([&, k] {
-      const std::size_t before = exact_evaluations();
-      work(k);
-      exact += exact_evaluations() - before;
-    });
-  if (count > 0) work(0);
-  for (std::thread& w : workers) w.join();
-  exact_evaluations() += exact;
+  geom::run_on_workers(count, [&](std::size_t k) { work(k); });
 }
 
 template <class Out, class Body>

@@ -26,13 +26,13 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
-#include <thread>
 #include <type_traits>
 #include <utility>
 #include <vector>
 
 #include "cellforge/geom/memory.h"
 #include "cellforge/geom/vec.h"
+#include "cellforge/geom/workers.h"
 
 namespace cellforge::inline geom {
 
@@ -242,13 +242,10 @@ class Bvh {
     for (std::size_t i = 0; i < boxes.size(); ++i) out[i] = FloatBox::around(boxes[i]);
     return out;
   }
-  // work(k) for k in [0, count), k = 0 on this thread, the others on threads of their own.
+  // work(k) for k in [0, count), on the worker threads (workers.h).
   template <class Work>
   static void on_threads(int count, Work&& work) {
-    std::vector<std::thread> others;
-    for (int k = 1; k < count; ++k) others.emplace_back([&work, k] { work(k); });
-    work(0);
-    for (std::thread& t : others) t.join();
+    run_on_workers(static_cast<std::size_t>(count), [&](std::size_t k) { work(static_cast<int>(k)); });
   }
   // order_: the boxes by the Morton code of their centres, ties in index order.
   void morton_order(int threads) {
@@ -388,9 +385,13 @@ class Bvh {
     std::uint32_t right = 0, after = 0;
     if (threads > 1 && end - begin >= (1u << 15)) {
       right = static_cast<std::uint32_t>(left + node_count(mid - begin));
-      std::thread other([&, right, mid, end, threads] { after = build(right, mid, end, threads / 2); });
-      build(left, begin, mid, threads - threads / 2);
-      other.join();
+      run_on_workers(2, [&](std::size_t k) {
+        if (k == 0) {
+          build(left, begin, mid, threads - threads / 2);
+        } else {
+          after = build(right, mid, end, threads / 2);
+        }
+      });
     } else {
       right = build(left, begin, mid, 1);
       after = build(right, mid, end, 1);
