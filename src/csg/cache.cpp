@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <atomic>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -38,7 +39,9 @@ void DiskCache::store(const std::string& key, const Model& m,
   std::error_code ec;
   std::filesystem::create_directories(dir_, ec);
   const std::string base = dir_ + "/" + key;
-  const std::string tmp = "." + std::to_string(::getpid());
+  // Unique to the process and the call: parts are stored from several threads.
+  static std::atomic<unsigned> calls{0};
+  const std::string tmp = "." + std::to_string(::getpid()) + "-" + std::to_string(calls++);
   auto bytes = io::write_model(m, io::Format::kJson);
   if (!bytes) return;
   {

@@ -11,14 +11,19 @@
 #include "cellforge/csg/tree.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <exception>
 #include <functional>
+#include <future>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
+#include <thread>
 #include <unordered_map>
 
 #include "cache.h"
@@ -28,6 +33,7 @@
 #include "cellforge/csg/tree_json.h"
 #include "cellforge/geom/bvh.h"
 #include "cellforge/geom/union_find.h"
+#include "cellforge/geom/workers.h"
 #include "cellforge/io/mesh_io.h"
 #include "cellforge/shape/hull.h"
 #include "cellforge/shape/mass.h"
@@ -186,6 +192,38 @@ struct Built {
   std::vector<Color> face_colors;
 };
 
+// Values made once by key, whatever the thread: the first to ask makes one (`made`),
+// the others wait for it and get a copy. A make() that throws throws for all of them.
+// No wait can close a cycle: a subtree waits only for smaller subtrees.
+template <class V>
+class OnceMap {
+ public:
+  template <class Make>
+  V get(const std::string& key, Make&& make, bool& made) {
+    std::promise<V> promise;
+    std::shared_future<V> future;
+    {
+      std::lock_guard hold(lock_);
+      auto [it, inserted] = map_.try_emplace(key);
+      if (inserted) it->second = promise.get_future().share();
+      future = it->second;
+      made = inserted;
+    }
+    if (made) {
+      try {
+        promise.set_value(make());
+      } catch (...) {
+        promise.set_exception(std::current_exception());
+      }
+    }
+    return future.get();
+  }
+
+ private:
+  std::mutex lock_;
+  std::unordered_map<std::string, std::shared_future<V>> map_;
+};
+
 // Whether a transform maps the axes to the axes (scaled, permuted, mirrored): faces
 // the subtree meant to lie in one axis plane stay in one plane when their vertices
 // are moved and rounded. A rotation off the axes moves them to planes a hair apart.
@@ -245,18 +283,51 @@ class Builder {
     return out;
   }
 
+  struct Part {
+    Model model;
+    std::vector<Color> colors;
+    Vec3 lo, hi;
+  };
+
+  // One top-level part: from the cache by its content key when it is there, else its
+  // geometry (built once in this build: a projection of the same subtree elsewhere
+  // finds it) colored as the color nodes above it say.
+  Part build_part(const Node& c) {
+    Part p;
+    const std::string key = content_key(c);
+    if (cache_.load(key, p.model, p.colors)) {
+      tally([&](BuildStats& s) { ++s.cache_hits; });
+    } else {
+      tally([&](BuildStats& s) { ++s.cache_misses; });
+      const Node& core = geometry_core(c);
+      Built b;
+      if (combines_solids(core)) {
+        b = with_color(subtree(core, c.pos), color_above(c));
+      } else {
+        std::vector<Leaf> leaves;
+        auto expr = collect3(c, shape::Transform::identity(), std::nullopt, leaves);
+        if (expr) b.model = combine(*expr, leaves, c.pos, &b.face_colors);
+      }
+      p.model = std::move(b.model);
+      p.colors = std::move(b.face_colors);
+      cache_.store(key, p.model, p.colors);
+    }
+    if (p.model.num_faces() == 0) return p;
+    const shape::MassProperties mp = shape::mass_properties(p.model);
+    p.lo = mp.bbox_min;
+    p.hi = mp.bbox_max;
+    return p;
+  }
+
   // The top-level parts (the root's children, and the children of unions among them)
-  // are built one by one — found in the cache by their content key when there is one,
-  // so that an edit rebuilds only the parts it touched — then parts whose boxes are
-  // apart are put side by side (their union, exactly, without a Boolean) and others
-  // united by one more Boolean. Separate parts are the common case of a file with
-  // many parts, and one arrangement per part is faster than one for all of them.
+  // are built each on its own (build_part; several at once, on threads of their own:
+  // a part's Boolean then takes the worker threads, geom/workers.h, when no other has
+  // them) — then parts whose boxes are apart are put side by side (their union,
+  // exactly, without a Boolean) and others united by one more Boolean. Separate parts
+  // are the common case of a file with many parts, and one arrangement per part is
+  // faster than one for all of them. What is built does not depend on the threads:
+  // each part is its subtree's, and they are put together in order.
   void run_parts(const Node& root, BuildOutput& out) {
-    struct Part {
-      Model model;
-      std::vector<Color> colors;
-      Vec3 lo, hi;
-    };
     std::vector<Part> parts;
     std::vector<const Node*> pieces;
     std::function<void(const Node&)> split = [&](const Node& n) {
@@ -269,29 +340,40 @@ class Builder {
       }
     };
     split(root);
-    for (std::size_t i = 0; i < pieces.size(); ++i) {
-      const Node* c = pieces[i];
-      if (options_.progress) options_.progress(i, pieces.size());
-      Part p;
-      const std::string key = content_key(*c);
-      if (cache_.load(key, p.model, p.colors)) {
-        ++stats_.cache_hits;
-      } else {
-        ++stats_.cache_misses;
-        std::vector<Leaf> leaves;
-        auto expr = collect3(*c, shape::Transform::identity(), std::nullopt, leaves);
-        if (expr) p.model = combine(*expr, leaves, c->pos, &p.colors);
-        cache_.store(key, p.model, p.colors);
-        if (expr && expr->kind != boolean::Expr::Kind::kOperand)
-          subtree_memo_.emplace(content_key(geometry_core(*c)), Built{p.model, p.colors});
+    const std::size_t n = pieces.size();
+    std::vector<Part> built(n);
+    std::vector<std::exception_ptr> errors(n);
+    std::atomic<std::size_t> next{0};
+    std::atomic<bool> failed{false};
+    std::mutex progress_lock;
+    std::size_t finished = 0;
+    if (options_.progress) options_.progress(0, n);
+    // Parts taken in order; after a failure no new one is started, so the first
+    // failing part by order is among those that ran (its error is the one reported).
+    auto work = [&] {
+      for (std::size_t i = next++; i < n && !failed; i = next++) {
+        try {
+          built[i] = build_part(*pieces[i]);
+        } catch (...) {
+          errors[i] = std::current_exception();
+          failed = true;
+        }
+        if (options_.progress) {
+          std::lock_guard hold(progress_lock);
+          options_.progress(++finished, n);
+        }
       }
-      if (p.model.num_faces() == 0) continue;
-      const shape::MassProperties mp = shape::mass_properties(p.model);
-      p.lo = mp.bbox_min;
-      p.hi = mp.bbox_max;
-      parts.push_back(std::move(p));
-    }
-    if (options_.progress) options_.progress(pieces.size(), pieces.size());
+    };
+    const int want = options_.threads > 0 ? options_.threads : geom::worker_capacity();
+    const std::size_t threads = std::min<std::size_t>(n, static_cast<std::size_t>(want));
+    std::vector<std::thread> others;
+    for (std::size_t k = 1; k < threads; ++k) others.emplace_back(work);
+    work();
+    for (std::thread& t : others) t.join();
+    for (const std::exception_ptr& e : errors)
+      if (e) std::rethrow_exception(e);
+    for (Part& p : built)
+      if (p.model.num_faces() != 0) parts.push_back(std::move(p));
     if (parts.empty()) {
       out.dimension = 0;
       return;
@@ -322,7 +404,7 @@ class Builder {
     }
     if (!boxes_apart) cluster = meeting_clusters(all);
     if (std::any_of(cluster.begin(), cluster.end(), [&](std::uint32_t c) { return c != cluster[0]; }))
-      ++stats_.parts_apart;
+      tally([&](BuildStats& s) { ++s.parts_apart; });
     std::vector<std::vector<std::size_t>> members(parts.size());  // by cluster
     for (std::size_t i = 0; i < parts.size(); ++i) members[cluster[i]].push_back(i);
     for (std::size_t c = 0; c < parts.size(); ++c) {
@@ -335,9 +417,11 @@ class Builder {
       for (std::size_t i : members[c]) operands.push_back(&parts[i].model);
       const auto start = Clock::now();
       auto r = boolean::apply(boolean::Op::kUnion, operands, boolean_options(operands));
-      stats_.boolean_seconds += seconds_since(start);
-      ++stats_.booleans;
-      stats_.boolean_operands += operands.size();
+      tally([&](BuildStats& s) {
+        s.boolean_seconds += seconds_since(start);
+        ++s.booleans;
+        s.boolean_operands += operands.size();
+      });
       if (!r) fail(root.pos, "the Boolean operation failed: " + r.error().message);
       std::vector<Color> colors(r->model.face_slots(), std::nullopt);
       for (std::size_t f = 0; f < r->sources.size() && f < colors.size(); ++f) {
@@ -450,8 +534,10 @@ class Builder {
     }
     const auto start = Clock::now();
     Model m = memo_leaf(n);
-    stats_.leaf_seconds += seconds_since(start);
-    ++stats_.leaves;
+    tally([&](BuildStats& s) {
+      s.leaf_seconds += seconds_since(start);
+      ++s.leaves;
+    });
     if (m.num_faces() == 0) return std::nullopt;
     if (m.num_volumes() == 0) fail(n.pos, std::string(node_name(n.kind)) + "() made no solid");
     if (!is_identity(t)) {
@@ -519,9 +605,11 @@ class Builder {
     for (const Leaf& l : leaves) operands.push_back(&l.model);
     const auto start = Clock::now();
     auto r = boolean::evaluate(operands, expr, boolean_options(operands));
-    stats_.boolean_seconds += seconds_since(start);
-    ++stats_.booleans;
-    stats_.boolean_operands += operands.size();
+    tally([&](BuildStats& s) {
+      s.boolean_seconds += seconds_since(start);
+      ++s.booleans;
+      s.boolean_operands += operands.size();
+    });
     if (!r) fail(pos, "the Boolean operation failed: " + r.error().message);
     if (face_colors) {
       face_colors->assign(r->model.face_slots(), std::nullopt);
@@ -578,10 +666,12 @@ class Builder {
     }
     const auto start = Clock::now();
     auto r = boolean::evaluate(operands, expr, boolean_options(operands));
-    stats_.boolean_seconds += seconds_since(start);
-    ++stats_.booleans;
-    ++stats_.booleans_in_frame;
-    stats_.boolean_operands += operands.size();
+    tally([&](BuildStats& s) {
+      s.boolean_seconds += seconds_since(start);
+      ++s.booleans;
+      ++s.booleans_in_frame;
+      s.boolean_operands += operands.size();
+    });
     if (!r) fail(pos, "the Boolean operation failed: " + r.error().message);
     Model out;
     const std::vector<FaceId> ids = copy_into(out, r->model, frame.to_world);
@@ -634,7 +724,7 @@ class Builder {
     const std::vector<std::uint32_t> cluster = meeting_clusters(models, together);
     if (std::all_of(cluster.begin(), cluster.end(), [&](std::uint32_t c) { return c == cluster[0]; }))
       return std::nullopt;
-    ++stats_.parts_apart;
+    tally([&](BuildStats& s) { ++s.parts_apart; });
     // The leaves and terms of each cluster (named by its smallest leaf), the leaves
     // renumbered in order within it; a term's leaves are all in one cluster.
     std::vector<std::vector<std::size_t>> members(leaves.size()), own_terms(leaves.size());
@@ -747,24 +837,48 @@ class Builder {
     Node group;
     group.kind = NodeKind::kGroup;
     group.children = n.children;
-    // The color given from above is part of what is built (the key of a subtree has
-    // its own color nodes, not this one).
-    std::string key = content_key(geometry_core(group));
-    if (color) {
-      char bits[40];  // exactly: colors a digit apart are different builds
-      for (double c : *color) key.append(bits, static_cast<std::size_t>(std::snprintf(bits, sizeof bits, " %a", c)));
-    }
-    if (auto it = subtree_memo_.find(key); it != subtree_memo_.end()) {
-      ++stats_.memo_hits;
-      return it->second;
-    }
-    std::vector<Leaf> leaves;
-    auto expr = collect3(group, shape::Transform::identity(), color, leaves);
-    if (!expr) return Built();
-    Built b;
-    b.model = combine(*expr, leaves, n.pos, &b.face_colors);
-    subtree_memo_.emplace(key, b);
+    return with_color(with_color(subtree(geometry_core(group), n.pos), color_above(group)), color);
+  }
+
+  // A subtree built whole, with the colors of its own color nodes (none for faces
+  // outside them), once per build by content key: the first to ask builds it, on
+  // whatever thread, and the others wait for it.
+  Built subtree(const Node& n, SourcePos pos) {
+    bool made = false;
+    Built b = subtree_memo_.get(
+        content_key(n),
+        [&] {
+          Built out;
+          std::vector<Leaf> leaves;
+          auto expr = collect3(n, shape::Transform::identity(), std::nullopt, leaves);
+          if (expr) out.model = combine(*expr, leaves, pos, &out.face_colors);
+          return out;
+        },
+        made);
+    if (!made) tally([&](BuildStats& s) { ++s.memo_hits; });
     return b;
+  }
+
+  // b with `color` on the faces that have none (a color node above the subtree:
+  // OpenSCAD's inner colors win).
+  static Built with_color(Built b, const Color& color) {
+    if (!color) return b;
+    b.face_colors.resize(b.model.face_slots());
+    for (Color& c : b.face_colors)
+      if (!c) c = color;
+    return b;
+  }
+
+  // The color that the color nodes between n and its geometry_core give (the innermost).
+  Color color_above(const Node& n) const {
+    Color color;
+    const Node* c = &n;
+    const Node* core = &geometry_core(n);
+    while (c != core) {
+      if (c->kind == NodeKind::kColor) color = c->color;
+      c = active_children(*c)[0];
+    }
+    return color;
   }
 
   // Whether a set operation (explicit, or a group's implicit union) combines two or
@@ -807,13 +921,9 @@ class Builder {
     const bool primitive =
         n.kind == NodeKind::kCube || n.kind == NodeKind::kSphere || n.kind == NodeKind::kCylinder;
     if (primitive) return leaf3(n);
-    const std::string key = content_key(n);
-    if (auto it = leaf_memo_.find(key); it != leaf_memo_.end()) {
-      ++stats_.memo_hits;
-      return it->second;
-    }
-    Model m = leaf3(n);
-    leaf_memo_.emplace(key, m);
+    bool made = false;
+    Model m = leaf_memo_.get(content_key(n), [&] { return leaf3(n); }, made);
+    if (!made) tally([&](BuildStats& s) { ++s.memo_hits; });
     return m;
   }
 
@@ -870,8 +980,10 @@ class Builder {
     for (const shape::Region& r : s.regions) operands.push_back(shape::shape_of(r));
     const auto start = Clock::now();
     auto r = boolean::evaluate_2d(operands, s.expr);
-    stats_.boolean_seconds += seconds_since(start);
-    ++stats_.booleans;
+    tally([&](BuildStats& s) {
+      s.boolean_seconds += seconds_since(start);
+      ++s.booleans;
+    });
     check(r, at);
     return std::move(*r);
   }
@@ -1050,8 +1162,10 @@ class Builder {
         const Expr both = Expr::op(boolean::Op::kIntersection, {Expr::of(0), Expr::of(1)});
         const auto start = Clock::now();
         auto x = boolean::evaluate_2d(pair, Expr::op(boolean::Op::kDifference, {either, both}));
-        stats_.boolean_seconds += seconds_since(start);
-        ++stats_.booleans;
+        tally([&](BuildStats& s) {
+          s.boolean_seconds += seconds_since(start);
+          ++s.booleans;
+        });
         check(x, n);
         acc = std::move(*x);
       }
@@ -1225,13 +1339,20 @@ class Builder {
     return combine(s.expr, leaves, n.pos, nullptr);
   }
 
+  template <class F>
+  void tally(F&& f) {
+    std::lock_guard hold(stats_lock_);
+    f(stats_);
+  }
+
   const BuildOptions& options_;
   DiskCache cache_;
+  std::mutex stats_lock_;
   BuildStats stats_;
   // Within one build, by content key: leaves, and subtrees built whole (their
-  // geometry; colors are the caller's).
-  std::unordered_map<std::string, Model> leaf_memo_;
-  std::unordered_map<std::string, Built> subtree_memo_;
+  // geometry and their own colors; a color from above is the caller's).
+  OnceMap<Model> leaf_memo_;
+  OnceMap<Built> subtree_memo_;
 };
 
 }  // namespace

@@ -13,6 +13,7 @@
 #include "cellforge/csg/parser.h"
 #include "cellforge/csg/tree.h"
 #include "cellforge/csg/tree_json.h"
+#include "cellforge/io/mesh_io.h"
 #include "cellforge/shape/mass.h"
 #include "cellforge/topo/validate.h"
 
@@ -445,6 +446,88 @@ TEST(Build, RepeatedSubtreesAreBuiltOnce) {
   const double gon16 = 0.5 * 16 * std::sin(2 * M_PI / 16);  // area of the unit 16-gon
   const double plug = 2 * gon16;
   EXPECT_NEAR(shape::mass_properties(b->model).volume, 2 * plug + 2 * 2 * 1, 1e-9);
+}
+
+// Top-level parts are built on threads of their own (several at once): the model, its
+// colors and the counts are the same as one thread's, whichever part finishes first —
+// parts that share subtrees (a projection of a part, a copy turned off the axes) wait
+// for the one that builds them. Twenty threaded runs, to give an ordering bug a chance.
+TEST(Build, PartsOnThreadsBuildTheSame) {
+  const std::string script =
+      "module plug() intersection() { linear_extrude(4, center = true) square(2, center = true);\n"
+      "  rotate([90, 0, 0]) linear_extrude(4, center = true) circle(1, $fn = 16); }\n"
+      "color(\"red\") plug();\n"
+      "translate([10, 0, 0]) rotate([30, 40, 0]) plug();\n"
+      "translate([0, 10, 0]) linear_extrude(1) projection() plug();\n"
+      "color(\"blue\") translate([0, -10, 0]) difference() { cube(3); sphere(2, $fn = 12); }\n"
+      "translate([1, 1, 1]) cube(1);\n";
+  auto e = run(script);
+  ASSERT_TRUE(e);
+  BuildOptions one;
+  auto a = build(*e->root, one);
+  ASSERT_TRUE(a) << a.error().message;
+  EXPECT_TRUE(validate(a->model).empty());
+  for (int trial = 0; trial < 20; ++trial) {
+    BuildOptions many;
+    many.threads = 4;
+    auto b = build(*e->root, many);
+    ASSERT_TRUE(b) << b.error().message;
+    ASSERT_EQ(*io::write_model(b->model, io::Format::kJson), *io::write_model(a->model, io::Format::kJson)) << "trial " << trial;
+    ASSERT_EQ(b->face_colors, a->face_colors) << "trial " << trial;
+    EXPECT_EQ(b->stats.memo_hits, a->stats.memo_hits);
+    EXPECT_EQ(b->stats.booleans, a->stats.booleans);
+    EXPECT_EQ(b->stats.leaves, a->stats.leaves);
+    EXPECT_EQ(b->stats.parts_apart, a->stats.parts_apart);
+  }
+}
+
+// A color node above a subtree colors that use of it only: the same subtree built
+// again elsewhere (here turned off the axes, so built whole in its own frame and
+// found in the build's memo) has its own faces' colors, none. The part under
+// color("red") is all red, the turned copy (x > 5) has no color.
+TEST(Build, AColorAboveASubtreeStaysWithIt) {
+  auto e = run(
+      "module x() difference() { cube(4, center = true); sphere(2.5, $fn = 16); }\n"
+      "color(\"red\") x();\n"
+      "translate([20, 0, 0]) rotate([30, 40, 0]) x();\n");
+  ASSERT_TRUE(e);
+  auto b = build(*e->root, BuildOptions{});
+  ASSERT_TRUE(b) << b.error().message;
+  EXPECT_EQ(b->stats.memo_hits, 1u);  // the copy is the red part's Boolean
+  std::size_t red = 0, plain = 0;
+  for (FaceId f : b->model.faces()) {
+    const auto& c = f.value < b->face_colors.size() ? b->face_colors[f.value] : std::nullopt;
+    const auto corners = b->model.loop_vertices(b->model.outer_loop(f));
+    const bool far = b->model.position(corners.at(0)).x > 5;  // the parts are 20 apart
+    if (far) {
+      EXPECT_FALSE(c.has_value()) << "face " << f.value;
+      ++plain;
+    } else {
+      EXPECT_TRUE(c && (*c)[0] == 1 && (*c)[1] == 0 && (*c)[2] == 0) << "face " << f.value;
+      ++red;
+    }
+  }
+  EXPECT_GT(red, 0u);
+  EXPECT_EQ(plain, red);  // the same faces, turned
+}
+
+// With parts on threads, the error reported is the first failing part's by order
+// (the one a single thread would have stopped at), every time.
+TEST(Build, TheFirstFailingPartIsReported) {
+  auto e = run(
+      "sphere(3, $fn = 24);\n"
+      "translate([10, 0, 0]) linear_extrude(1, scale = -1) square(1);\n"
+      "translate([20, 0, 0]) linear_extrude(1) projection() square(1);\n"
+      "translate([30, 0, 0]) difference() { cube(2); sphere(1); }\n");
+  ASSERT_TRUE(e);
+  for (int trial = 0; trial < 20; ++trial) {
+    BuildOptions o;
+    o.threads = 4;
+    auto b = build(*e->root, o);
+    ASSERT_FALSE(b);
+    EXPECT_NE(b.error().message.find("scale must not be negative"), std::string::npos) << b.error().message;
+    EXPECT_EQ(b.error().message.find("projection"), std::string::npos) << b.error().message;
+  }
 }
 
 TEST(Build, CacheRebuildsOnlyTheEditedPart) {
