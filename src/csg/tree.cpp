@@ -244,7 +244,7 @@ struct Shape2 {
 
 class Builder {
  public:
-  explicit Builder(const BuildOptions& o) : options_(o), cache_(o.cache_dir) {}
+  Builder(const BuildOptions& o, const Node& root) : options_(o), cache_(o.cache_dir), keys_(root) {}
 
   BuildOutput run(const Node& root) {
     BuildOutput out;
@@ -294,7 +294,7 @@ class Builder {
   // finds it) colored as the color nodes above it say.
   Part build_part(const Node& c) {
     Part p;
-    const std::string key = content_key(c);
+    const std::string key = keys_(c);
     if (cache_.load(key, p.model, p.colors)) {
       tally([&](BuildStats& s) { ++s.cache_hits; });
     } else {
@@ -846,7 +846,7 @@ class Builder {
   Built subtree(const Node& n, SourcePos pos) {
     bool made = false;
     Built b = subtree_memo_.get(
-        content_key(n),
+        keys_(n),
         [&] {
           Built out;
           std::vector<Leaf> leaves;
@@ -922,7 +922,7 @@ class Builder {
         n.kind == NodeKind::kCube || n.kind == NodeKind::kSphere || n.kind == NodeKind::kCylinder;
     if (primitive) return leaf3(n);
     bool made = false;
-    Model m = leaf_memo_.get(content_key(n), [&] { return leaf3(n); }, made);
+    Model m = leaf_memo_.get(keys_(n), [&] { return leaf3(n); }, made);
     if (!made) tally([&](BuildStats& s) { ++s.memo_hits; });
     return m;
   }
@@ -1347,6 +1347,7 @@ class Builder {
 
   const BuildOptions& options_;
   DiskCache cache_;
+  ContentKeys keys_;
   std::mutex stats_lock_;
   BuildStats stats_;
   // Within one build, by content key: leaves, and subtrees built whole (their
@@ -1358,7 +1359,7 @@ class Builder {
 }  // namespace
 
 Result<BuildOutput> build(const Node& root, const BuildOptions& options) {
-  Builder b(options);
+  Builder b(options, root);
   try {
     return b.run(root);
   } catch (const BuildError& e) {

@@ -59,7 +59,7 @@ void append_number(std::string& out, T x) {
 
 std::string vec3(Vec3 v) { return "[" + num(v.x) + ", " + num(v.y) + ", " + num(v.z) + "]"; }
 
-void write(const Node& n, std::string& out, bool positions) {
+void write(const Node& n, std::string& out, bool positions, bool children = true) {
   out += "{\"type\": \"" + std::string(node_name(n.kind)) + "\"";
   auto field = [&](const char* k, const std::string& v) {
     out += std::string(", \"") + k + "\": " + v;
@@ -178,7 +178,7 @@ void write(const Node& n, std::string& out, bool positions) {
     field("line", std::to_string(n.pos.line));
     field("column", std::to_string(n.pos.column));
   }
-  if (!n.children.empty()) {
+  if (children && !n.children.empty()) {
     out += ", \"children\": [";
     for (std::size_t i = 0; i < n.children.size(); ++i) {
       if (i) out += ", ";
@@ -660,34 +660,49 @@ std::optional<FileDigest> file_digest(const std::string& path) {
   return d;
 }
 
-// Every imported file's path and digest, in tree order.
-void hash_imports(const Node& n, std::uint64_t& h, std::size_t& length) {
-  if (n.kind == NodeKind::kImport) {
-    const std::optional<FileDigest> d = file_digest(n.path);
-    const std::string tag = d ? "\nfile " + n.path + "\n" : "\nunreadable " + n.path + "\n";
-    fnv1a(h, tag.data(), tag.size());
-    length += tag.size();
-    if (d) {
-      fnv1a(h, reinterpret_cast<const char*>(&d->hash), sizeof d->hash);
-      length += d->length;
-    }
+// An imported file's path and digest.
+void hash_import(const Node& n, std::uint64_t& h, std::size_t& length) {
+  const std::optional<FileDigest> d = file_digest(n.path);
+  const std::string tag = d ? "\nfile " + n.path + "\n" : "\nunreadable " + n.path + "\n";
+  fnv1a(h, tag.data(), tag.size());
+  length += tag.size();
+  if (d) {
+    fnv1a(h, reinterpret_cast<const char*>(&d->hash), sizeof d->hash);
+    length += d->length;
   }
-  for (const NodePtr& c : n.children) hash_imports(*c, h, length);
 }
 
 }  // namespace
 
-std::string content_key(const Node& node) {
-  // FNV-1a (64 bits) of the node's JSON form without positions followed by the
-  // imported files' bytes, and the length of both.
-  const std::string text = node_json(node);
-  std::uint64_t h = 1469598103934665603ull;
-  fnv1a(h, text.data(), text.size());
-  std::size_t length = text.size();
-  hash_imports(node, h, length);
+// FNV-1a (64 bits) of the node's own fields as JSON (positions and children left
+// out), then of each child's digest and length, then of an imported file's path and
+// bytes; the length counts the text, the children's lengths and the file's bytes.
+ContentKeys::Digest ContentKeys::digest(const Node& node, std::unordered_map<const Node*, Digest>* keep) const {
+  if (auto it = memo_.find(&node); it != memo_.end()) return it->second;
+  std::string own;
+  write(node, own, false, false);
+  Digest d{1469598103934665603ull, own.size()};
+  fnv1a(d.hash, own.data(), own.size());
+  for (const NodePtr& c : node.children) {
+    const Digest x = digest(*c, keep);
+    fnv1a(d.hash, reinterpret_cast<const char*>(&x.hash), sizeof x.hash);
+    fnv1a(d.hash, reinterpret_cast<const char*>(&x.length), sizeof x.length);
+    d.length += x.length;
+  }
+  if (node.kind == NodeKind::kImport) hash_import(node, d.hash, d.length);
+  if (keep) keep->emplace(&node, d);
+  return d;
+}
+
+ContentKeys::ContentKeys(const Node& root) { digest(root, &memo_); }
+
+std::string ContentKeys::operator()(const Node& node) const {
+  const Digest d = digest(node, nullptr);
   char buf[40];
-  std::snprintf(buf, sizeof buf, "%016llx-%zx", static_cast<unsigned long long>(h), length);
+  std::snprintf(buf, sizeof buf, "%016llx-%zx", static_cast<unsigned long long>(d.hash), d.length);
   return buf;
 }
+
+std::string content_key(const Node& node) { return ContentKeys()(node); }
 
 }  // namespace cellforge::csg

@@ -7,7 +7,9 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iterator>
+#include <set>
 
 #include "cellforge/csg/evaluator.h"
 #include "cellforge/csg/parser.h"
@@ -213,6 +215,46 @@ TEST(TreeJson, ContentKeyIgnoresPlacesButNotParameters) {
   ASSERT_TRUE(a && b && c);
   EXPECT_EQ(content_key(*a->root), content_key(*b->root));
   EXPECT_NE(content_key(*a->root), content_key(*c->root));
+}
+
+// A build's ContentKeys gives content_key's key for every node of its tree, and for
+// nodes made outside it (copies a builder makes on the heap, freed and made again at
+// the same address: a key kept by such an address would name the wrong subtree, as
+// minkowski() of two cubes once showed) — equal subtrees equal keys, different ones
+// different keys.
+TEST(TreeJson, ContentKeysOfATreeAreContentKey) {
+  auto e = run(
+      "module m(s) difference() { cube(s); translate([1, 1, 1]) sphere(s / 3); }\n"
+      "m(3); translate([9, 0, 0]) m(3); translate([0, 9, 0]) m(4);\n"
+      "color(\"red\") union() { cube(1); cylinder(h = 2, r = 1); }\n"
+      "linear_extrude(2) polygon([[0, 0], [4, 0], [0, 3]]);\n");
+  ASSERT_TRUE(e);
+  const Node& root = *e->root;
+  const ContentKeys keys(root);
+  std::vector<const Node*> all;
+  std::function<void(const Node&)> walk = [&](const Node& n) {
+    all.push_back(&n);
+    for (const NodePtr& c : n.children) walk(*c);
+  };
+  walk(root);
+  ASSERT_GT(all.size(), 15u);
+  std::set<std::string> distinct;
+  for (const Node* n : all) {
+    EXPECT_EQ(keys(*n), content_key(*n));
+    distinct.insert(keys(*n));
+    for (int round = 0; round < 2; ++round) {
+      auto copy = std::make_shared<Node>(*n);  // often at the previous copy's address
+      EXPECT_EQ(keys(*copy), content_key(*n));
+    }
+  }
+  // The three m() differences: two equal subtrees under different translations, one not.
+  std::vector<std::string> differences;
+  for (const Node* n : all)
+    if (n->kind == NodeKind::kDifference) differences.push_back(keys(*n));
+  ASSERT_EQ(differences.size(), 3u);
+  EXPECT_EQ(differences[0], differences[1]);
+  EXPECT_NE(differences[0], differences[2]);
+  EXPECT_GT(distinct.size(), 10u);
 }
 
 TEST(Build, ColorsArePerFace) {

@@ -26,6 +26,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "cellforge/csg/source.h"
@@ -153,6 +154,32 @@ Result<BuildOutput> build(const Node& root, const BuildOptions& options = {});
 // A stable digest of a subtree's content (kinds, parameters, children; not the
 // source positions) and of the bytes of every file its import() nodes read: the
 // cache key, so that editing an imported file rebuilds the parts that import it.
+// Each node's digest is that of its own fields' JSON followed by its children's
+// digests (and an import's file digest), so equal subtrees have equal keys.
 std::string content_key(const Node& node);
+
+// content_key for the subtrees of one tree, which must outlive it: the digests of
+// all the tree's nodes are made at once, each node's own fields written once (a build
+// asks for a part, its core and its leaves: the points of a surface() were written
+// five times, 7 % of example010.scad's build), and kept by address. A node outside
+// the tree (one a builder makes for a question) is digested when asked, its
+// descendants in the tree found. Safe to call from several threads (nothing changes
+// after the constructor).
+class ContentKeys {
+ public:
+  ContentKeys() = default;
+  explicit ContentKeys(const Node& root);
+  std::string operator()(const Node& node) const;
+
+ private:
+  struct Digest {
+    std::uint64_t hash = 0;
+    std::size_t length = 0;
+  };
+  // Found in memo_, or made (and put in *keep when given).
+  Digest digest(const Node& node, std::unordered_map<const Node*, Digest>* keep) const;
+
+  std::unordered_map<const Node*, Digest> memo_;
+};
 
 }  // namespace cellforge::csg
