@@ -25,6 +25,7 @@
 #include <string>
 #include <thread>
 #include <unordered_map>
+#include <utility>
 
 #include "cache.h"
 #include "cellforge/boolean/boolean.h"
@@ -417,11 +418,7 @@ class Builder {
       for (std::size_t i : members[c]) operands.push_back(&parts[i].model);
       const auto start = Clock::now();
       auto r = boolean::apply(boolean::Op::kUnion, operands, boolean_options(operands));
-      tally([&](BuildStats& s) {
-        s.boolean_seconds += seconds_since(start);
-        ++s.booleans;
-        s.boolean_operands += operands.size();
-      });
+      count_boolean(start, operands.size());
       if (!r) fail(root.pos, "the Boolean operation failed: " + r.error().message);
       std::vector<Color> colors(r->model.face_slots(), std::nullopt);
       for (std::size_t f = 0; f < r->sources.size() && f < colors.size(); ++f) {
@@ -605,11 +602,7 @@ class Builder {
     for (const Leaf& l : leaves) operands.push_back(&l.model);
     const auto start = Clock::now();
     auto r = boolean::evaluate(operands, expr, boolean_options(operands));
-    tally([&](BuildStats& s) {
-      s.boolean_seconds += seconds_since(start);
-      ++s.booleans;
-      s.boolean_operands += operands.size();
-    });
+    count_boolean(start, operands.size());
     if (!r) fail(pos, "the Boolean operation failed: " + r.error().message);
     if (face_colors) {
       face_colors->assign(r->model.face_slots(), std::nullopt);
@@ -666,12 +659,7 @@ class Builder {
     }
     const auto start = Clock::now();
     auto r = boolean::evaluate(operands, expr, boolean_options(operands));
-    tally([&](BuildStats& s) {
-      s.boolean_seconds += seconds_since(start);
-      ++s.booleans;
-      ++s.booleans_in_frame;
-      s.boolean_operands += operands.size();
-    });
+    count_boolean(start, operands.size(), true);
     if (!r) fail(pos, "the Boolean operation failed: " + r.error().message);
     Model out;
     const std::vector<FaceId> ids = copy_into(out, r->model, frame.to_world);
@@ -844,19 +832,13 @@ class Builder {
   // outside them), once per build by content key: the first to ask builds it, on
   // whatever thread, and the others wait for it.
   Built subtree(const Node& n, SourcePos pos) {
-    bool made = false;
-    Built b = subtree_memo_.get(
-        keys_(n),
-        [&] {
-          Built out;
-          std::vector<Leaf> leaves;
-          auto expr = collect3(n, shape::Transform::identity(), std::nullopt, leaves);
-          if (expr) out.model = combine(*expr, leaves, pos, &out.face_colors);
-          return out;
-        },
-        made);
-    if (!made) tally([&](BuildStats& s) { ++s.memo_hits; });
-    return b;
+    return memoized(subtree_memo_, n, [&] {
+      Built out;
+      std::vector<Leaf> leaves;
+      auto expr = collect3(n, shape::Transform::identity(), std::nullopt, leaves);
+      if (expr) out.model = combine(*expr, leaves, pos, &out.face_colors);
+      return out;
+    });
   }
 
   // b with `color` on the faces that have none (a color node above the subtree:
@@ -921,10 +903,7 @@ class Builder {
     const bool primitive =
         n.kind == NodeKind::kCube || n.kind == NodeKind::kSphere || n.kind == NodeKind::kCylinder;
     if (primitive) return leaf3(n);
-    bool made = false;
-    Model m = leaf_memo_.get(keys_(n), [&] { return leaf3(n); }, made);
-    if (!made) tally([&](BuildStats& s) { ++s.memo_hits; });
-    return m;
+    return memoized(leaf_memo_, n, [&] { return leaf3(n); });
   }
 
   Model resize(const Node& n) {
@@ -980,10 +959,7 @@ class Builder {
     for (const shape::Region& r : s.regions) operands.push_back(shape::shape_of(r));
     const auto start = Clock::now();
     auto r = boolean::evaluate_2d(operands, s.expr);
-    tally([&](BuildStats& s) {
-      s.boolean_seconds += seconds_since(start);
-      ++s.booleans;
-    });
+    count_boolean(start, 0);
     check(r, at);
     return std::move(*r);
   }
@@ -1162,10 +1138,7 @@ class Builder {
         const Expr both = Expr::op(boolean::Op::kIntersection, {Expr::of(0), Expr::of(1)});
         const auto start = Clock::now();
         auto x = boolean::evaluate_2d(pair, Expr::op(boolean::Op::kDifference, {either, both}));
-        tally([&](BuildStats& s) {
-          s.boolean_seconds += seconds_since(start);
-          ++s.booleans;
-        });
+        count_boolean(start, 0);
         check(x, n);
         acc = std::move(*x);
       }
@@ -1343,6 +1316,26 @@ class Builder {
   void tally(F&& f) {
     std::lock_guard hold(stats_lock_);
     f(stats_);
+  }
+
+  // A Boolean (3D, or 2D with no operands counted) that took from `start` to now.
+  void count_boolean(Clock::time_point start, std::size_t operands, bool in_frame = false) {
+    tally([&](BuildStats& s) {
+      s.boolean_seconds += seconds_since(start);
+      ++s.booleans;
+      s.booleans_in_frame += in_frame;
+      s.boolean_operands += operands;
+    });
+  }
+
+  // n's value from `memo` by its content key, made by make() the first time in this
+  // build (any other time counts as a memo hit).
+  template <class V, class Make>
+  V memoized(OnceMap<V>& memo, const Node& n, Make&& make) {
+    bool made = false;
+    V v = memo.get(keys_(n), std::forward<Make>(make), made);
+    if (!made) tally([&](BuildStats& s) { ++s.memo_hits; });
+    return v;
   }
 
   const BuildOptions& options_;
