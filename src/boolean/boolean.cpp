@@ -249,21 +249,32 @@ bool strictly_convex(const std::vector<Vec3>& pos, std::span<const std::uint32_t
 
 // ---------------------------------------------------------------- simple faces
 
-// stages.h. Decided exactly in the projection along k, an axis where the face has area:
+namespace {
+
+// Whether planar tiles (`tiles`, ids into `tris`) with boundary loops `loops` meet only
+// in the corners and edges they share. Decided exactly in the projection along k, an
+// axis where the tiles have area:
 //  1. every tile turns the same way, strictly;
 //  2. every tile edge is used by two tiles in opposite directions, or by one tile and
 //     is an edge of a loop, and every loop edge is such an edge once;
 //  3. the loops' vertices are distinct and no two loop edges meet but consecutive ones
 //     at their common corner (the loops are simple and apart);
-//  4. exactly one loop turns the tiles' way (its lowest corner turns so), the others
-//     the other way.
+//  4. at the lowest corner of each loop that turns the tiles' way (counted the way the
+//     tiles run it), the other loops wind 0 times.
 // By 1 and 2 the number of tiles over a point off their edges is the winding number of
-// the loops about it; by 3 and 4 that is 0 or 1. So tile interiors never overlap, and a
-// corner of one tile inside another's edge, or edges crossing, would cover some point
-// twice. Faces whose loop edges' boxes meet too often (more than 32 candidate pairs an
-// edge) are not certified: their pairs are tested as before.
-bool simple_face(const std::vector<Vec3>& pos, const FaceLoops& loops, std::span<const Tri> tris,
-                 const TileRange& tiles) {
+// the loops about it (each loop counted the way the tiles run it), so never negative.
+// By 3 and 4 it is at most 1: the region where it is greatest is bounded, and just
+// outside the loop around it the number is one less, so that loop turns the tiles' way
+// and the others wind that one-less number about its corner. So tile interiors never
+// overlap, and a corner of one tile inside another's edge, or edges crossing, would
+// cover some point twice. With one loop turning the tiles' way (a face: one outer
+// loop, holes) 4 holds by itself: the holes alone wind 0 or less about any point, and
+// the number just outside the outer loop is not negative. Tilings whose loop edges'
+// boxes meet too often (more than 32 candidate pairs an edge), or with many outer
+// loops far from apart, are not certified: their pairs are tested as before.
+template <class Loops, class Tiles>
+bool simple_tiling(const std::vector<Vec3>& pos, const Loops& loops, std::span<const Tri> tris,
+                   const Tiles& tiles) {
   if (tiles.empty()) return false;
   const Tri& t0 = tris[tiles[0]];
   int k = 0;
@@ -369,7 +380,13 @@ bool simple_face(const std::vector<Vec3>& pos, const FaceLoops& loops, std::span
     }
   // 4. A simple loop turns as its lowest corner does; the tiles' direction along the
   // loop is the loop's own where they run its first edge so.
-  int turning_the_tiles_way = 0;
+  struct LoopSeen {
+    std::size_t lowest = 0;  // its lowest corner's place in it
+    int along = 1;           // +1: the tiles run it as it is listed
+    bool outer = false;      // it turns the tiles' way
+  };
+  std::vector<LoopSeen> seen;
+  std::size_t outer = 0;
   for (const auto loop : loops) {
     const std::size_t n = loop.size();
     std::size_t m = 0;
@@ -381,9 +398,66 @@ bool simple_face(const std::vector<Vec3>& pos, const FaceLoops& loops, std::span
     const std::uint32_t p = loop[0], q = loop[1];
     const auto it = std::lower_bound(boundary.begin(), boundary.end(), Use{key(p, q), -2});
     const int along = it->dir == (p < q ? 1 : -1) ? 1 : -1;  // the tiles run p -> q
-    turning_the_tiles_way += loop_turn * along == turn;
+    seen.push_back({m, along, loop_turn * along == turn});
+    outer += seen.back().outer;
   }
-  return turning_the_tiles_way == 1;
+  if (outer <= 1) return outer == 1;
+  // The winding of the other loops about each outer loop's lowest corner, which lies on
+  // none of them (3): a loop's edges crossing the ray from it along +u, upward with the
+  // corner on their left (+1) or downward with it on their right (-1), each edge taken
+  // with its lower end and without its upper one. Loops whose boxes miss the ray are
+  // passed over; the edges visited are bounded as the sweep's pairs were.
+  struct LoopBox {
+    double umax, vmin, vmax;
+  };
+  std::vector<LoopBox> boxes;
+  for (const auto loop : loops) {
+    LoopBox b{-HUGE_VAL, HUGE_VAL, -HUGE_VAL};
+    for (std::uint32_t v : loop) {
+      b.umax = std::max(b.umax, pos[v][iu]);
+      b.vmin = std::min(b.vmin, pos[v][iv]);
+      b.vmax = std::max(b.vmax, pos[v][iv]);
+    }
+    boxes.push_back(b);
+  }
+  std::size_t visits = 32 * segs.size();
+  std::size_t li = 0;
+  for (const auto loop : loops) {
+    const LoopSeen& s = seen[li++];
+    if (!s.outer) continue;
+    const std::uint32_t c = loop[s.lowest];
+    const double cu = pos[c][iu], cv = pos[c][iv];
+    int winding = 0;
+    std::size_t lj = 0;
+    for (const auto other : loops) {
+      const std::size_t j = lj++;
+      if (j + 1 == li) continue;
+      const LoopBox& b = boxes[j];
+      if (cu > b.umax || cv < b.vmin || cv >= b.vmax) continue;
+      if (visits < other.size()) return false;
+      visits -= other.size();
+      int w = 0;
+      for (std::size_t i = 0; i < other.size(); ++i) {
+        const std::uint32_t a = other[i], e = other[(i + 1) % other.size()];
+        if (pos[a][iv] <= cv) {
+          if (pos[e][iv] > cv && o2(a, e, c) > 0) ++w;
+        } else if (pos[e][iv] <= cv && o2(a, e, c) < 0) {
+          --w;
+        }
+      }
+      winding += w * seen[j].along;
+    }
+    if (winding != 0) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+// stages.h: a face's tiles and loops (simple_tiling above).
+bool simple_face(const std::vector<Vec3>& pos, const FaceLoops& loops, std::span<const Tri> tris,
+                 const TileRange& tiles) {
+  return simple_tiling(pos, loops, tris, tiles);
 }
 
 // ---------------------------------------------------------------- embedded operands
@@ -428,7 +502,140 @@ std::span<const EdgeUseTable::Use> EdgeUseTable::uses(std::uint32_t p, std::uint
   return {lo, static_cast<std::size_t>(hi - lo)};
 }
 
-// arrangement.h. The argument, for one operand's triangles:
+namespace {
+
+// Conditions 2 and 3 of embedded_operands' first argument, for an operand's own
+// triangles (1, closed and oriented, holds).
+bool star_shaped(const std::vector<Vec3>& pos, std::span<const Tri> own) {
+  Vec3 o{0, 0, 0};
+  for (const Tri& t : own)
+    for (std::uint32_t v : t.v) o = o + pos[v];
+  o = o * (1.0 / static_cast<double>(3 * own.size()));
+  const Tri& t0 = own[0];
+  const int side = orient3d(o, pos[t0.v[0]], pos[t0.v[1]], pos[t0.v[2]]);
+  if (side == 0) return false;
+  const Vec3 through = (pos[t0.v[0]] + pos[t0.v[1]] + pos[t0.v[2]]) * (1.0 / 3.0);
+  for (int e = 0; e < 3; ++e)
+    if (orient3d(o, pos[t0.v[e]], pos[t0.v[(e + 1) % 3]], through) != side) return false;
+  for (std::size_t i = 1; i < own.size(); ++i) {
+    const Tri& t = own[i];
+    if (orient3d(o, pos[t.v[0]], pos[t.v[1]], pos[t.v[2]]) != side) return false;
+    bool outside = false;
+    for (int e = 0; e < 3 && !outside; ++e)
+      outside = orient3d(o, pos[t.v[e]], pos[t.v[(e + 1) % 3]], through) == -side;
+    if (!outside) return false;
+  }
+  return true;
+}
+
+constexpr std::array<int, 3> kAxes{2, 0, 1};  // z first: extrusions are made along it
+
+// The second argument of embedded_operands, for the triangles tris[lo, hi) of one
+// operand along axis d (condition 1, closed and oriented, holds). Writing a vertex
+// as (x, z) with z its coordinate along d and x its projection across:
+//  P1. the vertices' z take exactly two values z0 < z1;
+//  P2. the caps, the triangles with all corners at z0 and those with all at z1, each
+//      pass simple_tiling with their boundary (the edges one of their own triangles
+//      uses) as loops;
+//  P3. every other triangle, a wall, has two corners p, q at one level and the third,
+//      r, at the other with x(r) = x(p) or x(q), and its edge p q is on the boundary
+//      of the cap at its level.
+// Then the walls come in pairs that make the rectangle e x [z0, z1] over a bottom
+// boundary edge e = a0 b0, with a1, b1 the vertices over a0, b0 at z1 (vertices are
+// one per point): if a wall is a0 b0 b1, the triangle across its edge b1 a0 holds a0
+// and b1, so it is a wall; by P3 it is a0 b1 a1 with b1 a1 on the top's boundary (its
+// third corner at z0 would have to be b0, which would use a0 b0 a second time in
+// turn, against 1). Likewise from a0 b0 a1, and from a top edge. So every boundary
+// edge of a cap has one rectangle over it, whose top and bottom are boundary edges.
+// Two triangles then meet only in corners and edges they share: in one cap by P2;
+// in the two caps never (z0 < z1); a wall and a cap only on the wall's rectangle's
+// edge in the cap's plane, a boundary edge that tiles touch only as their edge or at
+// its ends (a tile reaching it elsewhere would cover a point next to it twice); two
+// walls of one rectangle in its diagonal; walls over boundary edges e != f within
+// (e n f) x [z0, z1], where e n f is empty or the corner c both have (the loops are
+// simple and apart), and each wall meets the segment over c in the edge c0 c1 or one
+// of its ends. An outline's extrusion (linear_extrude without twist or scale) is such
+// a prism, letters and outlines with holes and several pieces among them, turned by
+// quarter turns too; most are not star-shaped.
+bool prism(const std::vector<Vec3>& pos, std::span<const Tri> tris, std::uint32_t lo, std::uint32_t hi, int d) {
+  // P1.
+  double z0 = pos[tris[lo].v[0]][d], z1 = z0;
+  for (std::uint32_t t = lo; t < hi; ++t)
+    for (std::uint32_t v : tris[t].v) {
+      const double z = pos[v][d];
+      if (z == z0 || z == z1) continue;
+      if (z0 != z1) return false;
+      (z < z0 ? z0 : z1) = z;
+    }
+  if (z0 == z1) return false;
+  // P2. The caps' boundaries as sorted directed edges (from << 32 | to), then chained
+  // into loops (a corner where a boundary leaves twice is not simple).
+  std::array<std::vector<std::uint32_t>, 2> cap;
+  std::vector<std::uint32_t> walls;
+  for (std::uint32_t t = lo; t < hi; ++t) {
+    int low = 0;
+    for (std::uint32_t v : tris[t].v) low += pos[v][d] == z0;
+    (low == 3 ? cap[0] : low == 0 ? cap[1] : walls).push_back(t);
+  }
+  std::array<std::vector<std::uint64_t>, 2> rim;
+  for (int c = 0; c < 2; ++c) {
+    if (cap[c].empty()) return false;
+    std::vector<std::uint64_t> uses;
+    for (std::uint32_t t : cap[c])
+      for (int e = 0; e < 3; ++e)
+        uses.push_back(static_cast<std::uint64_t>(tris[t].v[e]) << 32 | tris[t].v[(e + 1) % 3]);
+    std::sort(uses.begin(), uses.end());
+    for (std::uint64_t u : uses) {
+      const std::uint64_t back = (u << 32) | (u >> 32);
+      if (!std::binary_search(uses.begin(), uses.end(), back)) rim[c].push_back(u);
+    }
+    // Each corner of the boundary left once and reached once: then the chains below
+    // close into loops.
+    std::vector<std::uint64_t>& r = rim[c];
+    std::vector<std::uint32_t> ends;
+    for (std::uint64_t u : r) ends.push_back(static_cast<std::uint32_t>(u));
+    std::sort(ends.begin(), ends.end());
+    const auto same_start = [](std::uint64_t x, std::uint64_t y) { return x >> 32 == y >> 32; };
+    if (std::adjacent_find(r.begin(), r.end(), same_start) != r.end() ||
+        std::adjacent_find(ends.begin(), ends.end()) != ends.end())
+      return false;
+    LoopTable loops;
+    std::vector<char> used(r.size(), 0);
+    std::vector<std::uint32_t> loop;
+    for (std::size_t i = 0; i < r.size(); ++i) {
+      if (used[i]) continue;
+      loop.clear();
+      for (std::size_t j = i; !used[j];) {
+        used[j] = 1;
+        loop.push_back(static_cast<std::uint32_t>(r[j] >> 32));
+        const auto to = static_cast<std::uint32_t>(r[j]);
+        const auto next = std::lower_bound(r.begin(), r.end(), static_cast<std::uint64_t>(to) << 32);
+        if (next == r.end() || *next >> 32 != to) return false;
+        j = static_cast<std::size_t>(next - r.begin());
+      }
+      loops.add(loop);
+    }
+    if (!simple_tiling(pos, FaceLoops{&loops, 0, loops.size()}, tris, cap[c])) return false;
+  }
+  // P3.
+  const int du = (d + 1) % 3, dv = (d + 2) % 3;
+  for (std::uint32_t t : walls) {
+    const auto& v = tris[t].v;
+    int i = 0;  // the corner alone at its level
+    while (i < 3 && (pos[v[i]][d] == pos[v[(i + 1) % 3]][d] || pos[v[i]][d] == pos[v[(i + 2) % 3]][d])) ++i;
+    if (i == 3) return false;
+    const std::uint32_t p = v[(i + 1) % 3], q = v[(i + 2) % 3], r = v[i];
+    const auto over = [&](std::uint32_t a) { return pos[r][du] == pos[a][du] && pos[r][dv] == pos[a][dv]; };
+    if (!over(p) && !over(q)) return false;
+    const std::vector<std::uint64_t>& level = rim[pos[p][d] == z0 ? 0 : 1];
+    if (!std::binary_search(level.begin(), level.end(), static_cast<std::uint64_t>(q) << 32 | p)) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+// arrangement.h. Two arguments, for one operand's triangles. The first:
 //  1. every edge is used by two of them, once each way: a closed oriented surface;
 //  2. a point o is strictly on one side of every triangle's plane, the same side for
 //     all: seen from o, every triangle turns the same way, so the surface's projection
@@ -438,6 +645,8 @@ std::span<const EdgeUseTable::Use> EdgeUseTable::uses(std::uint32_t p, std::uint
 //     triangle's closed cone: the degree is 1.
 // Covering the sphere once, the projection is one to one, so two triangles meet only
 // in the corners and edges they share: the surface is embedded (and star-shaped from o).
+// The second, for surfaces that pass 1 but not 2 and 3: the surface is a prism over
+// an outline along an axis (prism, above).
 std::vector<char> embedded_operands(const std::vector<Vec3>& pos, std::span<const Tri> tris,
                                     const EdgeUseTable& edges, const std::vector<char>& candidates,
                                     int threads, std::vector<std::array<std::uint32_t, 2>>& joins) {
@@ -467,27 +676,9 @@ std::vector<char> embedded_operands(const std::vector<Vec3>& pos, std::span<cons
   for (std::size_t t = tris.size(); t-- > 0;) begin[tris[t].operand] = static_cast<std::uint32_t>(t);
   for (std::size_t k = operands; k-- > 0;) begin[k] = std::min(begin[k], begin[k + 1]);
   const std::vector<char> star = parallel_jobs<char>(operands, threads, [&](std::size_t k, char& out) {
-    const std::span<const Tri> own = tris.subspan(begin[k], begin[k + 1] - begin[k]);
-    if (!ok[k] || own.size() < 4) return;
-    Vec3 o{0, 0, 0};
-    for (const Tri& t : own)
-      for (std::uint32_t v : t.v) o = o + pos[v];
-    o = o * (1.0 / static_cast<double>(3 * own.size()));
-    const Tri& t0 = own[0];
-    const int side = orient3d(o, pos[t0.v[0]], pos[t0.v[1]], pos[t0.v[2]]);
-    if (side == 0) return;
-    const Vec3 through = (pos[t0.v[0]] + pos[t0.v[1]] + pos[t0.v[2]]) * (1.0 / 3.0);
-    for (int e = 0; e < 3; ++e)
-      if (orient3d(o, pos[t0.v[e]], pos[t0.v[(e + 1) % 3]], through) != side) return;
-    for (std::size_t i = 1; i < own.size(); ++i) {
-      const Tri& t = own[i];
-      if (orient3d(o, pos[t.v[0]], pos[t.v[1]], pos[t.v[2]]) != side) return;
-      bool outside = false;
-      for (int e = 0; e < 3 && !outside; ++e)
-        outside = orient3d(o, pos[t.v[e]], pos[t.v[(e + 1) % 3]], through) == -side;
-      if (!outside) return;
-    }
-    out = 1;
+    if (!ok[k] || begin[k + 1] - begin[k] < 4) return;
+    out = star_shaped(pos, tris.subspan(begin[k], begin[k + 1] - begin[k])) ||
+          std::any_of(kAxes.begin(), kAxes.end(), [&](int d) { return prism(pos, tris, begin[k], begin[k + 1], d); });
   });
   for (std::size_t k = 0; k < operands; ++k) ok[k] = ok[k] && star[k];
   // The certified operands' neighbours in one plane, from different faces (a planar
