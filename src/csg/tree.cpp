@@ -237,6 +237,18 @@ bool keeps_axes(const shape::Transform& t) {
   return true;
 }
 
+// Whether t is a signed permutation of the axes with no translation: it moves every
+// double point to a double point exactly.
+bool permutes_axes(const shape::Transform& t) {
+  if (!keeps_axes(t)) return false;
+  for (int r = 0; r < 3; ++r) {
+    if (t.m[r][3] != 0) return false;
+    for (int c = 0; c < 3; ++c)
+      if (t.m[r][c] != 0 && std::abs(t.m[r][c]) != 1) return false;
+  }
+  return true;
+}
+
 // A 2D subtree: regions (already transformed into the plane) combined by set operations.
 struct Shape2 {
   boolean::Expr expr;
@@ -834,6 +846,27 @@ class Builder {
   Built subtree(const Node& n, SourcePos pos) {
     return memoized(subtree_memo_, n, [&] {
       Built out;
+      // Under quarter turns and mirrors in the axes' planes, nothing added (a signed
+      // permutation of the axes: every point moves exactly), the subtree is combined in
+      // its own frame, once however many ways it is turned (GEB.scad's letters, built
+      // as a part and projected from three sides), and its result moved: the same solid
+      // as combining the moved leaves would give, but for the diagonal that splits a
+      // quad that is not exactly planar (a sphere's), which follows the quad's corner
+      // order and so may differ in a mirror image.
+      if (n.kind == NodeKind::kMultmatrix && permutes_axes(n.matrix)) {
+        Node group;
+        group.kind = NodeKind::kGroup;
+        group.children = n.children;
+        const Node& core = geometry_core(group);
+        if (combines_solids(core)) {
+          const Built inner = with_color(subtree(core, pos), color_above(group));
+          const std::vector<FaceId> ids = copy_into(out.model, inner.model, n.matrix);
+          out.face_colors.assign(out.model.face_slots(), std::nullopt);
+          for (std::size_t f = 0; f < ids.size() && f < inner.face_colors.size(); ++f)
+            if (ids[f].is_valid()) out.face_colors[ids[f].value] = inner.face_colors[f];
+          return out;
+        }
+      }
       std::vector<Leaf> leaves;
       auto expr = collect3(n, shape::Transform::identity(), std::nullopt, leaves);
       if (expr) out.model = combine(*expr, leaves, pos, &out.face_colors);

@@ -59,22 +59,31 @@ Status check_loop(const std::vector<Vec2>& loop, std::size_t li) {
 }
 
 // Every pair of edges of all loops: only neighbours in one loop may meet, at their
-// common vertex.
+// common vertex. Pairs whose boxes meet, by a sweep along x; of the pairs at fault,
+// the first in the loops' order is reported.
 Status check_crossings(const std::vector<std::vector<Vec2>>& loops) {
   struct Edge {
     std::size_t loop, index;
     Vec2 a, b;
+    double x0, x1, y0, y1;
   };
   std::vector<Edge> edges;
   for (std::size_t l = 0; l < loops.size(); ++l) {
     for (std::size_t i = 0; i < loops[l].size(); ++i) {
-      edges.push_back({l, i, loops[l][i], loops[l][(i + 1) % loops[l].size()]});
+      const Vec2 a = loops[l][i], b = loops[l][(i + 1) % loops[l].size()];
+      edges.push_back({l, i, a, b, std::min(a.x, b.x), std::max(a.x, b.x), std::min(a.y, b.y), std::max(a.y, b.y)});
     }
   }
-  for (std::size_t i = 0; i < edges.size(); ++i) {
-    for (std::size_t j = i + 1; j < edges.size(); ++j) {
+  std::vector<std::size_t> order(edges.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](std::size_t i, std::size_t j) { return edges[i].x0 < edges[j].x0; });
+  std::pair<std::size_t, std::size_t> fault{edges.size(), edges.size()};
+  for (std::size_t oi = 0; oi < order.size(); ++oi) {
+    for (std::size_t oj = oi + 1; oj < order.size() && edges[order[oj]].x0 <= edges[order[oi]].x1; ++oj) {
+      const std::size_t i = std::min(order[oi], order[oj]), j = std::max(order[oi], order[oj]);
       const Edge& e = edges[i];
       const Edge& f = edges[j];
+      if (e.y0 > f.y1 || f.y0 > e.y1) continue;
       bool bad;
       const std::size_t n = loops[e.loop].size();
       if (e.loop == f.loop && (e.index + 1) % n == f.index) {
@@ -84,15 +93,15 @@ Status check_crossings(const std::vector<std::vector<Vec2>>& loops) {
       } else {
         bad = segments_meet(e.a, e.b, f.a, f.b);
       }
-      if (bad) {
-        return invalid(loop_name(e.loop) + " edge " + std::to_string(e.index) + " " +
-                       point_text(e.a) + "-" + point_text(e.b) + " meets " + loop_name(f.loop) +
-                       " edge " + std::to_string(f.index) + " " + point_text(f.a) + "-" +
-                       point_text(f.b));
-      }
+      if (bad) fault = std::min(fault, std::pair{i, j});
     }
   }
-  return Status::Ok();
+  if (fault.first == edges.size()) return Status::Ok();
+  const Edge& e = edges[fault.first];
+  const Edge& f = edges[fault.second];
+  return invalid(loop_name(e.loop) + " edge " + std::to_string(e.index) + " " + point_text(e.a) + "-" +
+                 point_text(e.b) + " meets " + loop_name(f.loop) + " edge " + std::to_string(f.index) + " " +
+                 point_text(f.a) + "-" + point_text(f.b));
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 // face, and the `cellforge build` command's exit codes.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -551,6 +552,51 @@ TEST(Build, AColorAboveASubtreeStaysWithIt) {
   }
   EXPECT_GT(red, 0u);
   EXPECT_EQ(plain, red);  // the same faces, turned
+}
+
+// A subtree under quarter turns and mirrors (nothing added) is combined once, in its
+// own frame, and moved: built as a part, projected turned two ways and mirrored, one
+// Boolean. Turned by 30 degrees or moved, it is combined again where it is. Each part
+// keeps the subtree's volume, and the turned parts its points turned exactly.
+TEST(Build, QuarterTurnedSubtreesAreCombinedOnce) {
+  const std::string x =
+      "module x() difference() { cube(4, center = true); translate([1, 0.5, 0.25]) sphere(2.5, $fn = 16); }\n";
+  auto once = run(x +
+                  "color(\"red\") x();\n"
+                  "translate([0, 0, -20]) linear_extrude(1) projection() rotate([90, 0, 0]) x();\n"
+                  "translate([0, 0, -40]) linear_extrude(1) projection() rotate([0, 90, 90]) mirror([1, 0, 0]) x();\n");
+  ASSERT_TRUE(once);
+  auto b = build(*once->root, BuildOptions{});
+  ASSERT_TRUE(b) << b.error().message;
+  EXPECT_EQ(b->stats.booleans, 1u);
+  EXPECT_TRUE(validate(b->model).empty());
+
+  auto alone = run(x + "x();\n");
+  auto turned = run(x + "rotate([90, 0, 0]) mirror([0, 1, 0]) x();\n");
+  auto off_axes = run(x + "rotate([30, 0, 0]) x();\n");
+  ASSERT_TRUE(alone && turned && off_axes);
+  auto a = build(*alone->root, BuildOptions{});
+  auto t = build(*turned->root, BuildOptions{});
+  auto o = build(*off_axes->root, BuildOptions{});
+  ASSERT_TRUE(a && t && o);
+  EXPECT_EQ(t->stats.booleans, 1u);
+  EXPECT_EQ(o->stats.booleans, 1u);
+  const double v = shape::mass_properties(a->model).volume;
+  EXPECT_NEAR(shape::mass_properties(t->model).volume, v, 1e-9 * v);
+  EXPECT_NEAR(shape::mass_properties(o->model).volume, v, 1e-9 * v);
+  EXPECT_EQ(t->model.num_faces(), a->model.num_faces());
+  EXPECT_EQ(t->model.num_vertices(), a->model.num_vertices());
+  // (x, y, z) -> mirror y -> (x, -y, z) -> rotate 90 about x -> (x, -z, -y).
+  std::set<std::array<double, 3>> expected, got;
+  for (VertexId w : a->model.vertices()) {
+    const Vec3 p = a->model.position(w);
+    expected.insert({p.x, -p.z + 0.0, -p.y + 0.0});
+  }
+  for (VertexId w : t->model.vertices()) {
+    const Vec3 p = t->model.position(w);
+    got.insert({p.x + 0.0, p.y + 0.0, p.z + 0.0});
+  }
+  EXPECT_EQ(got, expected);
 }
 
 // With parts on threads, the error reported is the first failing part's by order

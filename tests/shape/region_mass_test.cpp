@@ -1,7 +1,12 @@
 // 2D regions (exact checks of polygon()) and mass properties of sheets and cells.
 #include <gtest/gtest.h>
 
+#include <random>
+#include <string>
+#include <vector>
+
 #include "shape/shape_test_util.h"
+#include "cellforge/geom/intersect.h"
 #include "cellforge/shape/mass.h"
 #include "cellforge/shape/primitives.h"
 #include "cellforge/shape/region.h"
@@ -39,6 +44,49 @@ TEST(Region, PolygonErrorsNameTheProblem) {
                "hole 1 lies inside hole 0");
   expect_error(circle(0), "positive");
   expect_error(regular_polygon(2, 1), "at least 3");
+}
+
+// polygon()'s check of crossings (a sweep over the edges' boxes) against every pair of
+// edges, on 2,000 seeded random polygons on a small grid (most cross or touch): the
+// same verdict, and the same first pair named.
+TEST(Region, CrossingsAgreeWithEveryPairOfEdges) {
+  std::mt19937 rng(7);
+  int refused = 0;
+  for (int c = 0; c < 2000; ++c) {
+    const int n = std::uniform_int_distribution<int>(3, 9)(rng);
+    std::vector<Vec2> pts;
+    for (int i = 0; i < n; ++i)
+      pts.push_back({static_cast<double>(rng() % 6), static_cast<double>(rng() % 6)});
+    // The first meeting pair in loop order, by the definition.
+    int first = -1, second = -1;
+    for (int i = 0; i < n && first < 0; ++i)
+      for (int j = i + 1; j < n && first < 0; ++j) {
+        const Vec2 a = pts[i], b = pts[(i + 1) % n], p = pts[j], q = pts[(j + 1) % n];
+        bool bad;
+        if (j == i + 1) {
+          bad = edges_fold_back(a, b, q);
+        } else if ((j + 1) % n == i) {
+          bad = edges_fold_back(p, q, b);
+        } else {
+          bad = segments_meet(a, b, p, q);
+        }
+        if (bad) first = i, second = j;
+      }
+    const auto r = polygon(pts);
+    const std::string message = r.ok() ? "" : r.error().message;
+    if (message.find("repeats") != std::string::npos || message.find("at least") != std::string::npos)
+      continue;  // checked before the crossings
+    if (first < 0) {
+      EXPECT_EQ(message.find("meets"), std::string::npos) << c << ": " << message;
+      continue;
+    }
+    ++refused;
+    ASSERT_FALSE(r.ok()) << c;
+    EXPECT_EQ(message.rfind("outer loop edge " + std::to_string(first) + " ", 0), 0u) << c << ": " << message;
+    EXPECT_NE(message.find("meets outer loop edge " + std::to_string(second) + " "), std::string::npos)
+        << c << ": " << message;
+  }
+  EXPECT_GT(refused, 500);
 }
 
 TEST(Region, CircleIsOpenScads) {
