@@ -653,12 +653,15 @@ Result<Shape2D> projection(const Model& solid, const ProjectionOptions& options)
     Model slab;
     if (auto built = build_mesh(slab, mesh); !built) return built.error();
     const Model* ms[] = {&solid, &slab};
-    // Only the section is read, by the planar Boolean, exactly: no rounding check.
+    // Only the section is read, and the planar Boolean makes it a valid shape, exactly:
+    // no rounding check of the 3D result. Read as it is, rounding may have left two
+    // of its points a unit apart with their edges touching (example021.scad's
+    // slanted sections), which no region may have.
     Options unchecked;
     unchecked.check_rounding = false;
     auto r = evaluate(ms, Expr::over(Op::kIntersection, 2), unchecked);
     if (!r) return r.error();
-    return read_plane(r->model, &r->sources);
+    return normalized(read_plane(r->model, &r->sources).regions);
   }
   return shadow(solid, false);
 }
