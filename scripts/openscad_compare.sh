@@ -3,7 +3,14 @@
 # compares them: volume (relative 1e-5: OpenSCAD's STL has 6 digits), bounding box,
 # validity of cellforge's result, and the echo output, line for line.
 #
-#   scripts/openscad_compare.sh [--all] [BUILD_DIR]
+#   scripts/openscad_compare.sh [--all] [--record DIR | --recorded DIR] [BUILD_DIR]
+#
+# --record DIR keeps what openscad gave for each file in DIR (its exit code, its
+# echo, error and warning lines, and its result's volume and box: one small file a
+# file compared); --recorded DIR reads that instead of running openscad, so that
+# the --all set beyond the corpus can be checked in well under a minute of
+# cellforge's time, where openscad takes many (./test.sh does it;
+# tests/openscad_recorded/ was recorded with Debian's openscad 2021.01, timeout 60 s).
 #
 # Compares every file of tests/scad/ (those marked `// expect no-openscad: WHY` are
 # skipped with the reason); with --all also cellforge's examples/, every example the
@@ -15,17 +22,24 @@
 set -uo pipefail
 
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
-ALL=0
-if [ "${1:-}" = "--all" ]; then
-  ALL=1
+ALL=0 RECORD="" RECORDED=""
+while [ $# -gt 0 ]; do
+  case $1 in
+    --all) ALL=1 ;;
+    --record) RECORD=$(mkdir -p "$2" && cd "$2" && pwd); shift ;;
+    --recorded) RECORDED=$(cd "$2" && pwd); shift ;;
+    *) break ;;
+  esac
   shift
-fi
+done
 BUILD=$(cd "${1:-$ROOT/build}" && pwd)
 CF=$BUILD/bin/cellforge
 T=${COMPARE_TIMEOUT:-120}
 KNOWN=$ROOT/docs/compatibility.md
 OUT=$BUILD/openscad-compare.txt
-command -v openscad > /dev/null || { echo "openscad_compare: openscad not installed (apt-get install openscad)"; exit 1; }
+[ -n "$RECORDED" ] && OUT=$BUILD/openscad-recorded.txt
+[ -n "$RECORDED" ] || command -v openscad > /dev/null ||
+  { echo "openscad_compare: openscad not installed (apt-get install openscad)"; exit 1; }
 [ -x "$CF" ] || { echo "openscad_compare: $CF not built"; exit 1; }
 
 tmp=$(mktemp -d)
@@ -37,16 +51,45 @@ ok=0 known=0 new=0 skipped=0
 bbox_of() { grep -o '"bbox": [^}]*\]\]\?' "$1" | head -n 1 | grep -oE -- '-?[0-9.]+(e[-+]?[0-9]+)?' | tr '\n' ' '; }
 field() { grep -o "\"$2\": [^,}]*" "$1" | head -n 1 | sed 's/.*: //'; }
 
+# OpenSCAD's volume and box from its ASCII STL directly: the signed volume of every
+# triangle (a cavity's inward shell counts negative), independent of cellforge's reader.
+oc_json() {
+  awk 'BEGIN { n = 0 }
+       $1 == "vertex" { x[n] = $2; y[n] = $3; z[n] = $4; n++;
+         if (!init) { lx = hx = $2; ly = hy = $3; lz = hz = $4; init = 1 }
+         if ($2 < lx) lx = $2; if ($2 > hx) hx = $2; if ($3 < ly) ly = $3; if ($3 > hy) hy = $3;
+         if ($4 < lz) lz = $4; if ($4 > hz) hz = $4;
+         if (n == 3) { v += x[0] * (y[1] * z[2] - z[1] * y[2]) / 6; v -= y[0] * (x[1] * z[2] - z[1] * x[2]) / 6
+                       v += z[0] * (x[1] * y[2] - y[1] * x[2]) / 6; n = 0 } }
+       END { printf "{\"volume\": %.17g, \"bbox\": [[%.17g, %.17g, %.17g], [%.17g, %.17g, %.17g]]}\n", v, lx, ly, lz, hx, hy, hz }' \
+    "$tmp/oc.stl" > "$tmp/oc.json"
+}
+
 # compare LABEL FILE: appends one line to $OUT; sets $result.
 compare() {
   local label=$1 file=$2 defines=()
   local d
   d=$(grep -o '// expect define: .*' "$file" | sed 's|// expect define: ||')
   [ -n "$d" ] && defines=(-D "$d")
-  rm -f "$tmp"/oc.stl "$tmp"/cf.stl
+  rm -f "$tmp"/oc.stl "$tmp"/cf.stl "$tmp"/oc.json
   local t0=$EPOCHREALTIME
-  (cd "$(dirname "$file")" && timeout "$T" openscad "${defines[@]}" -o "$tmp/oc.stl" "$(basename "$file")") > "$tmp/oc.out" 2>&1
-  local oc_rc=$?
+  local kept oc_rc
+  kept=${label//\//__}.txt
+  if [ -n "$RECORDED" ]; then
+    # Line 1 the exit code, line 2 the volume and box (or nothing), then the lines of
+    # openscad's output that are read below.
+    [ -f "$RECORDED/$kept" ] || { result="FAIL: nothing recorded for it in $RECORDED"; times=""; return; }
+    oc_rc=$(sed -n 1p "$RECORDED/$kept")
+    if [ -n "$(sed -n 2p "$RECORDED/$kept")" ]; then
+      sed -n 2p "$RECORDED/$kept" > "$tmp/oc.json"
+      echo recorded > "$tmp/oc.stl"
+    fi
+    sed -n '3,$p' "$RECORDED/$kept" > "$tmp/oc.out"
+  else
+    (cd "$(dirname "$file")" && timeout "$T" openscad "${defines[@]}" -o "$tmp/oc.stl" "$(basename "$file")") > "$tmp/oc.out" 2>&1
+    oc_rc=$?
+  fi
+  oc_rc_kept=$oc_rc
   local t1=$EPOCHREALTIME
   (cd "$(dirname "$file")" && timeout "$T" "$CF" build --no-cache "$(basename "$file")" "${defines[@]}" -o "$tmp/cf.stl" --report json) \
     > "$tmp/cf.out" 2> "$tmp/cf.err"
@@ -92,17 +135,7 @@ compare() {
     result=ok  # no geometry from openscad, the echo agreed
     return
   fi
-  # OpenSCAD's volume and box from its ASCII STL directly: the signed volume of every
-  # triangle (a cavity's inward shell counts negative), independent of cellforge's reader.
-  awk 'BEGIN { n = 0 }
-       $1 == "vertex" { x[n] = $2; y[n] = $3; z[n] = $4; n++;
-         if (!init) { lx = hx = $2; ly = hy = $3; lz = hz = $4; init = 1 }
-         if ($2 < lx) lx = $2; if ($2 > hx) hx = $2; if ($3 < ly) ly = $3; if ($3 > hy) hy = $3;
-         if ($4 < lz) lz = $4; if ($4 > hz) hz = $4;
-         if (n == 3) { v += x[0] * (y[1] * z[2] - z[1] * y[2]) / 6; v -= y[0] * (x[1] * z[2] - z[1] * x[2]) / 6
-                       v += z[0] * (x[1] * y[2] - y[1] * x[2]) / 6; n = 0 } }
-       END { printf "{\"volume\": %.17g, \"bbox\": [[%.17g, %.17g, %.17g], [%.17g, %.17g, %.17g]]}\n", v, lx, ly, lz, hx, hy, hz }' \
-    "$tmp/oc.stl" > "$tmp/oc.json"
+  [ -s "$tmp/oc.json" ] || oc_json
   local ov
   ov=$(field "$tmp/oc.json" volume)
   if ! awk -v a="$ov" -v b="$cv" 'BEGIN { d = a - b; if (d < 0) d = -d; m = (a < 0 ? -a : a); if ((b < 0 ? -b : b) > m) m = (b < 0 ? -b : b); exit !(d <= 1e-5 * m + 1e-9) }'; then
@@ -129,6 +162,11 @@ record() {  # LABEL FILE
     result="skip: $why"
   else
     compare "$label" "$file"
+    if [ -n "$RECORD" ] && [ "${label#tests/scad/}" = "$label" ]; then
+      [ -s "$tmp/oc.json" ] || [ ! -s "$tmp/oc.stl" ] || oc_json
+      { echo "${oc_rc_kept:-}"; cat "$tmp/oc.json" 2> /dev/null || echo; grep -E 'ECHO: |Current top level object is empty|ERROR|WARNING|not a 3D' "$tmp/oc.out"; } \
+        > "$RECORD/${label//\//__}.txt"
+    fi
   fi
   case $result in
     ok) ok=$((ok + 1)) ;;
@@ -146,9 +184,13 @@ record() {  # LABEL FILE
   printf '%s\t%s\t%s\n' "$label" "$result" "$times" >> "$OUT"
 }
 
-for f in "$ROOT"/tests/scad/*.scad; do
-  record "tests/scad/$(basename "$f")" "$f"
-done
+# (With --recorded the corpus is left to the comparison with openscad itself, which
+# ./test.sh runs first.)
+if [ -z "$RECORDED" ]; then
+  for f in "$ROOT"/tests/scad/*.scad; do
+    record "tests/scad/$(basename "$f")" "$f"
+  done
+fi
 if [ $ALL -eq 1 ]; then
   for f in "$ROOT"/examples/*.scad; do
     record "cellforge-examples/$(basename "$f")" "$f"

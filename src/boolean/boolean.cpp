@@ -272,14 +272,15 @@ namespace {
 // the number just outside the outer loop is not negative. Tilings whose loop edges'
 // boxes meet too often (more than 32 candidate pairs an edge), or with many outer
 // loops far from apart, are not certified: their pairs are tested as before.
+// `axis`: the projection to decide in (-1: the first where the first tile has area).
 template <class Loops, class Tiles>
 bool simple_tiling(const std::vector<Vec3>& pos, const Loops& loops, std::span<const Tri> tris,
-                   const Tiles& tiles) {
+                   const Tiles& tiles, int axis = -1) {
   if (tiles.empty()) return false;
   const Tri& t0 = tris[tiles[0]];
-  int k = 0;
-  while (k < 3 && orient2d_projected(pos[t0.v[0]], pos[t0.v[1]], pos[t0.v[2]], k) == 0) ++k;
-  if (k == 3) return false;
+  int k = std::max(axis, 0);
+  while (axis < 0 && k < 3 && orient2d_projected(pos[t0.v[0]], pos[t0.v[1]], pos[t0.v[2]], k) == 0) ++k;
+  if (k == 3 || orient2d_projected(pos[t0.v[0]], pos[t0.v[1]], pos[t0.v[2]], k) == 0) return false;
   const int turn = orient2d_projected(pos[t0.v[0]], pos[t0.v[1]], pos[t0.v[2]], k);
   // 1.
   for (std::uint32_t t : tiles)
@@ -531,50 +532,47 @@ bool star_shaped(const std::vector<Vec3>& pos, std::span<const Tri> own) {
 constexpr std::array<int, 3> kAxes{2, 0, 1};  // z first: extrusions are made along it
 
 // The second argument of embedded_operands, for the triangles tris[lo, hi) of one
-// operand along axis d (condition 1, closed and oriented, holds). Writing a vertex
-// as (x, z) with z its coordinate along d and x its projection across:
-//  P1. the vertices' z take exactly two values z0 < z1;
-//  P2. the caps, the triangles with all corners at z0 and those with all at z1, each
-//      pass simple_tiling with their boundary (the edges one of their own triangles
-//      uses) as loops;
-//  P3. every other triangle, a wall, has two corners p, q at one level and the third,
-//      r, at the other with x(r) = x(p) or x(q), and its edge p q is on the boundary
-//      of the cap at its level.
-// Then the walls come in pairs that make the rectangle e x [z0, z1] over a bottom
-// boundary edge e = a0 b0, with a1, b1 the vertices over a0, b0 at z1 (vertices are
-// one per point): if a wall is a0 b0 b1, the triangle across its edge b1 a0 holds a0
-// and b1, so it is a wall; by P3 it is a0 b1 a1 with b1 a1 on the top's boundary (its
-// third corner at z0 would have to be b0, which would use a0 b0 a second time in
-// turn, against 1). Likewise from a0 b0 a1, and from a top edge. So every boundary
-// edge of a cap has one rectangle over it, whose top and bottom are boundary edges.
-// Two triangles then meet only in corners and edges they share: in one cap by P2;
-// in the two caps never (z0 < z1); a wall and a cap only on the wall's rectangle's
-// edge in the cap's plane, a boundary edge that tiles touch only as their edge or at
-// its ends (a tile reaching it elsewhere would cover a point next to it twice); two
-// walls of one rectangle in its diagonal; walls over boundary edges e != f within
-// (e n f) x [z0, z1], where e n f is empty or the corner c both have (the loops are
-// simple and apart), and each wall meets the segment over c in the edge c0 c1 or one
-// of its ends. An outline's extrusion (linear_extrude without twist or scale) is such
-// a prism, letters and outlines with holes and several pieces among them, turned by
-// quarter turns too; most are not star-shaped.
-bool prism(const std::vector<Vec3>& pos, std::span<const Tri> tris, std::uint32_t lo, std::uint32_t hi, int d) {
-  // P1.
-  double z0 = pos[tris[lo].v[0]][d], z1 = z0;
+// operand along axis d, turned by `s` = +1 or -1 (condition 1, closed and oriented,
+// holds). Writing a vertex as (x, z) with z = s times its coordinate along d and x its
+// projection across, z0 the least z:
+//  P1. the triangles with every corner at z0 (the floor) and those with none there
+//      (the top) each pass simple_tiling, in the projection along d, with their
+//      boundary (the edges one of their own triangles uses) as loops;
+//  P2. every other triangle, a wall, has two corners p, q of one kind (at z0, or
+//      above it) and the third, r, of the other kind with x(r) = x(p) or x(q), and
+//      its edge p q is on the boundary of the floor or the top, the one of its kind.
+// Then the walls come in pairs that make a trapezoid over a floor boundary edge
+// e = a0 b0, with a1, b1 the top's vertices over a0, b0 (the top's projection is one
+// to one, and vertices are one per point): if a wall is a0 b0 b1, the triangle across
+// its edge b1 a0 holds a0 and b1, so it is a wall; by P2 it is a0 b1 a1 with b1 a1 on
+// the top's boundary (its third corner at z0 would have to be b0, which would use a0
+// b0 a second time in turn, against 1). Likewise from a0 b0 a1, and from a top edge.
+// So every boundary edge of the floor has one trapezoid over it, whose top is a
+// boundary edge of the top over the same segment. Two triangles then meet only in
+// corners and edges they share: in the floor, and in the top (a graph over the
+// floor's region), by P1; the floor and the top never (the top is above z0); a wall
+// and the floor or the top only on the trapezoid's edge over e, a boundary edge that
+// tiles touch only as their edge or at its ends (a tile reaching it elsewhere would
+// cover a point next to it twice); two walls of one trapezoid in its diagonal; walls
+// over boundary edges e != f within the vertical line over the corner c that e and f
+// may have (the loops are simple and apart), where each wall meets the segment c0 c1
+// in all of it or one of its ends. An outline's extrusion (linear_extrude without
+// twist or scale; the top a second flat cap) is such a prism, letters and outlines
+// with holes and several pieces among them, turned by quarter turns too, and so is
+// surface()'s heightfield over its flat base; most are not star-shaped.
+bool prism(const std::vector<Vec3>& pos, std::span<const Tri> tris, std::uint32_t lo, std::uint32_t hi, int d,
+           double s) {
+  double z0 = HUGE_VAL;
   for (std::uint32_t t = lo; t < hi; ++t)
-    for (std::uint32_t v : tris[t].v) {
-      const double z = pos[v][d];
-      if (z == z0 || z == z1) continue;
-      if (z0 != z1) return false;
-      (z < z0 ? z0 : z1) = z;
-    }
-  if (z0 == z1) return false;
-  // P2. The caps' boundaries as sorted directed edges (from << 32 | to), then chained
-  // into loops (a corner where a boundary leaves twice is not simple).
+    for (std::uint32_t v : tris[t].v) z0 = std::min(z0, s * pos[v][d]);
+  const auto floor = [&](std::uint32_t v) { return s * pos[v][d] == z0; };
+  // P1. The floor's and the top's boundaries as sorted directed edges (from << 32 |
+  // to), then chained into loops (a corner where a boundary leaves twice is not simple).
   std::array<std::vector<std::uint32_t>, 2> cap;
   std::vector<std::uint32_t> walls;
   for (std::uint32_t t = lo; t < hi; ++t) {
     int low = 0;
-    for (std::uint32_t v : tris[t].v) low += pos[v][d] == z0;
+    for (std::uint32_t v : tris[t].v) low += floor(v);
     (low == 3 ? cap[0] : low == 0 ? cap[1] : walls).push_back(t);
   }
   std::array<std::vector<std::uint64_t>, 2> rim;
@@ -615,19 +613,19 @@ bool prism(const std::vector<Vec3>& pos, std::span<const Tri> tris, std::uint32_
       }
       loops.add(loop);
     }
-    if (!simple_tiling(pos, FaceLoops{&loops, 0, loops.size()}, tris, cap[c])) return false;
+    if (!simple_tiling(pos, FaceLoops{&loops, 0, loops.size()}, tris, cap[c], d)) return false;
   }
-  // P3.
+  // P2.
   const int du = (d + 1) % 3, dv = (d + 2) % 3;
   for (std::uint32_t t : walls) {
     const auto& v = tris[t].v;
-    int i = 0;  // the corner alone at its level
-    while (i < 3 && (pos[v[i]][d] == pos[v[(i + 1) % 3]][d] || pos[v[i]][d] == pos[v[(i + 2) % 3]][d])) ++i;
+    int i = 0;  // the corner alone of its kind
+    while (i < 3 && (floor(v[i]) == floor(v[(i + 1) % 3]) || floor(v[i]) == floor(v[(i + 2) % 3]))) ++i;
     if (i == 3) return false;
     const std::uint32_t p = v[(i + 1) % 3], q = v[(i + 2) % 3], r = v[i];
     const auto over = [&](std::uint32_t a) { return pos[r][du] == pos[a][du] && pos[r][dv] == pos[a][dv]; };
     if (!over(p) && !over(q)) return false;
-    const std::vector<std::uint64_t>& level = rim[pos[p][d] == z0 ? 0 : 1];
+    const std::vector<std::uint64_t>& level = rim[floor(p) ? 0 : 1];
     if (!std::binary_search(level.begin(), level.end(), static_cast<std::uint64_t>(q) << 32 | p)) return false;
   }
   return true;
@@ -678,7 +676,9 @@ std::vector<char> embedded_operands(const std::vector<Vec3>& pos, std::span<cons
   const std::vector<char> star = parallel_jobs<char>(operands, threads, [&](std::size_t k, char& out) {
     if (!ok[k] || begin[k + 1] - begin[k] < 4) return;
     out = star_shaped(pos, tris.subspan(begin[k], begin[k + 1] - begin[k])) ||
-          std::any_of(kAxes.begin(), kAxes.end(), [&](int d) { return prism(pos, tris, begin[k], begin[k + 1], d); });
+          std::any_of(kAxes.begin(), kAxes.end(), [&](int d) {
+            return prism(pos, tris, begin[k], begin[k + 1], d, 1) || prism(pos, tris, begin[k], begin[k + 1], d, -1);
+          });
   });
   for (std::size_t k = 0; k < operands; ++k) ok[k] = ok[k] && star[k];
   // The certified operands' neighbours in one plane, from different faces (a planar

@@ -251,7 +251,8 @@ TEST(EmbeddedSurface, WhatCouldMeetItselfIsRefused) {
 // Extrusions of outlines (the second argument, a prism along an axis): a C, a square
 // ring, two pieces, an island in a hole, turned a quarter turn; none star-shaped.
 // Refused: an island on the solid part of a ring (the caps cover it twice), a square
-// in a square, pieces of different heights, a prism sheared so that its walls lean.
+// in a square, pieces standing on different floors, a prism sheared so that its walls
+// lean.
 Model extruded(const std::vector<shape::Region>& pieces, double h = 3, double z = 0) {
   Model m;
   for (const shape::Region& r : pieces) {
@@ -280,14 +281,24 @@ TEST(EmbeddedSurface, ExtrusionsOfOutlinesAreCertified) {
   const Model turned = testing::moved(extruded({c}, 3, -1.5), shape::Transform::rotate_xyz({90, 0, 90}));
   for (const Model* m : {&c_prism, &ring_prism, &two, &island, &turned}) EXPECT_TRUE(embedded(tiles_of(*m)));
 
-  // The star test certifies none of them: with one top corner lifted by 1e-7 (no
-  // longer a prism, and as star-shaped as before but for that sliver), each is refused.
+  // The star test certifies none of them: with one top corner moved across by 1e-7
+  // (its walls no longer vertical, and as star-shaped as before but for that sliver),
+  // each is refused.
   for (const Model* m : {&c_prism, &ring_prism, &two, &island}) {
     Tiles t = tiles_of(*m);
     for (Vec3& p : t.pos)
-      if (p.z == 3 && p.x == 0 && p.y == 0) p.z = 3.0000001;
+      if (p.z == 3 && p.x == 0 && p.y == 0) p.x = 1e-7;
     EXPECT_FALSE(embedded(t));
   }
+  // Pieces of different heights, and the C with one top corner lifted: the top is a
+  // heightfield over the floor, not a plane, and that is certified too.
+  Model other_heights = extruded({c});
+  ASSERT_TRUE(shape::linear_extrude(other_heights, square_at(20, 0, 2), {.height = 4}).ok());
+  EXPECT_TRUE(embedded(tiles_of(other_heights)));
+  Tiles lifted = tiles_of(c_prism);
+  for (Vec3& p : lifted.pos)
+    if (p.z == 3 && p.x == 0 && p.y == 0) p.z = 3.5;
+  EXPECT_TRUE(embedded(lifted));
 }
 
 TEST(EmbeddedSurface, PrismsThatCouldMeetThemselvesAreRefused) {
@@ -297,10 +308,13 @@ TEST(EmbeddedSurface, PrismsThatCouldMeetThemselvesAreRefused) {
   EXPECT_FALSE(embedded(tiles_of(extruded({ring, square_at(0.5, 0.5, 1)}))));
   // A square inside a square, no hole.
   EXPECT_FALSE(embedded(tiles_of(extruded({square_at(0, 0, 10), square_at(4, 4, 2)}))));
-  // A piece of another height beside it.
-  Model other_heights = extruded({ring});
-  ASSERT_TRUE(shape::linear_extrude(other_heights, square_at(20, 0, 2), {.height = 4}).ok());
-  EXPECT_FALSE(embedded(tiles_of(other_heights)));
+  // A piece whose floor is not the others' (a heightfield needs one flat floor).
+  Model other_floors = extruded({ring});
+  ASSERT_TRUE(shape::linear_extrude(other_floors, square_at(20, 0, 2), {.height = 4}).ok());
+  Tiles raised = tiles_of(other_floors);
+  for (Vec3& p : raised.pos)
+    if (p.x >= 20) p.z += 1;
+  EXPECT_FALSE(embedded(raised));
   // The C sheared: its top moved along x, its walls leaning.
   const shape::Region c = outline({{0, 0}, {6, 0}, {6, 1}, {1, 1}, {1, 5}, {6, 5}, {6, 6}, {0, 6}});
   Tiles sheared = tiles_of(extruded({c}));
@@ -412,6 +426,64 @@ TEST(EmbeddedSurface, RandomPrismsAreCertifiedOnlyWhenEmbedded) {
   RecordProperty("granted", granted);
   EXPECT_GT(embedded_cases, cases / 4);
   EXPECT_GT(granted * 10, embedded_cases * 9) << granted << " of " << embedded_cases;
+}
+
+// Heightfields (surface()'s solids: a flat floor, vertical walls, a top over the floor)
+// against the definition, on 1,000 seeded random grids of 2 to 5 cells a side: heights
+// 1 to 3 (now and then 0, on the floor), inner top corners moved across by up to 1.2
+// (some of the tops then fold over themselves), sometimes turned upside down.
+TEST(EmbeddedSurface, RandomHeightfieldsAreCertifiedOnlyWhenEmbedded) {
+  std::mt19937 rng(42);
+  int granted = 0, embedded_cases = 0, folded = 0;
+  for (int c = 0; c < 1000; ++c) {
+    const int n = 2 + static_cast<int>(rng() % 4), m = 2 + static_cast<int>(rng() % 4);
+    const auto at = [&](int i, int j) { return static_cast<std::uint32_t>(i * (m + 1) + j); };
+    const auto top = static_cast<std::uint32_t>((n + 1) * (m + 1));
+    std::vector<Vec3> pos(2 * top);
+    const double moves[] = {0, 0, 0.3, -0.3, 0.6, -0.6, 1.2, -1.2};
+    const bool flip = rng() % 4 == 0;
+    for (int i = 0; i <= n; ++i)
+      for (int j = 0; j <= m; ++j) {
+        const bool inner = i > 0 && i < n && j > 0 && j < m;
+        const double h = rng() % 20 == 0 ? 0.0 : 1.0 + static_cast<double>(rng() % 3);
+        const double dx = inner ? moves[rng() % 8] : 0, dy = inner ? moves[rng() % 8] : 0;
+        pos[at(i, j)] = {double(i), double(j), 0};
+        pos[top + at(i, j)] = {i + dx, j + dy, flip ? -h : h};
+      }
+    std::vector<std::array<std::uint32_t, 3>> tris;
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < m; ++j) {
+        const std::uint32_t a = at(i, j), b = at(i + 1, j), d = at(i + 1, j + 1), e = at(i, j + 1);
+        tris.push_back({top + a, top + b, top + d});
+        tris.push_back({top + a, top + d, top + e});
+        tris.push_back({a, d, b});
+        tris.push_back({a, e, d});
+      }
+    // The boundary counterclockwise seen from +z, each edge's wall facing out.
+    std::vector<std::uint32_t> ring;
+    for (int i = 0; i < n; ++i) ring.push_back(at(i, 0));
+    for (int j = 0; j < m; ++j) ring.push_back(at(n, j));
+    for (int i = n; i > 0; --i) ring.push_back(at(i, m));
+    for (int j = m; j > 0; --j) ring.push_back(at(0, j));
+    for (std::size_t k = 0; k < ring.size(); ++k) {
+      const std::uint32_t p = ring[k], q = ring[(k + 1) % ring.size()];
+      tris.push_back({p, q, top + q});
+      tris.push_back({p, top + q, top + p});
+    }
+    if (flip)  // mirrored in z = 0: every triangle turned round to face out again
+      for (auto& t : tris) std::swap(t[1], t[2]);
+    const Tiles t = from(pos, tris);
+    const bool truth = meet_only_where_shared(t);
+    const bool verdict = embedded(t);
+    EXPECT_TRUE(truth || !verdict) << "case " << c << ": certified, but two triangles meet";
+    embedded_cases += truth;
+    folded += !truth;
+    granted += verdict;
+  }
+  RecordProperty("embedded", embedded_cases);
+  RecordProperty("granted", granted);
+  EXPECT_GT(folded, 50);
+  EXPECT_GT(granted * 2, embedded_cases) << granted << " of " << embedded_cases;
 }
 
 // The Boolean of certified operands tests no pair of one operand's triangles, and
