@@ -566,15 +566,34 @@ bool prism(const std::vector<Vec3>& pos, std::span<const Tri> tris, std::uint32_
   for (std::uint32_t t = lo; t < hi; ++t)
     for (std::uint32_t v : tris[t].v) z0 = std::min(z0, s * pos[v][d]);
   const auto floor = [&](std::uint32_t v) { return s * pos[v][d] == z0; };
+  // First what one triangle at a time tells, which most surfaces that are no prism
+  // fail at once (a Menger sponge's walls inside it, in the top): the floor's and the
+  // top's triangles each turn one way in the projection along d (P1's first
+  // condition), a wall's corner alone of its kind is over another (P2).
+  std::array<std::vector<std::uint32_t>, 2> cap;
+  std::array<int, 2> turn{0, 0};
+  std::vector<std::uint32_t> walls;
+  const int du = (d + 1) % 3, dv = (d + 2) % 3;
+  for (std::uint32_t t = lo; t < hi; ++t) {
+    const auto& v = tris[t].v;
+    const int low = floor(v[0]) + floor(v[1]) + floor(v[2]);
+    if (low == 1 || low == 2) {
+      int i = 0;  // the corner alone of its kind
+      while (floor(v[i]) == floor(v[(i + 1) % 3]) || floor(v[i]) == floor(v[(i + 2) % 3])) ++i;
+      const std::uint32_t r = v[i];
+      const auto over = [&](std::uint32_t a) { return pos[r][du] == pos[a][du] && pos[r][dv] == pos[a][dv]; };
+      if (!over(v[(i + 1) % 3]) && !over(v[(i + 2) % 3])) return false;
+      walls.push_back(t);
+      continue;
+    }
+    const int c = low == 3 ? 0 : 1;
+    const int o = orient2d_projected(pos[v[0]], pos[v[1]], pos[v[2]], d);
+    if (o == 0 || (turn[c] != 0 && o != turn[c])) return false;
+    turn[c] = o;
+    cap[c].push_back(t);
+  }
   // P1. The floor's and the top's boundaries as sorted directed edges (from << 32 |
   // to), then chained into loops (a corner where a boundary leaves twice is not simple).
-  std::array<std::vector<std::uint32_t>, 2> cap;
-  std::vector<std::uint32_t> walls;
-  for (std::uint32_t t = lo; t < hi; ++t) {
-    int low = 0;
-    for (std::uint32_t v : tris[t].v) low += floor(v);
-    (low == 3 ? cap[0] : low == 0 ? cap[1] : walls).push_back(t);
-  }
   std::array<std::vector<std::uint64_t>, 2> rim;
   for (int c = 0; c < 2; ++c) {
     if (cap[c].empty()) return false;
@@ -615,16 +634,12 @@ bool prism(const std::vector<Vec3>& pos, std::span<const Tri> tris, std::uint32_
     }
     if (!simple_tiling(pos, FaceLoops{&loops, 0, loops.size()}, tris, cap[c], d)) return false;
   }
-  // P2.
-  const int du = (d + 1) % 3, dv = (d + 2) % 3;
+  // P2, the rest: a wall's edge of one kind on that kind's boundary.
   for (std::uint32_t t : walls) {
     const auto& v = tris[t].v;
-    int i = 0;  // the corner alone of its kind
-    while (i < 3 && (floor(v[i]) == floor(v[(i + 1) % 3]) || floor(v[i]) == floor(v[(i + 2) % 3]))) ++i;
-    if (i == 3) return false;
-    const std::uint32_t p = v[(i + 1) % 3], q = v[(i + 2) % 3], r = v[i];
-    const auto over = [&](std::uint32_t a) { return pos[r][du] == pos[a][du] && pos[r][dv] == pos[a][dv]; };
-    if (!over(p) && !over(q)) return false;
+    int i = 0;
+    while (floor(v[i]) == floor(v[(i + 1) % 3]) || floor(v[i]) == floor(v[(i + 2) % 3])) ++i;
+    const std::uint32_t p = v[(i + 1) % 3], q = v[(i + 2) % 3];
     const std::vector<std::uint64_t>& level = rim[floor(p) ? 0 : 1];
     if (!std::binary_search(level.begin(), level.end(), static_cast<std::uint64_t>(q) << 32 | p)) return false;
   }
