@@ -241,7 +241,18 @@ int run(const std::vector<std::string>& argv) {
               << ", \"seconds\": {\"evaluate\": " << num(eval_seconds)
               << ", \"build\": " << num(build_seconds) << ", \"leaves\": " << num(st.leaf_seconds)
               << ", \"boolean\": " << num(st.boolean_seconds)
-              << ", \"write\": " << num(write_seconds) << "}}\n";
+              << ", \"write\": " << num(write_seconds) << "}, \"boolean_list\": [";
+    for (std::size_t i = 0; i < st.boolean_list.size(); ++i) {
+      const csg::BooleanStats& b = st.boolean_list[i];
+      std::cout << (i ? ", " : "") << "{\"operands\": " << b.operands << ", \"triangles\": " << b.triangles
+                << ", \"candidate_pairs\": " << b.candidate_pairs << ", \"cutting_pairs\": " << b.cutting_pairs
+                << ", \"pieces\": " << b.pieces << ", \"rays\": " << b.rays << ", \"points\": " << b.points
+                << ", \"seconds\": {\"soup\": " << num(b.soup) << ", \"pairs\": " << num(b.intersect)
+                << ", \"split\": " << num(b.split) << ", \"classify\": " << num(b.classify)
+                << ", \"output\": " << num(b.output) << ", \"check\": " << num(b.check)
+                << ", \"total\": " << num(b.total) << "}}";
+    }
+    std::cout << "]}\n";
   } else if (tty) {
     std::cerr << a.input << ": " << m.num_faces() << " faces, " << m.num_volumes()
               << " volumes, volume " << num(mp.volume)

@@ -24,6 +24,7 @@
 #include <optional>
 #include <string>
 #include <thread>
+#include <tuple>
 #include <unordered_map>
 #include <utility>
 
@@ -430,7 +431,7 @@ class Builder {
       for (std::size_t i : members[c]) operands.push_back(&parts[i].model);
       const auto start = Clock::now();
       auto r = boolean::apply(boolean::Op::kUnion, operands, boolean_options(operands));
-      count_boolean(start, operands.size());
+      count_boolean(start, operands.size(), false, r ? &r->report : nullptr);
       if (!r) fail(root.pos, "the Boolean operation failed: " + r.error().message);
       std::vector<Color> colors(r->model.face_slots(), std::nullopt);
       for (std::size_t f = 0; f < r->sources.size() && f < colors.size(); ++f) {
@@ -614,7 +615,7 @@ class Builder {
     for (const Leaf& l : leaves) operands.push_back(&l.model);
     const auto start = Clock::now();
     auto r = boolean::evaluate(operands, expr, boolean_options(operands));
-    count_boolean(start, operands.size());
+    count_boolean(start, operands.size(), false, r ? &r->report : nullptr);
     if (!r) fail(pos, "the Boolean operation failed: " + r.error().message);
     if (face_colors) {
       face_colors->assign(r->model.face_slots(), std::nullopt);
@@ -671,7 +672,7 @@ class Builder {
     }
     const auto start = Clock::now();
     auto r = boolean::evaluate(operands, expr, boolean_options(operands));
-    count_boolean(start, operands.size(), true);
+    count_boolean(start, operands.size(), true, r ? &r->report : nullptr);
     if (!r) fail(pos, "the Boolean operation failed: " + r.error().message);
     Model out;
     const std::vector<FaceId> ids = copy_into(out, r->model, frame.to_world);
@@ -1352,12 +1353,21 @@ class Builder {
   }
 
   // A Boolean (3D, or 2D with no operands counted) that took from `start` to now.
-  void count_boolean(Clock::time_point start, std::size_t operands, bool in_frame = false) {
+  // `report`: a 3D Boolean's, listed in BuildStats::boolean_list.
+  void count_boolean(Clock::time_point start, std::size_t operands, bool in_frame = false,
+                     const boolean::Report* report = nullptr) {
+    const double seconds = seconds_since(start);
     tally([&](BuildStats& s) {
-      s.boolean_seconds += seconds_since(start);
+      s.boolean_seconds += seconds;
       ++s.booleans;
       s.booleans_in_frame += in_frame;
       s.boolean_operands += operands;
+      if (!report) return;
+      const boolean::StageTimes& t = report->seconds;
+      s.boolean_list.push_back({operands, report->input_triangles, report->candidate_pairs,
+                                report->intersecting_pairs, report->pieces, report->rays,
+                                report->implicit_points, t.soup, t.intersect, t.split, t.classify,
+                                t.output, t.check, seconds});
     });
   }
 
@@ -1387,7 +1397,14 @@ class Builder {
 Result<BuildOutput> build(const Node& root, const BuildOptions& options) {
   Builder b(options, root);
   try {
-    return b.run(root);
+    BuildOutput out = b.run(root);
+    std::vector<BooleanStats>& list = out.stats.boolean_list;
+    const auto key = [](const BooleanStats& x) {
+      return std::tuple(x.triangles, x.operands, x.candidate_pairs, x.pieces, x.points);
+    };
+    std::stable_sort(list.begin(), list.end(),
+                     [&](const BooleanStats& x, const BooleanStats& y) { return key(x) > key(y); });
+    return out;
   } catch (const BuildError& e) {
     return Error{ErrorCode::kInvalidInput,
                  options.sources ? options.sources->format(e.pos, e.message) : e.message};

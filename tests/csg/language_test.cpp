@@ -19,6 +19,7 @@
 #include "cellforge/io/mesh_io.h"
 #include "cellforge/shape/mass.h"
 #include "cellforge/topo/validate.h"
+#include "support/cli.h"
 
 namespace cellforge::csg {
 namespace {
@@ -414,7 +415,7 @@ TEST(Build, BooleanIsEvaluatedInTheFrameOfATurnedSubtree) {
 // file, a surface() heightmap or a DXF outline rebuilds the part that reads it (and
 // only it), with the new geometry; an unchanged file is a hit.
 TEST(Build, CacheKeyFollowsImportedFiles) {
-  const std::string dir = testing::TempDir() + "cf_cache_import_test";
+  const std::string dir = ::testing::TempDir() + "cf_cache_import_test";
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir + "/in");
   auto write = [&](const std::string& name, const std::string& text) {
@@ -570,6 +571,16 @@ TEST(Build, QuarterTurnedSubtreesAreCombinedOnce) {
   ASSERT_TRUE(b) << b.error().message;
   EXPECT_EQ(b->stats.booleans, 1u);
   EXPECT_TRUE(validate(b->model).empty());
+  // The one 3D Boolean as listed: a cube's 12 triangles and a sphere's, pairs tested,
+  // pieces made, every stage's seconds within its total.
+  ASSERT_EQ(b->stats.boolean_list.size(), 1u);
+  const BooleanStats& one = b->stats.boolean_list[0];
+  EXPECT_EQ(one.operands, 2u);
+  EXPECT_GT(one.triangles, 12u);
+  EXPECT_GT(one.candidate_pairs, 0u);
+  EXPECT_GE(one.cutting_pairs, 1u);
+  EXPECT_GE(one.pieces, one.cutting_pairs > 0 ? 1u : 0u);
+  EXPECT_LE(one.soup + one.intersect + one.split + one.classify + one.output + one.check, one.total);
 
   auto alone = run(x + "x();\n");
   auto turned = run(x + "rotate([90, 0, 0]) mirror([0, 1, 0]) x();\n");
@@ -599,6 +610,26 @@ TEST(Build, QuarterTurnedSubtreesAreCombinedOnce) {
   EXPECT_EQ(got, expected);
 }
 
+// `--report json` lists each 3D Boolean, the most triangles first.
+TEST(Build, TheReportListsEachBoolean) {
+  const std::string path = ::testing::TempDir() + "report_list.scad";
+  std::ofstream(path) << "difference() { cube(10); sphere(4, $fn = 24); }\n"
+                         "translate([30, 0, 0]) intersection() { cube(4, center = true); sphere(2.5, $fn = 8); }\n";
+  const cellforge::testing::CliRun r = cellforge::testing::run_cli("build --no-cache " + path + " -o " + path + ".stl --report json");
+  ASSERT_EQ(r.status, 0) << r.out;
+  const auto list = r.out.find("\"boolean_list\": [{\"operands\": 2, \"triangles\": ");
+  ASSERT_NE(list, std::string::npos) << r.out;
+  // Two entries, the sphere of 24 first (more triangles than the sphere of 8).
+  const auto second = r.out.find("}}, {\"operands\": 2", list);
+  ASSERT_NE(second, std::string::npos) << r.out;
+  const auto triangles = [&](std::size_t at) {
+    const auto k = r.out.find("\"triangles\": ", at) + 13;
+    return std::stoul(r.out.substr(k, r.out.find(',', k) - k));
+  };
+  EXPECT_GT(triangles(list), triangles(second));
+  EXPECT_NE(r.out.find("\"seconds\": {\"soup\": ", list), std::string::npos);
+}
+
 // With parts on threads, the error reported is the first failing part's by order
 // (the one a single thread would have stopped at), every time.
 TEST(Build, TheFirstFailingPartIsReported) {
@@ -619,7 +650,7 @@ TEST(Build, TheFirstFailingPartIsReported) {
 }
 
 TEST(Build, CacheRebuildsOnlyTheEditedPart) {
-  const std::string dir = testing::TempDir() + "cf_cache_test";
+  const std::string dir = ::testing::TempDir() + "cf_cache_test";
   std::filesystem::remove_all(dir);
   auto script = [](int r) {
     return "for (i = [0 : 3]) translate([i * 10, 0, 0]) difference() { cube(5); translate([2.5, "
@@ -664,7 +695,7 @@ int cellforge(const std::string& args) {
 }
 
 TEST(Command, ExitCodes) {
-  const std::string dir = testing::TempDir() + "cf_build_test/";
+  const std::string dir = ::testing::TempDir() + "cf_build_test/";
   std::filesystem::create_directories(dir);
   {
     std::ofstream(dir + "ok.scad") << "cube(s);\n";
@@ -688,7 +719,7 @@ TEST(Command, ExitCodes) {
 // The Booleans' thread count changes nothing in the result, byte for byte (a part with
 // enough triangles that the stages do go on threads).
 TEST(Command, ThreadsBuildTheSameFile) {
-  const std::string dir = testing::TempDir() + "cf_build_threads/";
+  const std::string dir = ::testing::TempDir() + "cf_build_threads/";
   std::filesystem::create_directories(dir);
   std::ofstream(dir + "part.scad") << "difference() { sphere(10, $fn = 96); for (i = [0:7]) rotate(45 * i)\n"
                                       "  translate([8, 0, 0]) cylinder(r = 2, h = 30, center = true, $fn = 48); }\n";

@@ -124,6 +124,14 @@ struct BuildOptions {
   int threads = 1;
 };
 
+// One 3D Boolean of a build: its size, what its stages met, and their seconds
+// (boolean::Report).
+struct BooleanStats {
+  std::size_t operands = 0, triangles = 0, candidate_pairs = 0, cutting_pairs = 0;
+  std::size_t pieces = 0, rays = 0, points = 0;
+  double soup = 0, intersect = 0, split = 0, classify = 0, output = 0, check = 0, total = 0;
+};
+
 struct BuildStats {
   std::size_t leaves = 0;    // primitives and other leaf nodes built
   std::size_t booleans = 0;  // n-ary Boolean evaluations
@@ -139,6 +147,9 @@ struct BuildStats {
   // Leaves and whole subtrees met again within the build, taken from the first time.
   std::size_t memo_hits = 0;
   double leaf_seconds = 0, boolean_seconds = 0;
+  // Each 3D Boolean, the most triangles first (parts built at once finish in any
+  // order; this one does not depend on it).
+  std::vector<BooleanStats> boolean_list;
 };
 
 struct BuildOutput {
