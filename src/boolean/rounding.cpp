@@ -144,7 +144,52 @@ TriangleBoxes::TriangleBoxes(const std::vector<std::array<Vec3, 3>>& tris, int t
     }
   }
   begin_.push_back(static_cast<std::uint32_t>(boxes_.size()));
-  bvh_ = Bvh(boxes_, {}, threads);
+  bvh_ = Bvh(boxes_, owner_, threads);  // a triangle's pieces: one group
+}
+
+// stages.h.
+std::vector<std::uint64_t> TriangleBoxes::pairs_with(const std::vector<char>& marked, int threads) const {
+  const std::size_t n = begin_.size() - 1;
+  const std::size_t count = static_cast<std::size_t>(std::count(marked.begin(), marked.end(), 1));
+  if (4 * count >= n) {  // most of them: every pair at once
+    std::vector<std::uint64_t> all = pairs(threads);
+    std::erase_if(all, [&](std::uint64_t p) { return !marked[p >> 32] && !marked[static_cast<std::uint32_t>(p)]; });
+    return all;
+  }
+  // A few: the pairs around each (a pair of two marked ones once).
+  const auto found = parallel_ranges<std::vector<std::uint64_t>>(
+      n, threads, [&](std::size_t lo, std::size_t hi, std::vector<std::uint64_t>& out) {
+        std::vector<std::uint32_t> scratch;
+        for (auto i = static_cast<std::uint32_t>(lo); i < hi; ++i) {
+          if (!marked[i]) continue;
+          near(i, scratch, [&](std::uint32_t j) {
+            if (j == i || (marked[j] && j < i)) return;
+            out.push_back(static_cast<std::uint64_t>(std::min(i, j)) << 32 | std::max(i, j));
+          });
+        }
+      });
+  std::vector<std::uint64_t> all;
+  for (const auto& f : found) all.insert(all.end(), f.begin(), f.end());
+  std::sort(all.begin(), all.end());
+  return all;
+}
+
+std::vector<std::uint64_t> TriangleBoxes::pairs(int threads) const {
+  const std::vector<Bvh::Piece> pieces = bvh_.pair_pieces(64);
+  const std::vector<std::vector<std::uint64_t>> found =
+      parallel_jobs<std::vector<std::uint64_t>>(pieces.size(), threads, [&](std::size_t k, auto& out) {
+        bvh_.pairs(pieces[k], [&](std::uint32_t x, std::uint32_t y) {
+          const std::uint32_t i = std::min(owner_[x], owner_[y]), j = std::max(owner_[x], owner_[y]);
+          out.push_back(static_cast<std::uint64_t>(i) << 32 | j);
+        });
+        std::sort(out.begin(), out.end());
+        out.erase(std::unique(out.begin(), out.end()), out.end());
+      });
+  std::vector<std::uint64_t> all;
+  for (const auto& f : found) all.insert(all.end(), f.begin(), f.end());
+  std::sort(all.begin(), all.end());
+  all.erase(std::unique(all.begin(), all.end()), all.end());
+  return all;
 }
 
 bool nudge_rounding(MeshInput& in, const std::vector<char>& inexact,
@@ -227,18 +272,16 @@ bool nudge_rounding(MeshInput& in, const std::vector<char>& inexact,
       for (std::uint32_t v : tris[i]) moved[i] |= inexact[v];
     }
     const TriangleBoxes index(corners, thread_count(threads));
-    // The inexact vertices of crossing pairs.
+    // The inexact vertices of crossing pairs (a pair with a moved triangle).
+    const std::vector<std::uint64_t> near_pairs = index.pairs_with(moved, thread_count(threads));
     auto found = parallel_ranges<std::vector<std::uint32_t>>(
-        tris.size(), threads, [&](std::size_t lo, std::size_t hi, std::vector<std::uint32_t>& out) {
-          std::vector<std::uint32_t> scratch;
-          for (std::size_t i = lo; i < hi; ++i) {
-            if (!moved[i]) continue;
-            index.near(static_cast<std::uint32_t>(i), scratch, [&](std::uint32_t j) {
-              if (j == i || (moved[j] && j < i) || face[i] == face[j] || share_vertex(tris[i], tris[j])) return;
-              if (!meet(in, tris[i], tris[j])) return;
-              for (std::uint32_t v : tris[i]) if (inexact[v]) out.push_back(v);
-              for (std::uint32_t v : tris[j]) if (inexact[v]) out.push_back(v);
-            });
+        near_pairs.size(), threads, [&](std::size_t lo, std::size_t hi, std::vector<std::uint32_t>& out) {
+          for (std::size_t k = lo; k < hi; ++k) {
+            const auto i = static_cast<std::uint32_t>(near_pairs[k] >> 32), j = static_cast<std::uint32_t>(near_pairs[k]);
+            if ((!moved[i] && !moved[j]) || face[i] == face[j] || share_vertex(tris[i], tris[j])) continue;
+            if (!meet(in, tris[i], tris[j])) continue;
+            for (std::uint32_t v : tris[i]) if (inexact[v]) out.push_back(v);
+            for (std::uint32_t v : tris[j]) if (inexact[v]) out.push_back(v);
           }
         });
     std::vector<std::uint32_t> suspects;
