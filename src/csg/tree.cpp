@@ -163,10 +163,11 @@ struct Leaf {
   Color color_of(std::uint32_t face) const { return face < face_colors.size() ? face_colors[face] : color; }
 };
 
-// copy_into with the faces' colors (by source face) carried to out_colors, when given,
-// grown to out's faces.
-void copy_colored(Model& out, std::vector<Color>* out_colors, const Model& m, const std::vector<Color>& colors) {
-  const std::vector<FaceId> ids = copy_into(out, m, shape::Transform::identity());
+// copy_into (moved by t) with the faces' colors (by source face) carried to
+// out_colors, when given, grown to out's faces.
+void copy_colored(Model& out, std::vector<Color>* out_colors, const Model& m, const std::vector<Color>& colors,
+                  const shape::Transform& t = shape::Transform::identity()) {
+  const std::vector<FaceId> ids = copy_into(out, m, t);
   if (!out_colors) return;
   out_colors->resize(out.face_slots());
   for (FaceId f : m.faces())
@@ -861,10 +862,7 @@ class Builder {
         const Node& core = geometry_core(group);
         if (combines_solids(core)) {
           const Built inner = with_color(subtree(core, pos), color_above(group));
-          const std::vector<FaceId> ids = copy_into(out.model, inner.model, n.matrix);
-          out.face_colors.assign(out.model.face_slots(), std::nullopt);
-          for (std::size_t f = 0; f < ids.size() && f < inner.face_colors.size(); ++f)
-            if (ids[f].is_valid()) out.face_colors[ids[f].value] = inner.face_colors[f];
+          copy_colored(out.model, &out.face_colors, inner.model, inner.face_colors, n.matrix);
           return out;
         }
       }
