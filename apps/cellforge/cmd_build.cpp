@@ -7,9 +7,11 @@
 #include <chrono>
 #include <cstdlib>
 #include <fstream>
+#include <future>
 #include <iostream>
 #include <optional>
 #include <sstream>
+#include <vector>
 
 #include "cellforge/csg/evaluator.h"
 #include "cellforge/csg/tree.h"
@@ -188,9 +190,12 @@ int run(const std::vector<std::string>& argv) {
   }
   const double build_seconds = since(t1);
   const Model& m = built->model;
-  const auto violations = validate(m);
+  // The check runs beside the writing (both only read the model) unless one thread
+  // was asked for; the sums only when something prints them.
+  std::future<std::vector<Violation>> checked =
+      std::async(a.threads == 1 ? std::launch::deferred : std::launch::async, [&m] { return validate(m); });
   const shape::MassProperties mp =
-      m.num_faces() ? shape::mass_properties(m) : shape::MassProperties{};
+      m.num_faces() && (a.json_report || tty) ? shape::mass_properties(m) : shape::MassProperties{};
   const auto t2 = Clock::now();
   io::WriteOptions w;
   w.stl_binary = !a.ascii;
@@ -222,6 +227,7 @@ int run(const std::vector<std::string>& argv) {
     }
   }
   const double write_seconds = since(t2);
+  const std::vector<Violation> violations = checked.get();
   const csg::BuildStats& st = built->stats;
   if (a.json_report) {
     std::cout << "{\"vertices\": " << m.num_vertices() << ", \"edges\": " << m.num_edges()

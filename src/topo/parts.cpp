@@ -27,7 +27,10 @@ void copy_properties(Model& dst, const Model& src, int kind, const std::vector<I
   }
 }
 
-IdMaps copy_groups(Model& dst, const Model& src, std::span<const GroupId> groups) {
+// place: where each position goes (null: where it is); surfaces: whether the faces'
+// analytic surfaces are copied.
+IdMaps copy_groups(Model& dst, const Model& src, std::span<const GroupId> groups,
+                   const std::function<Vec3(Vec3)>& place = nullptr, bool surfaces = true) {
   IdMaps ids;
   ids.groups.assign(groups.empty() ? 0 : groups.back().value + 1, GroupId());
   for (GroupId g : groups)
@@ -52,7 +55,7 @@ IdMaps copy_groups(Model& dst, const Model& src, std::span<const GroupId> groups
       for (VolumeId c : src.volumes(g)) ids.volumes[c.value] = ed.new_volume(ids.groups[g.value]);
     for (GroupId g : groups)
       for (VertexId v : src.vertices(g))
-        ids.vertices[v.value] = ed.new_vertex(ids.groups[g.value], src.position(v));
+        ids.vertices[v.value] = ed.new_vertex(ids.groups[g.value], place ? place(src.position(v)) : src.position(v));
     for (GroupId g : groups)
       for (EdgeId e : src.edges(g))
         ids.edges[e.value] = ed.new_edge(ids[src.start_of(e)], ids[src.end_of(e)]);
@@ -61,7 +64,7 @@ IdMaps copy_groups(Model& dst, const Model& src, std::span<const GroupId> groups
         const FaceId nf = ed.new_face(
             ed.intern_sides(ids[src.front_volume(f)], ids[src.back_volume(f)], ids.groups[g.value]));
         ids.faces[f.value] = nf;
-        if (const std::uint32_t s = src.surface_of(f); s != kInvalidIndex) {
+        if (const std::uint32_t s = src.surface_of(f); surfaces && s != kInvalidIndex) {
           if (surface_map[s] == kInvalidIndex) surface_map[s] = dst.add_surface(src.surface(s));
           dst.set_surface(nf, surface_map[s]);
         }
@@ -120,6 +123,14 @@ Status check_limits(const Model& m, const Model& src, std::span<const GroupId> g
   return Status::Ok();
 }
 
+Result<IdMaps> append_all(Model& m, const Model& other, const std::function<Vec3(Vec3)>& place, bool surfaces) {
+  if (&m == &other) return Error{ErrorCode::kInvalidInput, "append: a model cannot be appended to itself"};
+  std::vector<GroupId> groups;
+  for (GroupId g : other.groups()) groups.push_back(g);
+  if (Status s = check_limits(m, other, groups); !s) return s.error();
+  return copy_groups(m, other, groups, place, surfaces);
+}
+
 }  // namespace
 
 Result<Extracted> extract(const Model& m, GroupId g) {
@@ -130,12 +141,10 @@ Result<Extracted> extract(const Model& m, GroupId g) {
   return out;
 }
 
-Result<IdMaps> append(Model& m, const Model& other) {
-  if (&m == &other) return Error{ErrorCode::kInvalidInput, "append: a model cannot be appended to itself"};
-  std::vector<GroupId> groups;
-  for (GroupId g : other.groups()) groups.push_back(g);
-  if (Status s = check_limits(m, other, groups); !s) return s.error();
-  return copy_groups(m, other, groups);
+Result<IdMaps> append(Model& m, const Model& other) { return append_all(m, other, nullptr, true); }
+
+Result<IdMaps> append(Model& m, const Model& other, const std::function<Vec3(Vec3)>& place) {
+  return append_all(m, other, place, /*surfaces=*/false);
 }
 
 }  // namespace cellforge::inline topo

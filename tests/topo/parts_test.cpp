@@ -314,5 +314,42 @@ TEST(Parts, AppendAndRoundTrip) {
   EXPECT_FALSE(append(m, m).ok());
 }
 
+TEST(Parts, AppendMovedKeepsTheTopologyAndMovesThePoints) {
+  Model other;
+  ASSERT_OK(euler_box_with_hole(other, {0, 0, 0}, {3, 3, 3}, 1, 2, "ring"));
+  ASSERT_OK(euler_nonmanifold_example(other, "nm"));
+  const Vec3 shift{10, -4, 0.5};  // moves and moves back exactly
+  Model moved = three_groups();
+  const Model before = moved;
+  auto ids = append(moved, other, [&](Vec3 p) { return p + shift; });
+  ASSERT_OK(ids);
+  EXPECT_VALID(moved);
+  for (VertexId v : other.vertices()) EXPECT_EQ(moved.position((*ids)[v]), other.position(v) + shift);
+  for (GroupId g : before.groups()) {
+    auto a = extract(before, g), b = extract(moved, g);
+    EXPECT_EQ(snapshot(a->model), snapshot(b->model)) << g.str();
+  }
+  // Moved back, each part is its source again, record for record.
+  for (GroupId g : other.groups()) {
+    Model back;
+    ASSERT_OK(append(back, extract(moved, (*ids)[g])->model, [&](Vec3 p) { return p - shift; }));
+    EXPECT_EQ(snapshot(back), snapshot(extract(other, g)->model)) << g.str();
+  }
+  // A face's analytic surface does not follow the map, so it is not copied.
+  Model curved;
+  ASSERT_OK(build_mesh(curved, unit_cube()));
+  const FaceId first = *curved.faces().begin();
+  curved.set_surface(first, curved.add_surface(Surface{.kind = "sphere", .radius = 1}));
+  Model copy;
+  auto copied = append(copy, curved, [&](Vec3 p) { return p + shift; });
+  ASSERT_OK(copied);
+  EXPECT_EQ(copy.surface_of((*copied)[first]), kInvalidIndex);
+  Model plain;
+  auto kept = append(plain, curved);
+  ASSERT_OK(kept);
+  EXPECT_NE(plain.surface_of((*kept)[first]), kInvalidIndex);
+  EXPECT_FALSE(append(copy, copy, [](Vec3 p) { return p; }).ok());
+}
+
 }  // namespace
 }  // namespace cellforge

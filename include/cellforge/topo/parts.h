@@ -11,6 +11,7 @@
 // model. A valid source gives a valid result.
 #pragma once
 
+#include <functional>
 #include <vector>
 
 #include "cellforge/result.h"
@@ -52,5 +53,12 @@ Result<Extracted> extract(const Model& m, GroupId g);
 // m's ids. An error (m unchanged) when other is m itself, or when m would pass the
 // id limits (Model::kMaxEdges, kMaxFaces).
 Result<IdMaps> append(Model& m, const Model& other);
+
+// append, with every copied position p put at place(p): a copy moved by any map that
+// keeps each loop turning as it did (a mirror would need the loops reversed). The
+// faces' analytic surfaces are not copied, since their parameters do not follow the
+// map. The topology is copied record by record, which costs a fraction of building
+// the moved mesh again (topo/builder.h).
+Result<IdMaps> append(Model& m, const Model& other, const std::function<Vec3(Vec3)>& place);
 
 }  // namespace cellforge::inline topo
