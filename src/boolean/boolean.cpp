@@ -926,16 +926,19 @@ std::size_t rounding_crossings(const Model& m, const std::vector<bool>& rounded,
   // Each triangle with a moved vertex against every triangle its boxes meet (a pair of
   // two moved ones once), so that a part whose vertices are all doubles costs nothing.
   const TriangleBoxes index(corners, thread_count(threads));
-  const std::vector<std::uint64_t> near_pairs = index.pairs_with(moved, thread_count(threads));
+  // One face: its tiling; neighbours: what they share is theirs.
+  const std::vector<std::uint64_t> near_pairs =
+      index.pairs_with(moved, thread_count(threads), [&](std::uint32_t i, std::uint32_t j) {
+        if (face[i] == face[j]) return false;
+        for (VertexId u : tris[i])
+          for (VertexId v : tris[j])
+            if (u == v) return false;
+        return true;
+      });
   std::vector<std::size_t> counts = parallel_ranges<std::size_t>(
       near_pairs.size(), threads, [&](std::size_t lo, std::size_t hi, std::size_t& count) {
         for (std::size_t k = lo; k < hi; ++k) {
           const auto i = static_cast<std::uint32_t>(near_pairs[k] >> 32), j = static_cast<std::uint32_t>(near_pairs[k]);
-          if ((!moved[i] && !moved[j]) || face[i] == face[j]) continue;  // one face: its tiling
-          bool neighbours = false;  // what they share is theirs
-          for (VertexId u : tris[i])
-            for (VertexId v : tris[j]) neighbours |= u == v;
-          if (neighbours) continue;
           const Vec3 a[3] = {m.position(tris[i][0]), m.position(tris[i][1]), m.position(tris[i][2])};
           const Vec3 b[3] = {m.position(tris[j][0]), m.position(tris[j][1]), m.position(tris[j][2])};
           if (triangles_meet(a, b)) ++count;

@@ -148,14 +148,14 @@ TriangleBoxes::TriangleBoxes(const std::vector<std::array<Vec3, 3>>& tris, int t
 }
 
 // stages.h.
-std::vector<std::uint64_t> TriangleBoxes::pairs_with(const std::vector<char>& marked, int threads) const {
+std::vector<std::uint64_t> TriangleBoxes::pairs_with(const std::vector<char>& marked, int threads,
+                                                     const Keep& keep) const {
   const std::size_t n = begin_.size() - 1;
   const std::size_t count = static_cast<std::size_t>(std::count(marked.begin(), marked.end(), 1));
-  if (4 * count >= n) {  // most of them: every pair at once
-    std::vector<std::uint64_t> all = pairs(threads);
-    std::erase_if(all, [&](std::uint64_t p) { return !marked[p >> 32] && !marked[static_cast<std::uint32_t>(p)]; });
-    return all;
-  }
+  if (4 * count >= n)  // most of them: every pair at once
+    return pairs(threads, [&](std::uint32_t i, std::uint32_t j) {
+      return (marked[i] || marked[j]) && (!keep || keep(i, j));
+    });
   // A few: the pairs around each (a pair of two marked ones once).
   const auto found = parallel_ranges<std::vector<std::uint64_t>>(
       n, threads, [&](std::size_t lo, std::size_t hi, std::vector<std::uint64_t>& out) {
@@ -163,7 +163,7 @@ std::vector<std::uint64_t> TriangleBoxes::pairs_with(const std::vector<char>& ma
         for (auto i = static_cast<std::uint32_t>(lo); i < hi; ++i) {
           if (!marked[i]) continue;
           near(i, scratch, [&](std::uint32_t j) {
-            if (j == i || (marked[j] && j < i)) return;
+            if (j == i || (marked[j] && j < i) || (keep && !keep(std::min(i, j), std::max(i, j)))) return;
             out.push_back(static_cast<std::uint64_t>(std::min(i, j)) << 32 | std::max(i, j));
           });
         }
@@ -174,12 +174,13 @@ std::vector<std::uint64_t> TriangleBoxes::pairs_with(const std::vector<char>& ma
   return all;
 }
 
-std::vector<std::uint64_t> TriangleBoxes::pairs(int threads) const {
+std::vector<std::uint64_t> TriangleBoxes::pairs(int threads, const Keep& keep) const {
   const std::vector<Bvh::Piece> pieces = bvh_.pair_pieces(64);
   const std::vector<std::vector<std::uint64_t>> found =
       parallel_jobs<std::vector<std::uint64_t>>(pieces.size(), threads, [&](std::size_t k, auto& out) {
         bvh_.pairs(pieces[k], [&](std::uint32_t x, std::uint32_t y) {
           const std::uint32_t i = std::min(owner_[x], owner_[y]), j = std::max(owner_[x], owner_[y]);
+          if (keep && (i == j || !keep(i, j))) return;
           out.push_back(static_cast<std::uint64_t>(i) << 32 | j);
         });
         std::sort(out.begin(), out.end());
@@ -273,12 +274,14 @@ bool nudge_rounding(MeshInput& in, const std::vector<char>& inexact,
     }
     const TriangleBoxes index(corners, thread_count(threads));
     // The inexact vertices of crossing pairs (a pair with a moved triangle).
-    const std::vector<std::uint64_t> near_pairs = index.pairs_with(moved, thread_count(threads));
+    const std::vector<std::uint64_t> near_pairs =
+        index.pairs_with(moved, thread_count(threads), [&](std::uint32_t i, std::uint32_t j) {
+          return face[i] != face[j] && !share_vertex(tris[i], tris[j]);
+        });
     auto found = parallel_ranges<std::vector<std::uint32_t>>(
         near_pairs.size(), threads, [&](std::size_t lo, std::size_t hi, std::vector<std::uint32_t>& out) {
           for (std::size_t k = lo; k < hi; ++k) {
             const auto i = static_cast<std::uint32_t>(near_pairs[k] >> 32), j = static_cast<std::uint32_t>(near_pairs[k]);
-            if ((!moved[i] && !moved[j]) || face[i] == face[j] || share_vertex(tris[i], tris[j])) continue;
             if (!meet(in, tris[i], tris[j])) continue;
             for (std::uint32_t v : tris[i]) if (inexact[v]) out.push_back(v);
             for (std::uint32_t v : tris[j]) if (inexact[v]) out.push_back(v);

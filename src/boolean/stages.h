@@ -148,11 +148,15 @@ class TriangleBoxes {
   // Every pair of triangles i < j with boxes that meet, as i << 32 | j, ascending
   // (the pieces of one triangle are never paired with each other: one walk of the
   // tree for all pairs, where near() for every triangle walks it once a piece).
-  std::vector<std::uint64_t> pairs(int threads) const;
+  // Only the pairs for which keep(i, j) is true, when keep is given: it is asked as
+  // each pair is found, so that the pairs it drops are neither stored nor sorted (a
+  // check's pairs of neighbours, most of what the tree finds).
+  using Keep = std::function<bool(std::uint32_t, std::uint32_t)>;
+  std::vector<std::uint64_t> pairs(int threads, const Keep& keep = nullptr) const;
   // The pairs with at least one marked triangle (marked[i] is 0 or 1), ascending: from
   // every pair when most are marked, else from near() of each marked one (a check of
   // a result with few rounded vertices walks the tree for those alone).
-  std::vector<std::uint64_t> pairs_with(const std::vector<char>& marked, int threads) const;
+  std::vector<std::uint64_t> pairs_with(const std::vector<char>& marked, int threads, const Keep& keep = nullptr) const;
   // Calls f(j) once for each triangle j with a box meeting `box`.
   template <class F>
   void near(const Box& box, std::vector<std::uint32_t>& scratch, F&& f) const {
