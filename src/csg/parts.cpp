@@ -158,10 +158,25 @@ std::vector<std::uint32_t> meeting_clusters(const std::vector<const Model*>& par
       if (!fresh) unite(it->second, k);
     }
   }
+  // A part whose box meets no other part's is a cluster of its own and needs no
+  // surface (a `for` loop's parts side by side: functions.scad's 41 cubes).
+  std::vector<Box> part_box(n);
+  for (std::size_t k = 0; k < n; ++k)
+    for (VertexId v : parts[k]->vertices()) part_box[k].add(parts[k]->position(v));
+  std::vector<bool> alone(n, true);
+  for (std::size_t p = 0; p < n; ++p)
+    for (std::size_t q = p + 1; q < n; ++q)
+      if (part_box[p].overlaps(part_box[q])) alone[p] = alone[q] = false;
   std::vector<Vec3> points;
   std::vector<std::uint32_t> index;
-  std::vector<PartSurface> surfaces;
-  for (const Model* m : parts) surfaces.push_back(surface_of(*m, points, index));
+  std::vector<PartSurface> surfaces(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    if (alone[k]) {
+      surfaces[k].box = part_box[k];
+      continue;
+    }
+    surfaces[k] = surface_of(*parts[k], points, index);
+  }
 
   // 1: a vertex of a piece of one inside the other (a piece inside lies in the
   // other's box whole, so the piece's root vertex tells).
