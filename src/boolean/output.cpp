@@ -27,6 +27,7 @@
 #include "cellforge/geom/winding.h"
 #include "cellforge/geom/union_find.h"
 #include "cellforge/topo/builder.h"
+#include "cellforge/topo/property.h"
 #include "cellforge/io/volumes.h"
 
 namespace cellforge::boolean {
@@ -823,6 +824,18 @@ double loop_volume6(const std::vector<Vec3>& pos, const std::vector<std::uint32_
   return v;
 }
 
+// BooleanResult::face_in, edge_in and vertex_in as the model's kInSetProperty columns.
+void mark_in_set(BooleanResult& r) {
+  Model& m = r.model;
+  auto faces = add_property<FaceProperty<std::uint8_t>>(m, kInSetProperty, 1);
+  auto edges = add_property<EdgeProperty<std::uint8_t>>(m, kInSetProperty, 1);
+  auto vertices = add_property<VertexProperty<std::uint8_t>>(m, kInSetProperty, 1);
+  if (!faces || !edges || !vertices) return;  // a fresh model has no such columns
+  for (FaceId f : m.faces()) faces->set(f, r.face_in[f.value] ? 1 : 0);
+  for (EdgeId e : m.edges()) edges->set(e, r.edge_in[e.value] ? 1 : 0);
+  for (VertexId v : m.vertices()) vertices->set(v, r.vertex_in[v.value] ? 1 : 0);
+}
+
 }  // namespace
 
 Result<BooleanResult> build_result(Arrangement& a, Selection selection, const Expr& expr,
@@ -1374,6 +1387,7 @@ Result<BooleanResult> build_result(Arrangement& a, Selection selection, const Ex
       report.isolated_points += !m.first_end(v).edge.is_valid() && !m.point_loop(v).is_valid();
       report.excluded += !result.vertex_in[v.value];
     }
+    if (report.excluded > 0) mark_in_set(result);
   }
   std::vector<FaceSource> by_id(result.model.face_slots());
   for (std::uint32_t f = 0; f < sources.size(); ++f) by_id[built->faces[f].value] = sources[f];

@@ -12,6 +12,8 @@
 
 #include "boolean/boolean_test_util.h"
 #include "cellforge/io/mesh_io.h"
+#include "cellforge/store/store.h"
+#include "cellforge/topo/property.h"
 #include "support/cli.h"
 
 namespace cellforge::testing {
@@ -432,6 +434,58 @@ TEST(LowerDim, RandomPrimitivesKeepTheRegularizedVolume) {
       EXPECT_EQ(low->model.num_volumes(), reg->model.num_volumes()) << "case " << k << " " << to_string(op);
     }
   }
+}
+
+// The marks of elements not in the set, on the model as kInSetProperty, so that a
+// file or the database keeps them.
+std::array<std::size_t, 3> marked_out(const Model& m) {
+  std::array<std::size_t, 3> out{};
+  const auto f = find_property<FaceProperty<std::uint8_t>>(m, boolean::kInSetProperty);
+  const auto e = find_property<EdgeProperty<std::uint8_t>>(m, boolean::kInSetProperty);
+  const auto v = find_property<VertexProperty<std::uint8_t>>(m, boolean::kInSetProperty);
+  EXPECT_TRUE(f.is_valid() && e.is_valid() && v.is_valid());
+  if (!f.is_valid() || !e.is_valid() || !v.is_valid()) return out;
+  for (FaceId x : m.faces()) out[0] += f[x] == 0;
+  for (EdgeId x : m.edges()) out[1] += e[x] == 0;
+  for (VertexId x : m.vertices()) out[2] += v[x] == 0;
+  return out;
+}
+
+TEST(LowerDim, MarksAreKeptInFilesAndTheDatabase) {
+  const Model a = box_model({0, 0, 0}, {1, 1, 1});
+  const Model b = box_model({0, 0, 1}, {1, 1, 2});
+  const Parts d = sets(Op::kDifference, {&a, &b});
+  const Model& m = d.result.model;
+  const auto f = find_property<FaceProperty<std::uint8_t>>(m, boolean::kInSetProperty);
+  ASSERT_TRUE(f.is_valid());
+  for (FaceId x : m.faces()) EXPECT_EQ(f[x] != 0, d.result.face_in[x.value]);
+  const std::array<std::size_t, 3> expected{1, 4, 4};  // B's face, its edges and corners
+  EXPECT_EQ(marked_out(m), expected);
+  // A result with every element in the set carries no marks.
+  const Parts u = sets(Op::kUnion, {&a, &b});
+  EXPECT_FALSE(find_property<FaceProperty<std::uint8_t>>(u.result.model, boolean::kInSetProperty).is_valid());
+
+  const auto dir = std::filesystem::temp_directory_path() / "cellforge_lower_dim_marks";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  // The native JSON, written by the command line.
+  const std::string pa = (dir / "a.json").string(), pb = (dir / "b.json").string();
+  const std::string out = (dir / "d.json").string();
+  ASSERT_TRUE(io::write_file(a, pa).ok());
+  ASSERT_TRUE(io::write_file(b, pb).ok());
+  const CliRun r = run_cli("bool difference " + pa + " " + pb + " -o " + out + " --keep-lower-dim");
+  ASSERT_EQ(r.status, 0) << r.out;
+  Model back;
+  ASSERT_TRUE(io::read_file(back, out).ok());
+  EXPECT_EQ(marked_out(back), expected);
+  // The model database.
+  auto store = open_store((dir / "marks.db").string());
+  ASSERT_TRUE(store.ok()) << store.error().message;
+  ASSERT_TRUE((*store)->put("d", m).ok());
+  auto loaded = (*store)->get("d");
+  ASSERT_TRUE(loaded.ok()) << loaded.error().message;
+  EXPECT_EQ(marked_out(*loaded), expected);
+  std::filesystem::remove_all(dir);
 }
 
 TEST(LowerDim, CommandLine) {

@@ -115,6 +115,11 @@ struct Report {
 
 struct ExactForm;  // exact.h
 
+// The property that marks a non-regularized result's faces, edges and vertices in
+// the set (1) or not (0), on models that have an element not in it
+// (BooleanResult::face_in).
+inline constexpr const char* kInSetProperty = "in_set";
+
 struct BooleanResult {
   Model model;                      // one group, one cell per connected solid
   std::vector<FaceSource> sources;  // by result FaceId value
@@ -124,6 +129,9 @@ struct BooleanResult {
   // Whether the points of each result face, edge and vertex (by id value) belong to
   // the result's point set. Regularized results hold all their boundary; a
   // non-regularized one may not (a difference removing a face, a cut by a sheet).
+  // When some element is not in the set, the model carries the same marks as uint8
+  // properties named kInSetProperty on its faces, edges and vertices (1: in, 0: not;
+  // topo/property.h), so that the native JSON and the model database keep them.
   std::vector<bool> face_in, edge_in, vertex_in;
   Report report;
   // How it was made, exactly, when it came from boolean::chain (exact.h): a Boolean on
