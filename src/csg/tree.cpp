@@ -79,8 +79,9 @@ Model copy_transformed(const Model& src, const shape::Transform& t) {
 std::vector<FaceId> copy_into(Model& out, const Model& src, const shape::Transform& t) {
   std::vector<FaceId> faces(src.face_slots());
   const bool flip = t.determinant() < 0;
-  // Not mirrored: the records copied as they are, the points moved (a part of
-  // example020.scad: 51 M instructions through the builder, ? M so).
+  // Not mirrored: the records copied as they are, the points moved, the property
+  // tables carried (example020.scad's copies: 51 M instructions through the builder,
+  // 24 M so). A mirror needs its loops reversed: the builder, below.
   if (!flip) {
     const bool still = is_identity(t);
     auto ids = append(out, src, [&](Vec3 p) { return still ? p : t.apply(p); });
