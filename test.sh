@@ -8,12 +8,15 @@
 # The store tests run against a real PostgreSQL server started here (and stopped at
 # exit); if it cannot start, this script fails. OpenSCAD files are built by cellforge
 # and by Debian's openscad and compared (scripts/openscad_compare.sh). Then each file
-# parser and the OpenSCAD language are fuzzed for FUZZ_SECONDS (default 30) seconds.
-# Exits non-zero on any failure.
+# parser and the OpenSCAD language are fuzzed for FUZZ_SECONDS (default 20) seconds.
+# Each stage's end is printed with the minutes since the start ("test.sh: ... at
+# 12.3 min"), for CI's 40-minute budget. Exits non-zero on any failure.
 set -euo pipefail
 cd "$(dirname "$0")"
+stage() { echo "test.sh: $1 at $(awk -v s="$SECONDS" 'BEGIN { printf "%.1f", s / 60 }') min"; }
 
 scripts/setup.sh build -DCMAKE_BUILD_TYPE=RelWithDebInfo
+stage "set-up and build"
 
 eval "$(scripts/pg_test_server.sh start)"  # exports CELLFORGE_PG_URL, CELLFORGE_PG_DIR
 trap 'scripts/pg_test_server.sh stop' EXIT
@@ -23,6 +26,7 @@ export CI="${CI:-1}"  # without the server URL the PostgreSQL tests fail, never 
 # the Boolean tests take a quarter less time so on a virtual machine.
 (cd build && GLIBC_TUNABLES="${GLIBC_TUNABLES:+$GLIBC_TUNABLES:}glibc.malloc.hugetlb=1" \
    ctest --output-on-failure -j"$(nproc)")
+stage "tests"
 
 # Agreement with OpenSCAD itself: the corpus built by both and compared (about a
 # minute); with CELLFORGE_COMPARE_ALL=1 also the openscad package's examples and MCAD
@@ -39,16 +43,21 @@ fi
 # on them takes many minutes. A file that stopped building (example021.scad did for a
 # day) fails here.
 scripts/openscad_compare.sh --all --recorded tests/openscad_recorded build
+stage "OpenSCAD comparisons"
 
 # The installed library as another project sees it: find_package(cellforge) and
 # <cellforge/cellforge.h> (tests/consumer/).
 scripts/consumer_test.sh build
+stage "consumer project"
 
 scripts/setup.sh build-asan -DCMAKE_BUILD_TYPE=Debug -DCELLFORGE_SANITIZE=ON -DCELLFORGE_BENCH=OFF
+stage "ASan + UBSan build"
 (cd build-asan && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
    LSAN_OPTIONS=suppressions=$PWD/../tests/lsan.supp ctest --output-on-failure -j"$(nproc)")
+stage "ASan + UBSan tests"
 
 # Every file parser under libFuzzer (clang, ASan + UBSan) for a bounded time each.
-FUZZ_SECONDS=${FUZZ_SECONDS:-30} scripts/fuzz.sh
+FUZZ_SECONDS=${FUZZ_SECONDS:-20} scripts/fuzz.sh
+stage "fuzzers"
 
 echo "test.sh: all tests passed"
