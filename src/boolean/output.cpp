@@ -830,7 +830,7 @@ void mark_in_set(BooleanResult& r) {
   auto faces = add_property<FaceProperty<std::uint8_t>>(m, kInSetProperty, 1);
   auto edges = add_property<EdgeProperty<std::uint8_t>>(m, kInSetProperty, 1);
   auto vertices = add_property<VertexProperty<std::uint8_t>>(m, kInSetProperty, 1);
-  if (!faces || !edges || !vertices) return;  // a fresh model has no such columns
+  if (!faces || !edges || !vertices) return;  // the name taken by another type: none on a result
   for (FaceId f : m.faces()) faces->set(f, r.face_in[f.value] ? 1 : 0);
   for (EdgeId e : m.edges()) edges->set(e, r.edge_in[e.value] ? 1 : 0);
   for (VertexId v : m.vertices()) vertices->set(v, r.vertex_in[v.value] ? 1 : 0);
