@@ -24,10 +24,16 @@ command -v "$CXX" > /dev/null || { echo "fuzz.sh: $CXX not found (apt-get instal
 # The fuzzers link the io layer target (and so the layers io/ stands on: geom, topo,
 # shape) or the csg layer (and boolean below it); no database code, which needs
 # server libraries. Built with clang, -O1 and the sanitizers by the CELLFORGE_FUZZ
-# configuration of CMakeLists.txt.
+# configuration of CMakeLists.txt, which builds those layers only. A clang sanitizer
+# tree (-DCELLFORGE_SANITIZE=ON, as test.sh's build-asan) has the fuzzers too:
+# FUZZ_BUILD=build-asan uses it as it is configured (at -O0 there, so a fuzzer runs
+# fewer inputs a second than in its own -O1 tree).
 generator=()
 command -v ninja > /dev/null && generator=(-G Ninja)
-if [ ! -f "$OUT/CMakeCache.txt" ] || ! grep -q "CELLFORGE_FUZZ:BOOL=ON" "$OUT/CMakeCache.txt"; then
+if [ -f "$OUT/CMakeCache.txt" ] && grep -q "CELLFORGE_SANITIZE:BOOL=ON" "$OUT/CMakeCache.txt"; then
+  grep -q "CMAKE_CXX_COMPILER:.*clang" "$OUT/CMakeCache.txt" ||
+    { echo "fuzz.sh: $OUT is a sanitizer tree built with another compiler than clang: no fuzzers"; exit 2; }
+elif [ ! -f "$OUT/CMakeCache.txt" ] || ! grep -q "CELLFORGE_FUZZ:BOOL=ON" "$OUT/CMakeCache.txt"; then
   cmake -S "$ROOT" -B "$OUT" "${generator[@]}" -DCMAKE_CXX_COMPILER="$CXX" \
     -DCMAKE_BUILD_TYPE=Fuzz -DCMAKE_CXX_FLAGS_FUZZ="-O1 -g" -DCELLFORGE_FUZZ=ON > /dev/null
 fi

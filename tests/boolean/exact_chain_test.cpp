@@ -203,7 +203,7 @@ class PgSchema {
 // reloaded rounded model is the result too; and the identity
 // vol(R u P) + vol(R n P) = vol(R) + vol(P) holds at each step on the exact forms.
 TEST(ExactChain, RandomChains) {
-#ifdef __SANITIZE_ADDRESS__
+#ifdef CELLFORGE_ASAN
   constexpr int kDefaultChains = 1;  // the sanitized build runs the same code 20 times slower
 #else
   constexpr int kDefaultChains = 6;

@@ -343,7 +343,7 @@ bool member(const boolean::BooleanResult& r, Vec3 p) {
 }
 
 TEST(LowerDim, RandomBoxesAgreeWithClosedSetsAtSampledPoints) {
-#ifdef __SANITIZE_ADDRESS__
+#ifdef CELLFORGE_ASAN
   constexpr int kDefaultCases = 40;  // the sanitized build runs the same code 20 times slower
 #else
   constexpr int kDefaultCases = 300;
@@ -409,7 +409,7 @@ TEST(LowerDim, RandomBoxesAgreeWithClosedSetsAtSampledPoints) {
 TEST(LowerDim, RandomPrimitivesKeepTheRegularizedVolume) {
   std::mt19937 rng(2026);
   std::uniform_real_distribution<double> angle(0, 360), offset(-1.5, 1.5);
-#ifdef __SANITIZE_ADDRESS__
+#ifdef CELLFORGE_ASAN
   constexpr int kCases = 6;
 #else
   constexpr int kCases = 24;

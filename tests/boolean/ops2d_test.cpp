@@ -466,7 +466,7 @@ void check_identities(Kind kind, unsigned first_seed, int cases) {
 // CELLFORGE_OPS2D_SEED runs the one case of that seed.
 int cases() {
   if (std::getenv("CELLFORGE_OPS2D_SEED")) return 1;
-#ifdef __SANITIZE_ADDRESS__
+#ifdef CELLFORGE_ASAN
   constexpr int kDefault = 200;  // the sanitized build is about 20 times slower
 #else
   constexpr int kDefault = 1000;

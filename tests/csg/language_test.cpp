@@ -99,7 +99,7 @@ TEST(Limits, VectorNestingLimit) {
 }
 
 // Under AddressSanitizer the stack budget is 48 MiB and frames are larger.
-#if defined(__SANITIZE_ADDRESS__)
+#if defined(CELLFORGE_ASAN)
 constexpr int kDeep = 2000;
 #else
 constexpr int kDeep = 20000;

@@ -244,13 +244,15 @@ TEST(Implicit, LinesInAPlaneMeetOnBoth) {
   auto h2 = []<class T>(Vec2 p) { return H2<T>{T(p.x), T(p.y), T(1.0)}; };
   for (int i = 0; i < 2000; ++i) {
     const Vec2 a = p2(), b = p2(), c = p2(), d = p2();
-    for (const auto& [s, t] : {std::pair{a, b}, std::pair{c, d}})
+    for (const auto& [s0, t0] : {std::pair{a, b}, std::pair{c, d}}) {
+      const Vec2 s = s0, t = t0;  // clang 14 cannot capture a structured binding
       EXPECT_EQ(decide([&]<class T>() {
                   return orient2_poly(h2.template operator()<T>(s), h2.template operator()<T>(t),
                                       lli<T>(a, b, c, d));
                 }),
                 0)
           << i;
+    }
   }
 }
 
