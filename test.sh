@@ -15,7 +15,8 @@ set -euo pipefail
 cd "$(dirname "$0")"
 stage() { echo "test.sh: $1 at $(awk -v s="$SECONDS" 'BEGIN { printf "%.1f", s / 60 }') min"; }
 
-scripts/setup.sh build -DCMAKE_BUILD_TYPE=RelWithDebInfo
+# As run.sh builds it: -O2, no debug information (a quarter of the compile time).
+scripts/setup.sh build -DCMAKE_BUILD_TYPE=Release "-DCMAKE_CXX_FLAGS_RELEASE=-O2 -DNDEBUG"
 stage "set-up and build"
 
 eval "$(scripts/pg_test_server.sh start)"  # exports CELLFORGE_PG_URL, CELLFORGE_PG_DIR

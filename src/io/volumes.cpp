@@ -70,6 +70,7 @@ Result<std::size_t> make_region_volumes(Model& m, GroupId g,
   std::vector<std::array<std::uint32_t, 3>> triangles;
   std::vector<std::uint32_t> surface_of;
   std::vector<int> fronts(classes, 0);
+  std::vector<std::uint32_t> ids;  // a loop's points
   for (std::uint32_t k = 0; k < n; ++k) {
     const FaceId f = s.faces[k / 2];
     const bool front = k % 2 == 0;
@@ -79,7 +80,7 @@ Result<std::size_t> make_region_volumes(Model& m, GroupId g,
     if (front) ++fronts[class_of[k]];
     for (LoopId l : m.loops_of(f)) {
       if (m.is_point_loop(l)) continue;
-      std::vector<std::uint32_t> ids;
+      ids.clear();
       for (VertexId v : m.loop_vertices(l)) {
         if (point_of[v.value] == Nesting::kNone) {
           point_of[v.value] = static_cast<std::uint32_t>(points.size());
@@ -137,9 +138,12 @@ Result<std::size_t> make_region_volumes(Model& m, GroupId g,
       if (given[class_of[k]] == 0) given[class_of[k]] = side_in(s.faces[k / 2], k % 2 == 0) ? 2 : 1;
   for (std::uint32_t c = 0; c < classes; ++c)
     if (outer[c] && (side_in ? given[c] == 2 : fronts[c] == 0)) cell_of[c] = cells++;
-  bool any_inner = false;
-  for (std::uint32_t c = 0; c < classes && !any_inner; ++c) any_inner = sign[c] < 0;
-  if (cells > 0 && any_inner) {
+  // When something is enclosed (a cell), the region around everything has at least
+  // one class of negative volume (the outside of a surface that encloses it). So a
+  // lone negative class is that region's, inside no surface: no cavity to nest.
+  std::uint32_t inner = 0;
+  for (std::uint32_t c = 0; c < classes; ++c) inner += sign[c] < 0;
+  if (cells > 0 && inner > 1) {
     const Nesting nest = nest_surfaces(points, triangles, surface_of, classes, outer);
     for (std::uint32_t c = 0; c < classes; ++c)
       if (sign[c] < 0 && nest.parent[c] != Nesting::kNone && (!side_in || given[c] == 2))
