@@ -20,14 +20,8 @@ namespace {
 constexpr SourcePos kNoPos{~0u, 0, 0};  // a message that is already formatted
 
 // AddressSanitizer unpoisons at most 64 MiB of stack when an exception leaves deep
-// frames (and reports false errors beyond): under it the stack budget stays below.
-#if defined(__SANITIZE_ADDRESS__)
-#define CELLFORGE_ASAN 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define CELLFORGE_ASAN 1
-#endif
-#endif
+// frames (and reports false errors beyond): under it the stack budget stays below
+// (CMake defines CELLFORGE_ASAN in the sanitizer and fuzzer trees).
 #ifdef CELLFORGE_ASAN
 constexpr std::size_t kStackCap = 48u << 20;
 #else
